@@ -1,0 +1,60 @@
+"""Packaging for fowt_hydro_sim.
+
+Works both as a ROS 2 ament_python package (colcon build) and as a plain
+pip-installable project on a machine without ROS:
+
+    pip install .            # core simulator only (numpy, scipy, pyyaml, numba)
+    pip install '.[ros]'     # + rclpy and message packages as PyPI wheels
+    pip install '.[ros,test]'
+"""
+from setuptools import find_packages, setup
+
+package_name = 'fowt_hydro_sim'
+
+ROS_WHEELS = [
+    'ros-rclpy',
+    'ros-rmw-fastrtps-cpp',
+    'ros-geometry-msgs',
+    'ros-nav-msgs',
+    'ros-rosgraph-msgs',
+    'ros-std-msgs',
+    'ros-builtin-interfaces',
+]
+
+# Top-level packages are listed explicitly so that a missing directory is a loud
+# build error (find_packages would silently skip it); sub-packages are found.
+TOP_LEVEL = [package_name, 'msg_adapters']
+PACKAGES = sorted(set(TOP_LEVEL) | set(find_packages(include=[p + '.*' for p in TOP_LEVEL])))
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    description='Floating offshore wind turbine platform hydrodynamics simulator '
+                'with ROS 2 interfaces',
+    license='Apache-2.0',
+    maintainer='fowt_hydro_sim maintainers',
+    maintainer_email='fowt-dev@example.com',
+    python_requires='>=3.10',
+    packages=PACKAGES,
+    package_data={package_name: ['data/*.yaml', 'data/**/*']},
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+    ],
+    install_requires=[
+        'numpy',
+        'scipy',
+        'pyyaml',
+        'numba',
+    ],
+    extras_require={
+        'ros': ROS_WHEELS,
+        'test': ['pytest'],
+    },
+    zip_safe=False,
+    entry_points={
+        'console_scripts': [
+            'fowt-sim = fowt_hydro_sim.cli:main',
+        ],
+    },
+)
