@@ -1,0 +1,394 @@
+"""Platform, sea-state and run configuration: YAML validated into typed dataclasses.
+
+Every reader names the offending field in its error (``ConfigError``), e.g.
+``windmoor12.yaml: members[2].diameter_m: must be a positive number, got -1``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+DRAG_MODELS = ("constant", "filtered")
+SECTIONS = ("circular", "rectangular")
+
+
+class ConfigError(ValueError):
+    """A configuration file or value that cannot be used; the message names the field."""
+
+
+# --------------------------------------------------------------------------- dataclasses
+@dataclass(frozen=True)
+class Environment:
+    water_density_kg_m3: float = 1025.0
+    gravity_m_s2: float = 9.80665
+    water_depth_m: float = 150.0
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    mass_kg: float
+    cog_m: tuple[float, float, float]
+    inertia_about_cog_kg_m2: tuple[tuple[float, ...], ...]  # 3x3, body axes
+
+
+@dataclass(frozen=True)
+class DragCoefficients:
+    """Drag coefficient of one direction: one value per drag model band."""
+
+    constant: float
+    low_frequency: float
+    wave: float
+
+
+@dataclass(frozen=True)
+class Zone:
+    """Transverse coefficients for strips whose undisplaced centre is below ``below_z_m``.
+
+    Direction 1 is the section's width direction (horizontal for a horizontal member),
+    direction 2 its height direction; a circular section has the same values in both.
+    """
+
+    name: str
+    below_z_m: float
+    ca: tuple[float, float]
+    cd: tuple[DragCoefficients, DragCoefficients]
+
+
+@dataclass(frozen=True)
+class EndPlate:
+    """Axial end terms (HydroDyn's): pressure on the end area, added mass on a hemisphere."""
+
+    ca: float
+    cp: float
+    cd: float
+
+
+@dataclass(frozen=True)
+class Member:
+    name: str
+    section: str
+    end_a_m: tuple[float, float, float]
+    end_b_m: tuple[float, float, float]
+    width_m: float  # diameter for a circular section
+    height_m: float  # diameter for a circular section
+    strip_length_m: float
+    zones: tuple[Zone, ...]
+    end_a_plate: EndPlate | None = None
+    end_b_plate: EndPlate | None = None
+
+
+@dataclass(frozen=True)
+class MooringLine:
+    fairlead_m: tuple[float, float, float]  # body frame
+    anchor_m: tuple[float, float, float]  # world frame
+
+
+@dataclass(frozen=True)
+class Mooring:
+    stiffness_n_m: float
+    pretension_n: float
+    unstretched_length_m: float
+    lines: tuple[MooringLine, ...]
+
+
+@dataclass(frozen=True)
+class Platform:
+    name: str
+    environment: Environment
+    mass: MassProperties
+    hub_point_m: tuple[float, float, float]
+    members: tuple[Member, ...]
+    mooring: Mooring
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class SeaState:
+    """An irregular long-crested sea. Frequencies outside [f_min_hz, f_max_hz] are left out
+    (defaults: 0.5 and 5 times the peak frequency). The synthesised record repeats every
+    ``repeat_period_s`` (None: the run's duration, at least 3600 s)."""
+
+    hs_m: float
+    tp_s: float
+    gamma: float = 1.0
+    spectrum: str = "jonswap"
+    heading_deg: float = 0.0
+    seed: int = 1
+    f_min_hz: float | None = None
+    f_max_hz: float | None = None
+    repeat_period_s: float | None = None
+
+    @property
+    def peak_frequency_hz(self) -> float:
+        return 1.0 / self.tp_s
+
+    @property
+    def band_hz(self) -> tuple[float, float]:
+        fp = self.peak_frequency_hz
+        return (self.f_min_hz or 0.5 * fp, self.f_max_hz or 5.0 * fp)
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    name: str
+    role: str
+    sea_state: SeaState
+
+
+@dataclass(frozen=True)
+class RunConfig:
+    """A simulation run. ``initial_state`` is the 6-DOF offset (m, rad) at t = 0."""
+
+    dt_s: float = 0.05
+    duration_s: float = 600.0
+    drag_model: str = "constant"
+    output_interval_s: float | None = None  # None: every step
+    initial_state: tuple[float, ...] = (0.0,) * 6
+    wave_table_dt_s: float | None = None  # None: chosen from the highest wave frequency
+
+
+# --------------------------------------------------------------------------- validation
+class _Fields:
+    """Typed access to one YAML mapping, with the path of each field for error messages."""
+
+    def __init__(self, data: Any, path: str):
+        if not isinstance(data, dict):
+            raise ConfigError(f"{path}: expected a mapping, got {type(data).__name__}")
+        self.data, self.path = data, path
+        self.used: set[str] = set()
+
+    def _raw(self, name: str, default: Any) -> Any:
+        self.used.add(name)
+        if name not in self.data or self.data[name] is None:
+            if default is _REQUIRED:
+                raise ConfigError(f"{self.path}.{name}: missing")
+            return default
+        return self.data[name]
+
+    def number(self, name: str, default: Any = None, *, positive: bool = False,
+               non_negative: bool = False) -> float:
+        default = _REQUIRED if default is None else default
+        value = self._raw(name, default)
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            raise ConfigError(f"{self.path}.{name}: must be a number, got {value!r}") from None
+        if not math.isfinite(value):
+            raise ConfigError(f"{self.path}.{name}: must be finite, got {value}")
+        if positive and value <= 0:
+            raise ConfigError(f"{self.path}.{name}: must be a positive number, got {value:g}")
+        if non_negative and value < 0:
+            raise ConfigError(f"{self.path}.{name}: must not be negative, got {value:g}")
+        return value
+
+    def optional_number(self, name: str, *, positive: bool = False) -> float | None:
+        if self.data.get(name) is None:
+            self.used.add(name)
+            return None
+        return self.number(name, positive=positive)
+
+    def vector(self, name: str, size: int = 3, default: Any = None) -> tuple[float, ...]:
+        value = self._raw(name, _REQUIRED if default is None else default)
+        if not isinstance(value, (list, tuple)) or len(value) != size:
+            raise ConfigError(f"{self.path}.{name}: must be a list of {size} numbers, got {value!r}")
+        try:
+            out = tuple(float(v) for v in value)
+        except (TypeError, ValueError):
+            raise ConfigError(f"{self.path}.{name}: must be a list of {size} numbers, got {value!r}") from None
+        if not all(math.isfinite(v) for v in out):
+            raise ConfigError(f"{self.path}.{name}: must be finite, got {value!r}")
+        return out
+
+    def text(self, name: str, default: Any = None, choices: tuple[str, ...] | None = None) -> str:
+        value = str(self._raw(name, _REQUIRED if default is None else default))
+        if choices and value not in choices:
+            raise ConfigError(f"{self.path}.{name}: must be one of {', '.join(choices)}, got {value!r}")
+        return value
+
+    def sub(self, name: str, default: Any = None) -> "_Fields":
+        return _Fields(self._raw(name, _REQUIRED if default is None else default), f"{self.path}.{name}")
+
+    def items(self, name: str) -> list["_Fields"]:
+        value = self._raw(name, _REQUIRED)
+        if not isinstance(value, list) or not value:
+            raise ConfigError(f"{self.path}.{name}: must be a non-empty list")
+        return [_Fields(v, f"{self.path}.{name}[{i}]") for i, v in enumerate(value)]
+
+    def finish(self) -> None:
+        unknown = sorted(set(self.data) - self.used)
+        if unknown:
+            raise ConfigError(f"{self.path}: unknown field(s) {', '.join(unknown)}")
+
+
+_REQUIRED = object()
+
+
+def _drag(f: _Fields, name: str) -> DragCoefficients:
+    value = f.data.get(name)
+    if isinstance(value, (int, float)):  # one Cd for every band
+        c = f.number(name, non_negative=True)
+        return DragCoefficients(c, c, c)
+    d = f.sub(name)
+    out = DragCoefficients(*(d.number(b, non_negative=True) for b in ("constant", "low_frequency", "wave")))
+    d.finish()
+    return out
+
+
+def _zone(f: _Fields, section: str, is_last: bool) -> Zone:
+    below = math.inf if is_last and f.data.get("below_z_m") is None else f.number("below_z_m")
+    if section == "circular":
+        ca = f.number("ca", non_negative=True)
+        cd = _drag(f, "cd")
+        zone = Zone(f.text("name", "zone"), below, (ca, ca), (cd, cd))
+    else:
+        zone = Zone(f.text("name", "zone"), below,
+                    (f.number("ca_horizontal", non_negative=True), f.number("ca_vertical", non_negative=True)),
+                    (_drag(f, "cd_horizontal"), _drag(f, "cd_vertical")))
+    f.finish()
+    return zone
+
+
+def _end_plate(f: _Fields) -> EndPlate:
+    plate = EndPlate(ca=f.number("ca", non_negative=True), cp=f.number("cp", 1.0),
+                     cd=f.number("cd", non_negative=True))
+    f.finish()
+    return plate
+
+
+def _member(f: _Fields) -> Member:
+    section = f.text("section", choices=SECTIONS)
+    if section == "circular":
+        width = height = f.number("diameter_m", positive=True)
+    else:
+        width, height = f.number("width_m", positive=True), f.number("height_m", positive=True)
+    a, b = f.vector("end_a_m"), f.vector("end_b_m")
+    if math.dist(a, b) <= 0:
+        raise ConfigError(f"{f.path}: end_a_m and end_b_m are the same point")
+    zones = f.items("zones")
+    member = Member(
+        name=f.text("name"), section=section, end_a_m=a, end_b_m=b, width_m=width, height_m=height,
+        strip_length_m=f.number("strip_length_m", 1.0, positive=True),
+        zones=tuple(_zone(z, section, i == len(zones) - 1) for i, z in enumerate(zones)),
+        end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
+        end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
+    )
+    f.used.update({"end_a_plate", "end_b_plate"})
+    if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
+        raise ConfigError(f"{f.path}.zones: below_z_m must increase from the first zone to the last")
+    f.finish()
+    return member
+
+
+def _inertia(f: _Fields) -> tuple[tuple[float, ...], ...]:
+    ixx, iyy, izz = (f.number(k, positive=True) for k in ("ixx", "iyy", "izz"))
+    ixy, ixz, iyz = (f.number(k, 0.0) for k in ("ixy", "ixz", "iyz"))
+    f.finish()
+    return ((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))
+
+
+def platform_from_dict(data: Any, source: str = "platform") -> Platform:
+    """Validate a parsed platform YAML document."""
+    f = _Fields(data, source)
+    env_f = f.sub("environment", {})
+    env = Environment(env_f.number("water_density_kg_m3", 1025.0, positive=True),
+                      env_f.number("gravity_m_s2", 9.80665, positive=True),
+                      env_f.number("water_depth_m", 150.0, positive=True))
+    env_f.finish()
+    m = f.sub("mass")
+    mass = MassProperties(m.number("mass_kg", positive=True), m.vector("cog_m"),
+                          _inertia(m.sub("inertia_about_cog_kg_m2")))
+    m.finish()
+    mo = f.sub("mooring")
+    lines = []
+    for line in mo.items("lines"):
+        lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
+        line.finish()
+    mooring = Mooring(mo.number("stiffness_n_m", non_negative=True), mo.number("pretension_n", non_negative=True),
+                      mo.number("unstretched_length_m", positive=True), tuple(lines))
+    mo.finish()
+    platform = Platform(
+        name=f.text("name"), description=f.text("description", ""), environment=env, mass=mass,
+        hub_point_m=f.vector("hub_point_m"), members=tuple(_member(x) for x in f.items("members")),
+        mooring=mooring)
+    f.used.update(k for k in f.data if k.endswith(("_zones", "_end")))  # YAML anchors' holders
+    f.finish()
+    return platform
+
+
+def _read_yaml(path: Path) -> Any:
+    try:
+        return yaml.safe_load(path.read_text())
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    except yaml.YAMLError as exc:
+        raise ConfigError(f"{path}: not valid YAML ({exc})") from None
+
+
+def packaged_platforms() -> list[str]:
+    folder = resources.files("fowt_hydro_sim") / "data" / "platforms"
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".yaml"))
+
+
+def load_platform(name_or_path: str | Path = "windmoor12") -> Platform:
+    """A packaged platform by name (``windmoor12``) or a platform YAML file."""
+    path = Path(name_or_path)
+    if not path.suffix and str(name_or_path) in packaged_platforms():
+        path = Path(str(resources.files("fowt_hydro_sim") / "data" / "platforms" / f"{name_or_path}.yaml"))
+    elif not path.exists():
+        raise ConfigError(f"platform {str(name_or_path)!r}: no such file and not a packaged platform "
+                          f"({', '.join(packaged_platforms())})")
+    return platform_from_dict(_read_yaml(path), path.name)
+
+
+def load_cases() -> dict[str, LoadCase]:
+    """The paper's load cases by name (``lc5.3`` ...)."""
+    data = _read_yaml(Path(str(resources.files("fowt_hydro_sim") / "data" / "load_cases.yaml")))
+    cases = {}
+    for name, spec in data.items():
+        f = _Fields(spec, name)
+        cases[name] = LoadCase(name, f.text("role"), SeaState(f.number("hs_m", positive=True),
+                               f.number("tp_s", positive=True), f.number("gamma", positive=True)))
+        f.finish()
+    return cases
+
+
+def load_case(name: str) -> LoadCase:
+    cases = load_cases()
+    key = name.lower() if name.lower().startswith("lc") else f"lc{name}"
+    if key not in cases:
+        raise ConfigError(f"load case {name!r}: unknown; known: {', '.join(cases)}")
+    return cases[key]
+
+
+def sea_state_from_dict(data: Any, source: str = "sea_state") -> SeaState:
+    f = _Fields(data, source)
+    sea = SeaState(
+        hs_m=f.number("hs_m", non_negative=True), tp_s=f.number("tp_s", positive=True),
+        gamma=f.number("gamma", 1.0, positive=True),
+        spectrum=f.text("spectrum", "jonswap", choices=("jonswap", "pierson_moskowitz")),
+        heading_deg=f.number("heading_deg", 0.0), seed=int(f.number("seed", 1)),
+        f_min_hz=f.optional_number("f_min_hz", positive=True),
+        f_max_hz=f.optional_number("f_max_hz", positive=True),
+        repeat_period_s=f.optional_number("repeat_period_s", positive=True))
+    f.finish()
+    lo, hi = sea.band_hz
+    if lo >= hi:
+        raise ConfigError(f"{source}: f_min_hz ({lo:g}) must be below f_max_hz ({hi:g})")
+    return sea
+
+
+def run_from_dict(data: Any, source: str = "run") -> RunConfig:
+    f = _Fields(data, source)
+    run = RunConfig(
+        dt_s=f.number("dt_s", 0.05, positive=True), duration_s=f.number("duration_s", 600.0, positive=True),
+        drag_model=f.text("drag_model", "constant", choices=DRAG_MODELS),
+        output_interval_s=f.optional_number("output_interval_s", positive=True),
+        initial_state=f.vector("initial_state", 6, [0.0] * 6),
+        wave_table_dt_s=f.optional_number("wave_table_dt_s", positive=True))
+    f.finish()
+    return run

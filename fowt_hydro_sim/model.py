@@ -1,0 +1,244 @@
+"""The platform model: composes waves, Morison strips, hydrostatics, mooring, gravity and an
+external wrench into a 6-DOF time-domain simulation (no ROS here).
+
+    model = PlatformModel(load_platform("windmoor12"), synthesize(sea, 3600.0))
+    result = model.run(600.0)            # batch
+    sample = model.step()                # or one dt at a time (a node does this)
+"""
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+
+from . import dynamics
+from .config import ConfigError, Platform
+from .dynamics import LOAD_COMPONENTS, N_BODY_STATES, N_LOADS, KernelData
+from .hydrostatics import Hydrostatics, hydrostatics
+from .kinematics import KinematicsTable, table_step
+from .morison import added_mass_matrices
+from .strips import DRAG_BANDS, Discretisation, discretise
+from .waves import WaveComponents
+
+log = logging.getLogger(__name__)
+
+DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+WRENCH_FRAMES = ("world", "platform", "hub")
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """Time series of a run, one row per output sample (world axes, reference point)."""
+
+    time_s: np.ndarray  # (n,)
+    motion: np.ndarray  # (n, 6) surge, sway, heave [m], roll, pitch, yaw [rad]
+    velocity: np.ndarray  # (n, 6) linear [m/s], angular [rad/s], world axes
+    acceleration: np.ndarray  # (n, 6)
+    loads: np.ndarray  # (n, N_LOADS, 6), LOAD_COMPONENTS
+    wave_elevation_m: np.ndarray  # (n,) at the reference point (0, 0)
+
+    def load(self, name: str) -> np.ndarray:
+        return self.loads[:, LOAD_COMPONENTS.index(name)]
+
+
+def _elevation_table(waves: WaveComponents, step_s: float, depth_m: float, gravity: float) -> np.ndarray:
+    """Elevation at the origin over one repeat period, as an (n, 1, 1) table."""
+    n = int(round(waves.period_s / step_s))
+    spectrum = np.zeros(n // 2 + 1, dtype=complex)
+    np.add.at(spectrum, waves.harmonic, waves.amplitude_m * np.exp(1j * waves.phase_rad) * n / 2.0)
+    return scipy.fft.irfft(spectrum, n)[:, None, None]
+
+
+class PlatformModel:
+    """A floating platform in waves, stepped with a fixed dt.
+
+    ``waves`` None is still water. Kinematics are taken at the undisplaced strip points
+    (HydroDyn's WaveDisp = 0) from a table over the waves' repeat period.
+    """
+
+    def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
+                 drag_model: str = "constant", wave_table_dt_s: float | None = None):
+        if drag_model not in DRAG_BANDS[:1]:
+            raise ConfigError(f"drag model {drag_model!r}: this model supports 'constant'")
+        self.platform = platform
+        self.waves = waves
+        self.dt_s = float(dt_s)
+        self.drag_model = drag_model
+        self.geometry: Discretisation = discretise(platform)
+        self.hydrostatics: Hydrostatics = hydrostatics(platform, self.geometry.strips)
+        env = platform.environment
+        if waves is None or waves.frequency_hz.size == 0:
+            table = np.zeros((4, len(self.geometry.points_m), 7), dtype=np.float32)
+            step, self._elevation = 1.0, np.zeros((4, 1, 1))
+        else:
+            step = wave_table_dt_s or table_step(waves, self.dt_s)
+            built = KinematicsTable.build(waves, self.geometry.points_m, step, env.water_depth_m,
+                                          env.gravity_m_s2, env.water_density_kg_m3)
+            table = built.values
+            self._elevation = _elevation_table(waves, step, env.water_depth_m, env.gravity_m_s2)
+        self.wave_table_step_s = step
+        self._data = self._kernel_data(table, step)
+        self.reset()
+
+    # ------------------------------------------------------------------ set-up
+    def _kernel_data(self, table: np.ndarray, step: float) -> KernelData:
+        p, s, plates = self.platform, self.geometry.strips, self.geometry.plates
+        strip_6x6, plate_6x6 = added_mass_matrices(self.geometry)
+        band = DRAG_BANDS.index(self.drag_model)
+        return KernelData(
+            wave_table=table, wave_table_step_s=step,
+            strip_centre=s.centre_m, strip_axis=s.axis, strip_directions=s.directions,
+            strip_length=s.length_m, strip_inertia=s.inertia_kg_m, strip_added_mass=s.added_mass_kg_m,
+            strip_added_mass_6x6=strip_6x6, strip_drag=np.ascontiguousarray(s.drag_kg_m2[:, band, :]),
+            strip_point=s.kinematics_point.astype(np.int64),
+            plate_centre=plates.centre_m, plate_normal=plates.normal,
+            plate_pressure_area=plates.pressure_area_m2, plate_added_mass=plates.added_mass_kg,
+            plate_drag=plates.drag_kg_m, plate_added_mass_6x6=plate_6x6,
+            plate_point=plates.kinematics_point.astype(np.int64),
+            mass=p.mass.mass_kg, cog=np.array(p.mass.cog_m), inertia_cog=np.array(p.mass.inertia_about_cog_kg_m2),
+            gravity=p.environment.gravity_m_s2,
+            buoyancy_wrench=self.hydrostatics.buoyancy_wrench,
+            hydrostatic_stiffness=self.hydrostatics.stiffness,
+            fairleads=np.array([line.fairlead_m for line in p.mooring.lines]),
+            anchors=np.array([line.anchor_m for line in p.mooring.lines]),
+            line_stiffness=p.mooring.stiffness_n_m, line_pretension=p.mooring.pretension_n,
+            line_length=p.mooring.unstretched_length_m,
+            external_world=np.zeros(6), external_body=np.zeros(6), external_point=np.zeros(3))
+
+    def reset(self, motion: np.ndarray | None = None, velocity: np.ndarray | None = None) -> None:
+        """Restart at t = 0 from a 6-DOF offset and velocity (default: at rest)."""
+        self._state = np.zeros(N_BODY_STATES)
+        if motion is not None:
+            self._state[0:6] = motion
+        if velocity is not None:
+            self._state[6:12] = velocity
+        self._step_index = 0
+        self._loads = np.zeros((N_LOADS, 6))
+        self._restart_history()
+
+    def _restart_history(self) -> None:
+        """Forget the integrator's past derivatives (after a jump in state)."""
+        self._history = np.full((4, self._state.size), np.nan)
+        self._history[0] = dynamics.derivative(self.time_s, self._state, self._data, self._loads)
+
+    def set_external_wrench(self, wrench: np.ndarray, frame: str = "world") -> None:
+        """Hold a wrench [Fx, Fy, Fz, Mx, My, Mz] until the next call.
+
+        ``world``: world axes at the reference point; ``platform``: body axes at the
+        reference point; ``hub``: body axes at the hub point.
+        """
+        wrench = np.asarray(wrench, dtype=float)
+        if wrench.shape != (6,) or not np.all(np.isfinite(wrench)):
+            raise ValueError(f"external wrench: need 6 finite numbers, got {wrench!r}")
+        if frame not in WRENCH_FRAMES:
+            raise ValueError(f"external wrench: unknown frame {frame!r} ({', '.join(WRENCH_FRAMES)})")
+        self._data.external_world[:] = wrench if frame == "world" else 0.0
+        self._data.external_body[:] = 0.0 if frame == "world" else wrench
+        self._data.external_point[:] = self.platform.hub_point_m if frame == "hub" else 0.0
+        # the derivative at the current time changes with the input
+        self._history[0] = dynamics.derivative(self.time_s, self._state, self._data, self._loads)
+
+    # ------------------------------------------------------------------ state
+    @property
+    def time_s(self) -> float:
+        return self._step_index * self.dt_s
+
+    @property
+    def motion(self) -> np.ndarray:
+        return self._state[0:6].copy()
+
+    @property
+    def velocity(self) -> np.ndarray:
+        return self._state[6:12].copy()
+
+    @property
+    def acceleration(self) -> np.ndarray:
+        return self._history[0, 6:12].copy()
+
+    @property
+    def loads(self) -> np.ndarray:
+        """(N_LOADS, 6) loads at the current time (LOAD_COMPONENTS order)."""
+        return self._loads.copy()
+
+    def wave_elevation(self, time_s: float | np.ndarray) -> np.ndarray:
+        """Elevation at the reference point (0, 0), from the model's wave table."""
+        t = np.atleast_1d(np.asarray(time_s, dtype=float))
+        return np.array([dynamics.interpolate_table(self._elevation, self.wave_table_step_s, x)[0, 0]
+                         for x in t])
+
+    # ------------------------------------------------------------------ stepping
+    def step(self, n_steps: int = 1) -> None:
+        """Advance n steps of dt; the state, acceleration and loads are then at the new time."""
+        self._advance(n_steps, n_steps)
+
+    def run(self, duration_s: float, output_interval_s: float | None = None) -> RunResult:
+        """Advance ``duration_s`` and return the time series, one row every output interval
+        (default every step), the current time included as the first row."""
+        n_steps = int(round(duration_s / self.dt_s))
+        every = max(1, int(round((output_interval_s or self.dt_s) / self.dt_s)))
+        first = (self.time_s, self._state.copy(), self.acceleration, self._loads.copy())
+        t, y, acc, loads = self._advance(n_steps, every)
+        time = np.concatenate([[first[0]], t])
+        states = np.vstack([first[1], y])
+        return RunResult(time, states[:, 0:6], states[:, 6:12], np.vstack([first[2], acc]),
+                         np.concatenate([first[3][None], loads]), self.wave_elevation(time))
+
+    def _advance(self, n_steps: int, every: int) -> tuple[np.ndarray, ...]:
+        n_out = n_steps // every
+        out_t = np.empty(n_out)
+        out_y = np.empty((n_out, self._state.size))
+        out_acc = np.empty((n_out, 6))
+        out_loads = np.empty((n_out, N_LOADS, 6))
+        dynamics.integrate(self._state, self._step_index, self.dt_s, n_steps, every, self._data,
+                           self._history, out_t, out_y, out_acc, out_loads)
+        self._step_index += n_steps
+        if n_out:
+            self._loads[:] = out_loads[-1]
+        return out_t, out_y, out_acc, out_loads
+
+    # ------------------------------------------------------------------ analysis
+    def prescribed_motion_loads(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray,
+                                acceleration: np.ndarray) -> np.ndarray:
+        """Loads (n, N_LOADS, 6) for a prescribed 6-DOF motion, like HydroDyn's driver."""
+        time_s = np.ascontiguousarray(time_s, dtype=float)
+        n = time_s.size
+        shapes = {"motion": motion, "velocity": velocity, "acceleration": acceleration}
+        for name, arr in shapes.items():
+            if np.shape(arr) != (n, 6):
+                raise ValueError(f"prescribed motion: {name} must have shape ({n}, 6), got {np.shape(arr)}")
+        states = np.ascontiguousarray(np.hstack([motion, velocity]), dtype=float)
+        out = np.zeros((n, N_LOADS, 6))
+        dynamics.prescribed_motion_loads(time_s, states, np.ascontiguousarray(acceleration, dtype=float),
+                                         self._data, out)
+        return out
+
+    def mass_matrix(self) -> np.ndarray:
+        """Rigid-body plus added mass at rest, 6x6 about the reference point."""
+        loads = np.zeros((N_LOADS, 6))
+        added = dynamics.applied_loads(0.0, np.zeros(N_BODY_STATES), self._data, loads)
+        rigid, _ = dynamics.mass_matrix_and_bias(self._data.mass, self._data.cog, self._data.inertia_cog,
+                                                 np.eye(3), np.zeros(3))
+        return rigid + added
+
+    def restoring_matrix(self, step: float = 1e-4) -> np.ndarray:
+        """Linear restoring matrix (hydrostatics, gravity, mooring) at rest, by central
+        differences of the static loads in still water."""
+        data = self._data._replace(wave_table=np.zeros_like(self._data.wave_table[:4]))
+        out = np.zeros((6, 6))
+        loads = np.zeros((N_LOADS, 6))
+        for j in range(6):
+            wrench = []
+            for sign in (1.0, -1.0):
+                y = np.zeros(N_BODY_STATES)
+                y[j] = sign * step
+                dynamics.applied_loads(0.0, y, data, loads)
+                wrench.append(loads[[3, 4, 5]].sum(axis=0))
+            out[:, j] = -(wrench[0] - wrench[1]) / (2 * step)
+        return out
+
+    def natural_periods_s(self) -> np.ndarray:
+        """Undamped natural periods of the linearised model, longest first."""
+        eigenvalues = np.linalg.eigvals(np.linalg.solve(self.mass_matrix(), self.restoring_matrix()))
+        return 2 * np.pi / np.sqrt(np.sort(eigenvalues.real))
