@@ -1,0 +1,154 @@
+"""``fowt-sim``: the command-line entry point (subcommands; ``simulate`` runs the model offline).
+
+Errors in the user's input end the command with one line naming the problem (exit 2),
+never a traceback.
+"""
+from __future__ import annotations
+
+import argparse
+import logging
+import resource
+import sys
+import time
+from dataclasses import asdict
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+from .config import ConfigError, SeaState, load_case, load_platform
+from .model import DOF_NAMES, PlatformModel, RunResult
+from .output import write_run
+from .waves import WaveComponents, from_elevation_record, read_comp_file, repeat_period, synthesize
+
+log = logging.getLogger("fowt_hydro_sim")
+
+
+def _sea_state(args: argparse.Namespace) -> SeaState:
+    if args.hs is not None or args.tp is not None:
+        if args.hs is None or args.tp is None:
+            raise ConfigError("--hs and --tp go together")
+        return SeaState(args.hs, args.tp, args.gamma or 1.0, heading_deg=args.heading, seed=args.seed)
+    case = load_case(args.load_case).sea_state
+    return SeaState(case.hs_m, case.tp_s, case.gamma, heading_deg=args.heading, seed=args.seed)
+
+
+def _waves(args: argparse.Namespace, platform) -> tuple[WaveComponents | None, dict]:
+    env = platform.environment
+    if args.still_water:
+        return None, {"source": "still water"}
+    if args.waves_comp:
+        return read_comp_file(args.waves_comp), {"source": "components", "file": str(args.waves_comp)}
+    if args.elevation:
+        try:
+            record = np.loadtxt(args.elevation, delimiter=",", comments="#", ndmin=2)
+        except (OSError, ValueError) as exc:
+            raise ConfigError(f"{args.elevation}: cannot be read as two CSV columns time_s, elevation_m ({exc})") from None
+        if record.shape[1] != 2:
+            raise ConfigError(f"{args.elevation}: expected two columns time_s, elevation_m, got {record.shape[1]}")
+        x, y = args.elevation_point
+        waves = from_elevation_record(record[:, 0], record[:, 1], x, y, args.heading, env.water_depth_m,
+                                      env.gravity_m_s2)
+        return waves, {"source": "elevation record", "file": str(args.elevation), "point_m": [x, y]}
+    sea = _sea_state(args)
+    period = repeat_period(sea, args.duration)
+    return synthesize(sea, period), {"source": "sea state", **asdict(sea), "repeat_period_s": period,
+                                     "load_case": None if args.hs is not None else args.load_case}
+
+
+def simulate(args: argparse.Namespace) -> int:
+    out = Path(args.output)
+    if out.exists() and any(out.iterdir()) and not args.overwrite:
+        raise ConfigError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
+    platform = load_platform(args.platform)
+    waves, wave_info = _waves(args, platform)
+    start = time.perf_counter()
+    model = PlatformModel(platform, waves, dt_s=args.dt, drag_model=args.drag)
+    built = time.perf_counter()
+    if args.initial:
+        model.reset(motion=np.array(args.initial))
+    result = model.run(args.duration, output_interval_s=args.output_interval)
+    wall = time.perf_counter() - start
+    summary = {
+        "software": {"name": "fowt_hydro_sim", "version": __version__},
+        "platform": platform.name, "drag_model": args.drag, "waves": wave_info,
+        "run": {"dt_s": args.dt, "duration_s": args.duration, "output_interval_s": args.output_interval,
+                "initial_state": args.initial or [0.0] * 6, "wave_table_step_s": model.wave_table_step_s,
+                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
+        "performance": {"wall_time_s": wall, "set_up_s": built - start,
+                        "real_time_factor": args.duration / wall,
+                        "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024},
+        "statistics": _statistics(result),
+    }
+    write_run(out, result, summary)
+    _print_summary(summary, out)
+    return 0
+
+
+def _statistics(result: RunResult) -> dict:
+    stats = {}
+    for j, name in enumerate(DOF_NAMES):
+        x = result.motion[:, j] * (180 / np.pi if j >= 3 else 1.0)
+        stats[name] = {"unit": "deg" if j >= 3 else "m", "mean": float(x.mean()), "std": float(x.std()),
+                       "min": float(x.min()), "max": float(x.max())}
+    eta = result.wave_elevation_m
+    stats["wave_elevation"] = {"unit": "m", "mean": float(eta.mean()), "std": float(eta.std()),
+                               "hs_4std": float(4 * eta.std())}
+    return stats
+
+
+def _print_summary(summary: dict, out: Path) -> None:
+    perf = summary["performance"]
+    print(f"{summary['platform']}, {summary['waves']['source']}, drag {summary['drag_model']}: "
+          f"{summary['run']['duration_s']:g} s simulated in {perf['wall_time_s']:.2f} s "
+          f"({perf['real_time_factor']:.0f}x real time)")
+    print(f"{'':16s}{'mean':>10s}{'std':>10s}{'min':>10s}{'max':>10s}")
+    for name, s in summary["statistics"].items():
+        if "min" in s:
+            print(f"{name + ' [' + s['unit'] + ']':16s}{s['mean']:10.3f}{s['std']:10.3f}{s['min']:10.3f}{s['max']:10.3f}")
+    print(f"wave Hs (4 std) at the reference point: {summary['statistics']['wave_elevation']['hs_4std']:.2f} m")
+    print(f"wrote {out / 'timeseries.csv'} and {out / 'summary.json'}")
+
+
+def _add_simulate(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("simulate", help="run the platform model offline and write its time series",
+                       description="Run the platform model offline (no ROS) and write timeseries.csv "
+                                   "and summary.json to the output folder.")
+    p.add_argument("--platform", default="windmoor12", help="packaged platform name or YAML file")
+    waves = p.add_argument_group("waves (default: load case lc5.3)")
+    waves.add_argument("--load-case", default="lc5.3", help="a load case of the paper (lc5.0 .. lc6.5)")
+    waves.add_argument("--hs", type=float, help="significant wave height [m] (with --tp)")
+    waves.add_argument("--tp", type=float, help="peak period [s]")
+    waves.add_argument("--gamma", type=float, help="JONSWAP peak enhancement (default 1)")
+    waves.add_argument("--heading", type=float, default=0.0, help="wave direction [deg], 0 = toward +x")
+    waves.add_argument("--seed", type=int, default=1, help="random phase seed")
+    waves.add_argument("--waves-comp", type=Path, help="OpenFAST SeaState .Comp file of wave components")
+    waves.add_argument("--elevation", type=Path, help="CSV time_s,elevation_m measured at --elevation-point")
+    waves.add_argument("--elevation-point", type=float, nargs=2, default=(0.0, 0.0), metavar=("X", "Y"))
+    waves.add_argument("--still-water", action="store_true", help="no waves")
+    p.add_argument("--drag", default="constant", choices=("constant",), help="drag model")
+    p.add_argument("--duration", type=float, default=600.0, help="simulated time [s]")
+    p.add_argument("--dt", type=float, default=0.05, help="time step [s]")
+    p.add_argument("--output-interval", type=float, default=0.25, help="output sample interval [s]")
+    p.add_argument("--initial", type=float, nargs=6, metavar="Q", help="initial offset: 3 m, 3 rad")
+    p.add_argument("-o", "--output", default="out/simulate", help="output folder")
+    p.add_argument("--overwrite", action="store_true", help="replace files in a non-empty output folder")
+    p.set_defaults(func=simulate)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
+    parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
+    sub = parser.add_subparsers(dest="command", required=True)
+    _add_simulate(sub)
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.DEBUG if args.verbose else logging.INFO, format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return args.func(args)
+    except (ConfigError, ValueError) as exc:
+        print(f"fowt-sim {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

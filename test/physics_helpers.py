@@ -1,0 +1,57 @@
+"""Helpers shared by the physics tests: reference files and platform variants."""
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fowt_hydro_sim.config import DragCoefficients, Member, Platform, load_platform
+
+SHARED = Path(__file__).resolve().parents[2] / "shared"
+HYDRODYN = SHARED / "reference" / "openfast_hydrodyn"
+
+
+def hydrodyn_case(name: str) -> Path:
+    folder = HYDRODYN / name
+    if not folder.is_dir():
+        pytest.skip(f"reference case {folder} is not present")
+    return folder
+
+
+def read_hydrodyn_out(path: Path) -> dict[str, np.ndarray]:
+    """OpenFAST driver output: 6 preamble lines, channel names, units, then rows."""
+    lines = path.read_text().splitlines()
+    header = next(i for i, line in enumerate(lines) if line.split()[:1] == ["Time"])
+    names = lines[header].split()
+    data = np.loadtxt(lines[header + 2:])
+    return {name: data[:, i] for i, name in enumerate(names)}
+
+
+def uniform_drag(member: Member, cd_1: float, cd_2: float) -> Member:
+    """One zone over the whole member, with one Cd per direction for every band."""
+    zone = member.zones[-1]
+    cds = (DragCoefficients(cd_1, cd_1, cd_1), DragCoefficients(cd_2, cd_2, cd_2))
+    return dataclasses.replace(member, zones=(dataclasses.replace(zone, cd=cds, below_z_m=math.inf),))
+
+
+def scaled_drag(platform: Platform, scale: float) -> Platform:
+    """The platform with every drag coefficient (strips and end plates) times ``scale``."""
+    def zone(z):
+        return dataclasses.replace(z, cd=tuple(DragCoefficients(*(scale * getattr(c, f.name)
+                                                                  for f in dataclasses.fields(c)))
+                                               for c in z.cd))
+
+    def plate(p):
+        return None if p is None else dataclasses.replace(p, cd=scale * p.cd)
+
+    members = tuple(dataclasses.replace(m, zones=tuple(zone(z) for z in m.zones),
+                                        end_a_plate=plate(m.end_a_plate), end_b_plate=plate(m.end_b_plate))
+                    for m in platform.members)
+    return dataclasses.replace(platform, members=members)
+
+
+def windmoor12() -> Platform:
+    return load_platform("windmoor12")
