@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__
-from .config import ConfigError, SeaState, load_case, load_platform
+from .config import ConfigError, SeaState, load_case, load_platform, load_run_file
 from .model import DOF_NAMES, PlatformModel, RunResult
 from .output import write_run
 from .waves import WaveComponents, from_elevation_record, read_comp_file, repeat_period, synthesize
@@ -56,7 +56,23 @@ def _waves(args: argparse.Namespace, platform) -> tuple[WaveComponents | None, d
                                      "load_case": None if args.hs is not None else args.load_case}
 
 
+def _apply_run_file(args: argparse.Namespace) -> None:
+    """Take platform, waves and run settings from ``--config``."""
+    spec = load_run_file(args.config)
+    args.platform, args.drag = spec.platform, spec.run.drag_model
+    args.duration, args.dt = spec.run.duration_s, spec.run.dt_s
+    args.output_interval = spec.run.output_interval_s or spec.run.dt_s
+    args.initial = list(spec.run.initial_state)
+    args.still_water = spec.sea_state is None
+    if spec.sea_state is not None:
+        sea = spec.sea_state
+        args.load_case, args.seed, args.heading = spec.load_case, sea.seed, sea.heading_deg
+        args.hs, args.tp, args.gamma = (None, None, None) if spec.load_case else (sea.hs_m, sea.tp_s, sea.gamma)
+
+
 def simulate(args: argparse.Namespace) -> int:
+    if args.config:
+        _apply_run_file(args)
     out = Path(args.output)
     if out.exists() and any(out.iterdir()) and not args.overwrite:
         raise ConfigError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
@@ -114,6 +130,8 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("simulate", help="run the platform model offline and write its time series",
                        description="Run the platform model offline (no ROS) and write timeseries.csv "
                                    "and summary.json to the output folder.")
+    p.add_argument("--config", type=Path, help="run file (YAML: platform, load_case or sea_state, run); "
+                                                "replaces the platform, wave and run options")
     p.add_argument("--platform", default="windmoor12", help="packaged platform name or YAML file")
     waves = p.add_argument_group("waves (default: load case lc5.3)")
     waves.add_argument("--load-case", default="lc5.3", help="a load case of the paper (lc5.0 .. lc6.5)")

@@ -6,7 +6,7 @@ Every reader names the offending field in its error (``ConfigError``), e.g.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -392,3 +392,40 @@ def run_from_dict(data: Any, source: str = "run") -> RunConfig:
         wave_table_dt_s=f.optional_number("wave_table_dt_s", positive=True))
     f.finish()
     return run
+
+
+@dataclass(frozen=True)
+class RunFile:
+    """A run described in one YAML file: platform, waves (load case or sea state), run."""
+
+    platform: str
+    sea_state: SeaState | None  # None: still water
+    run: RunConfig
+    load_case: str | None = None
+
+
+def load_run_file(path: str | Path) -> RunFile:
+    """Read a run file::
+
+        platform: windmoor12          # packaged name or platform YAML path
+        load_case: lc5.3              # or sea_state: {hs_m: .., tp_s: .., gamma: .., seed: ..}
+        seed: 1                       # with load_case
+        run: {dt_s: 0.05, duration_s: 3600, drag_model: constant, output_interval_s: 0.25}
+    """
+    path = Path(path)
+    f = _Fields(_read_yaml(path), path.name)
+    platform = f.text("platform", "windmoor12")
+    case_name = f.data.get("load_case")
+    f.used.add("load_case")
+    if case_name is not None and f.data.get("sea_state") is not None:
+        raise ConfigError(f"{path.name}: give load_case or sea_state, not both")
+    if case_name is not None:
+        case = load_case(str(case_name)).sea_state
+        sea = SeaState(case.hs_m, case.tp_s, case.gamma, seed=int(f.number("seed", 1)))
+    else:
+        sea = sea_state_from_dict(f.data["sea_state"], f"{path.name}.sea_state") if f.data.get("sea_state") else None
+        f.used.add("sea_state")
+    run = run_from_dict(f.data.get("run") or {}, f"{path.name}.run")
+    f.used.add("run")
+    f.finish()
+    return RunFile(platform, sea, run, None if case_name is None else str(case_name))

@@ -52,3 +52,18 @@ def test_bad_input_is_one_clear_line(tmp_path: Path):
         done = fowt_sim("simulate", *args, "-o", str(tmp_path / "o"))
         assert done.returncode == 2
         assert expected in done.stderr and "Traceback" not in done.stderr
+
+
+def test_simulate_from_a_run_file(tmp_path: Path):
+    """Platform, sea state and run from one YAML file; a bad field is named."""
+    run_file = tmp_path / "run.yaml"
+    run_file.write_text("platform: windmoor12\nsea_state: {hs_m: 4.0, tp_s: 10.0, gamma: 2.0, seed: 7}\n"
+                        "run: {dt_s: 0.05, duration_s: 30, output_interval_s: 0.5}\n")
+    done = fowt_sim("simulate", "--config", str(run_file), "-o", str(tmp_path / "out"))
+    assert done.returncode == 0, done.stderr
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert (summary["waves"]["hs_m"], summary["waves"]["seed"], summary["run"]["output_interval_s"]) == (4.0, 7, 0.5)
+    assert read_run(tmp_path / "out")["time_s"][-1] == 30.0
+    run_file.write_text("run: {dt_s: -1}\n")
+    done = fowt_sim("simulate", "--config", str(run_file), "-o", str(tmp_path / "bad"))
+    assert done.returncode == 2 and "run.dt_s: must be a positive number" in done.stderr
