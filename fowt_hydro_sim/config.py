@@ -156,17 +156,21 @@ class RunConfig:
 class _Fields:
     """Typed access to one YAML mapping, with the path of each field for error messages."""
 
-    def __init__(self, data: Any, path: str):
+    def __init__(self, data: Any, path: str, is_root: bool = True):
         if not isinstance(data, dict):
             raise ConfigError(f"{path}: expected a mapping, got {type(data).__name__}")
-        self.data, self.path = data, path
+        self.data, self.path, self.is_root = data, path, is_root
         self.used: set[str] = set()
+
+    def at(self, name: str) -> str:
+        """The path of a field: ``file.yaml: members[2].diameter_m``."""
+        return f"{self.path}: {name}" if self.is_root else f"{self.path}.{name}"
 
     def _raw(self, name: str, default: Any) -> Any:
         self.used.add(name)
         if name not in self.data or self.data[name] is None:
             if default is _REQUIRED:
-                raise ConfigError(f"{self.path}.{name}: missing")
+                raise ConfigError(f"{self.at(name)}: missing")
             return default
         return self.data[name]
 
@@ -174,16 +178,18 @@ class _Fields:
                non_negative: bool = False) -> float:
         default = _REQUIRED if default is None else default
         value = self._raw(name, default)
+        if isinstance(value, bool):  # (strings stay: PyYAML reads 1.2e6 as one)
+            raise ConfigError(f"{self.at(name)}: must be a number, got {value!r}")
         try:
             value = float(value)
         except (TypeError, ValueError):
-            raise ConfigError(f"{self.path}.{name}: must be a number, got {value!r}") from None
+            raise ConfigError(f"{self.at(name)}: must be a number, got {value!r}") from None
         if not math.isfinite(value):
-            raise ConfigError(f"{self.path}.{name}: must be finite, got {value}")
+            raise ConfigError(f"{self.at(name)}: must be finite, got {value}")
         if positive and value <= 0:
-            raise ConfigError(f"{self.path}.{name}: must be a positive number, got {value:g}")
+            raise ConfigError(f"{self.at(name)}: must be a positive number, got {value:g}")
         if non_negative and value < 0:
-            raise ConfigError(f"{self.path}.{name}: must not be negative, got {value:g}")
+            raise ConfigError(f"{self.at(name)}: must not be negative, got {value:g}")
         return value
 
     def optional_number(self, name: str, *, positive: bool = False) -> float | None:
@@ -195,29 +201,31 @@ class _Fields:
     def vector(self, name: str, size: int = 3, default: Any = None) -> tuple[float, ...]:
         value = self._raw(name, _REQUIRED if default is None else default)
         if not isinstance(value, (list, tuple)) or len(value) != size:
-            raise ConfigError(f"{self.path}.{name}: must be a list of {size} numbers, got {value!r}")
+            raise ConfigError(f"{self.at(name)}: must be a list of {size} numbers, got {value!r}")
         try:
+            if any(isinstance(v, bool) for v in value):
+                raise TypeError
             out = tuple(float(v) for v in value)
         except (TypeError, ValueError):
-            raise ConfigError(f"{self.path}.{name}: must be a list of {size} numbers, got {value!r}") from None
+            raise ConfigError(f"{self.at(name)}: must be a list of {size} numbers, got {value!r}") from None
         if not all(math.isfinite(v) for v in out):
-            raise ConfigError(f"{self.path}.{name}: must be finite, got {value!r}")
+            raise ConfigError(f"{self.at(name)}: must be finite, got {value!r}")
         return out
 
     def text(self, name: str, default: Any = None, choices: tuple[str, ...] | None = None) -> str:
         value = str(self._raw(name, _REQUIRED if default is None else default))
         if choices and value not in choices:
-            raise ConfigError(f"{self.path}.{name}: must be one of {', '.join(choices)}, got {value!r}")
+            raise ConfigError(f"{self.at(name)}: must be one of {', '.join(choices)}, got {value!r}")
         return value
 
     def sub(self, name: str, default: Any = None) -> "_Fields":
-        return _Fields(self._raw(name, _REQUIRED if default is None else default), f"{self.path}.{name}")
+        return _Fields(self._raw(name, _REQUIRED if default is None else default), self.at(name), False)
 
     def items(self, name: str) -> list["_Fields"]:
         value = self._raw(name, _REQUIRED)
         if not isinstance(value, list) or not value:
-            raise ConfigError(f"{self.path}.{name}: must be a non-empty list")
-        return [_Fields(v, f"{self.path}.{name}[{i}]") for i, v in enumerate(value)]
+            raise ConfigError(f"{self.at(name)}: must be a non-empty list")
+        return [_Fields(v, f"{self.at(name)}[{i}]", False) for i, v in enumerate(value)]
 
     def finish(self) -> None:
         unknown = sorted(set(self.data) - self.used)
@@ -326,7 +334,9 @@ def _read_yaml(path: Path) -> Any:
     except OSError as exc:
         raise ConfigError(f"{path}: cannot be read ({exc.strerror or exc})") from None
     except yaml.YAMLError as exc:
-        raise ConfigError(f"{path}: not valid YAML ({exc})") from None
+        mark = getattr(exc, "problem_mark", None)
+        where = f":{mark.line + 1}:{mark.column + 1}" if mark else ""
+        raise ConfigError(f"{path}{where}: not valid YAML ({getattr(exc, 'problem', None) or exc})") from None
 
 
 def packaged_platforms() -> list[str]:
@@ -366,7 +376,10 @@ def load_case(name: str) -> LoadCase:
 
 
 def sea_state_from_dict(data: Any, source: str = "sea_state") -> SeaState:
-    f = _Fields(data, source)
+    return _sea_state(_Fields(data, source))
+
+
+def _sea_state(f: _Fields) -> SeaState:
     sea = SeaState(
         hs_m=f.number("hs_m", non_negative=True), tp_s=f.number("tp_s", positive=True),
         gamma=f.number("gamma", 1.0, positive=True),
@@ -378,12 +391,15 @@ def sea_state_from_dict(data: Any, source: str = "sea_state") -> SeaState:
     f.finish()
     lo, hi = sea.band_hz
     if lo >= hi:
-        raise ConfigError(f"{source}: f_min_hz ({lo:g}) must be below f_max_hz ({hi:g})")
+        raise ConfigError(f"{f.path}: f_min_hz ({lo:g}) must be below f_max_hz ({hi:g})")
     return sea
 
 
 def run_from_dict(data: Any, source: str = "run") -> RunConfig:
-    f = _Fields(data, source)
+    return _run(_Fields(data, source))
+
+
+def _run(f: _Fields) -> RunConfig:
     run = RunConfig(
         dt_s=f.number("dt_s", 0.05, positive=True), duration_s=f.number("duration_s", 600.0, positive=True),
         drag_model=f.text("drag_model", "constant", choices=DRAG_MODELS),
@@ -423,9 +439,8 @@ def load_run_file(path: str | Path) -> RunFile:
         case = load_case(str(case_name)).sea_state
         sea = SeaState(case.hs_m, case.tp_s, case.gamma, seed=int(f.number("seed", 1)))
     else:
-        sea = sea_state_from_dict(f.data["sea_state"], f"{path.name}.sea_state") if f.data.get("sea_state") else None
+        sea = _sea_state(f.sub("sea_state")) if f.data.get("sea_state") else None
         f.used.add("sea_state")
-    run = run_from_dict(f.data.get("run") or {}, f"{path.name}.run")
-    f.used.add("run")
+    run = _run(f.sub("run", {}))
     f.finish()
     return RunFile(platform, sea, run, None if case_name is None else str(case_name))

@@ -67,13 +67,13 @@ def point_kinematics(waves: WaveComponents, points_m: np.ndarray, t_s: np.ndarra
     return np.einsum("pcf,tf->tpc", amp, phasor).real
 
 
-def table_step(waves: WaveComponents, dt_s: float) -> float:
-    """The longest multiple of dt whose interpolation error stays below 1e-3 at the highest
-    wave frequency."""
+def table_step(waves: WaveComponents) -> float:
+    """The longest step that divides the repeat period and keeps the interpolation error below
+    1e-3 at the highest wave frequency (it need not be a multiple of the model's dt)."""
     f_max = float(np.max(waves.frequency_hz, initial=0.0))
     if f_max <= 0:
-        return dt_s
-    return dt_s * max(1, int(_MAX_OMEGA_STEP / (2 * np.pi * f_max * dt_s)))
+        return waves.period_s
+    return waves.period_s / np.ceil(waves.period_s * 2 * np.pi * f_max / _MAX_OMEGA_STEP)
 
 
 @dataclass

@@ -73,7 +73,7 @@ class PlatformModel:
             table = np.zeros((4, len(self.geometry.points_m), 7), dtype=np.float32)
             step, self._elevation = 1.0, np.zeros((4, 1, 1))
         else:
-            step = wave_table_dt_s or table_step(waves, self.dt_s)
+            step = wave_table_dt_s or table_step(waves)
             built = KinematicsTable.build(waves, self.geometry.points_m, step, env.water_depth_m,
                                           env.gravity_m_s2, env.water_density_kg_m3)
             table = built.values

@@ -98,7 +98,7 @@ def synthesize(sea: SeaState, period_s: float) -> WaveComponents:
     (the band cut-off and the spectrum's normalisation leave it a fraction of a percent off).
     """
     f_lo, f_hi = sea.band_hz
-    first, last = int(np.ceil(f_lo * period_s)), int(np.floor(f_hi * period_s))
+    first, last = int(np.ceil(f_lo * period_s - 1e-9)), int(np.floor(f_hi * period_s + 1e-9))
     if last < first:
         raise ConfigError(f"sea state: no wave frequency in [{f_lo:g}, {f_hi:g}] Hz at a "
                           f"repeat period of {period_s:g} s")

@@ -64,6 +64,7 @@ def test_simulate_from_a_run_file(tmp_path: Path):
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert (summary["waves"]["hs_m"], summary["waves"]["seed"], summary["run"]["output_interval_s"]) == (4.0, 7, 0.5)
     assert read_run(tmp_path / "out")["time_s"][-1] == 30.0
+    run_file = tmp_path / "bad.yaml"
     run_file.write_text("run: {dt_s: -1}\n")
     done = fowt_sim("simulate", "--config", str(run_file), "-o", str(tmp_path / "bad"))
-    assert done.returncode == 2 and "run.dt_s: must be a positive number" in done.stderr
+    assert done.returncode == 2 and "bad.yaml: run.dt_s: must be a positive number" in done.stderr
