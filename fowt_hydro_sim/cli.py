@@ -62,6 +62,7 @@ def _apply_run_file(args: argparse.Namespace) -> None:
     args.platform, args.drag = spec.platform, spec.run.drag_model
     args.duration, args.dt = spec.run.duration_s, spec.run.dt_s
     args.output_interval = spec.run.output_interval_s or spec.run.dt_s
+    args.wave_table_dt = spec.run.wave_table_dt_s
     args.initial = list(spec.run.initial_state)
     args.still_water = spec.sea_state is None
     if spec.sea_state is not None:
@@ -79,7 +80,8 @@ def simulate(args: argparse.Namespace) -> int:
     platform = load_platform(args.platform)
     waves, wave_info = _waves(args, platform)
     start = time.perf_counter()
-    model = PlatformModel(platform, waves, dt_s=args.dt, drag_model=args.drag)
+    model = PlatformModel(platform, waves, dt_s=args.dt, drag_model=args.drag,
+                           wave_table_dt_s=args.wave_table_dt)
     built = time.perf_counter()
     if args.initial:
         model.reset(motion=np.array(args.initial))
@@ -149,6 +151,8 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--drag", default="constant", choices=("constant",), help="drag model")
     p.add_argument("--duration", type=float, default=600.0, help="simulated time [s]")
     p.add_argument("--dt", type=float, default=0.05, help="time step [s]")
+    p.add_argument("--wave-table-dt", type=float, help="kinematics table step [s] (default: chosen "
+                                                         "for 1e-3 interpolation error); must divide the repeat period")
     p.add_argument("--output-interval", type=float, default=0.25, help="output sample interval [s]")
     p.add_argument("--initial", type=float, nargs=6, metavar="Q", help="initial offset: 3 m, 3 rad")
     p.add_argument("-o", "--output", default="out/simulate", help="output folder")

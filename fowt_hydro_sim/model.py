@@ -43,7 +43,7 @@ class RunResult:
         return self.loads[:, LOAD_COMPONENTS.index(name)]
 
 
-def _elevation_table(waves: WaveComponents, step_s: float, depth_m: float, gravity: float) -> np.ndarray:
+def _elevation_table(waves: WaveComponents, step_s: float) -> np.ndarray:
     """Elevation at the origin over one repeat period, as an (n, 1, 1) table."""
     n = int(round(waves.period_s / step_s))
     spectrum = np.zeros(n // 2 + 1, dtype=complex)
@@ -77,7 +77,7 @@ class PlatformModel:
             built = KinematicsTable.build(waves, self.geometry.points_m, step, env.water_depth_m,
                                           env.gravity_m_s2, env.water_density_kg_m3)
             table = built.values
-            self._elevation = _elevation_table(waves, step, env.water_depth_m, env.gravity_m_s2)
+            self._elevation = _elevation_table(waves, step)
         self.wave_table_step_s = step
         self._data = self._kernel_data(table, step)
         self.reset()

@@ -114,5 +114,5 @@ def point_jacobian(r: np.ndarray) -> np.ndarray:
     """(3, 6) map from the reference point's [v, w] to the velocity of a point at offset r."""
     out = np.zeros((3, 6))
     out[:, :3] = np.eye(3)
-    out[:, 3:] = -np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
+    out[:, 3:] = -skew(np.asarray(r, dtype=float))
     return out
