@@ -14,6 +14,7 @@ from typing import Any
 import yaml
 
 DRAG_MODELS = ("constant", "filtered")
+FILTER_KINDS = ("lowpass", "highpass", "bandpass", "allpass")
 SECTIONS = ("circular", "rectangular")
 
 
@@ -38,11 +39,34 @@ class MassProperties:
 
 @dataclass(frozen=True)
 class DragCoefficients:
-    """Drag coefficient of one direction: one value per drag model band."""
+    """Drag coefficients of one transverse direction.
+
+    ``constant`` is the one Cd over all frequencies (the ``constant`` drag model, and the
+    ``filtered`` model's Cd of a direction without bands). ``bands`` holds one Cd per drag
+    band of the platform (``Platform.drag_bands`` order) for a direction the ``filtered``
+    model splits into bands; None keeps the direction unfiltered.
+    """
 
     constant: float
-    low_frequency: float
-    wave: float
+    bands: tuple[float, ...] | None = None
+
+
+@dataclass(frozen=True)
+class DragBand:
+    """A frequency band of the ``filtered`` drag model: an analog Butterworth filter on the
+    transverse relative velocity (seed paper, eqs. 3-5).
+
+    lowpass / highpass: ``order`` and ``cutoff_hz`` (|H| = 1/sqrt 2 there); bandpass: the
+    paper's (w_c/Q) s / (s^2 + (w_c/Q) s + w_c^2) with w_c = 2 pi ``centre_hz`` and ``q``;
+    allpass: H = 1.
+    """
+
+    name: str
+    kind: str
+    order: int = 1
+    cutoff_hz: float | None = None
+    centre_hz: float | None = None
+    q: float | None = None
 
 
 @dataclass(frozen=True)
@@ -105,6 +129,7 @@ class Platform:
     members: tuple[Member, ...]
     mooring: Mooring
     description: str = ""
+    drag_bands: tuple[DragBand, ...] = ()  # the ``filtered`` drag model's bands
 
 
 @dataclass(frozen=True)
@@ -236,27 +261,60 @@ class _Fields:
 _REQUIRED = object()
 
 
-def _drag(f: _Fields, name: str) -> DragCoefficients:
-    value = f.data.get(name)
-    if isinstance(value, (int, float)):  # one Cd for every band
-        c = f.number(name, non_negative=True)
-        return DragCoefficients(c, c, c)
+def _drag(f: _Fields, name: str, bands: tuple[str, ...]) -> DragCoefficients:
+    """A Cd (one value: unfiltered) or ``{constant: .., <band>: .., ...}`` with a Cd for
+    every drag band or for none."""
+    if not isinstance(f.data.get(name), dict):
+        return DragCoefficients(f.number(name, non_negative=True))
     d = f.sub(name)
-    out = DragCoefficients(*(d.number(b, non_negative=True) for b in ("constant", "low_frequency", "wave")))
+    given = [b for b in bands if b in d.data]
+    if given and len(given) < len(bands):
+        missing = ", ".join(b for b in bands if b not in given)
+        raise ConfigError(f"{d.path}: a Cd for every drag band or for none; missing {missing}")
+    out = DragCoefficients(d.number("constant", non_negative=True),
+                           tuple(d.number(b, non_negative=True) for b in bands) if given else None)
     d.finish()
     return out
 
 
-def _zone(f: _Fields, section: str, is_last: bool) -> Zone:
+def _drag_band(f: _Fields) -> DragBand:
+    kind = f.text("filter", choices=FILTER_KINDS)
+    name = f.text("name")
+    if kind in ("lowpass", "highpass"):
+        order = f.number("order", positive=True)
+        if order != int(order):
+            raise ConfigError(f"{f.at('order')}: must be a whole number, got {order:g}")
+        band = DragBand(name, kind, int(order), cutoff_hz=f.number("cutoff_hz", positive=True))
+    elif kind == "bandpass":
+        band = DragBand(name, kind, 1, centre_hz=f.number("centre_hz", positive=True),
+                        q=f.number("q", positive=True))
+    else:
+        band = DragBand(name, kind, 0)
+    f.finish()
+    return band
+
+
+def _drag_bands(f: _Fields) -> tuple[DragBand, ...]:
+    if f.data.get("drag_bands") is None:
+        f.used.add("drag_bands")
+        return ()
+    bands = tuple(_drag_band(b) for b in f.items("drag_bands"))
+    names = [b.name for b in bands]
+    if "constant" in names or len(set(names)) < len(names):
+        raise ConfigError(f"{f.at('drag_bands')}: band names must be unique and not 'constant', got {names}")
+    return bands
+
+
+def _zone(f: _Fields, section: str, is_last: bool, bands: tuple[str, ...]) -> Zone:
     below = math.inf if is_last and f.data.get("below_z_m") is None else f.number("below_z_m")
     if section == "circular":
         ca = f.number("ca", non_negative=True)
-        cd = _drag(f, "cd")
+        cd = _drag(f, "cd", bands)
         zone = Zone(f.text("name", "zone"), below, (ca, ca), (cd, cd))
     else:
         zone = Zone(f.text("name", "zone"), below,
                     (f.number("ca_horizontal", non_negative=True), f.number("ca_vertical", non_negative=True)),
-                    (_drag(f, "cd_horizontal"), _drag(f, "cd_vertical")))
+                    (_drag(f, "cd_horizontal", bands), _drag(f, "cd_vertical", bands)))
     f.finish()
     return zone
 
@@ -268,7 +326,7 @@ def _end_plate(f: _Fields) -> EndPlate:
     return plate
 
 
-def _member(f: _Fields) -> Member:
+def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
     section = f.text("section", choices=SECTIONS)
     if section == "circular":
         width = height = f.number("diameter_m", positive=True)
@@ -281,7 +339,7 @@ def _member(f: _Fields) -> Member:
     member = Member(
         name=f.text("name"), section=section, end_a_m=a, end_b_m=b, width_m=width, height_m=height,
         strip_length_m=f.number("strip_length_m", 1.0, positive=True),
-        zones=tuple(_zone(z, section, i == len(zones) - 1) for i, z in enumerate(zones)),
+        zones=tuple(_zone(z, section, i == len(zones) - 1, bands) for i, z in enumerate(zones)),
         end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
     )
@@ -319,10 +377,12 @@ def platform_from_dict(data: Any, source: str = "platform") -> Platform:
     mooring = Mooring(mo.number("stiffness_n_m", non_negative=True), mo.number("pretension_n", non_negative=True),
                       mo.number("unstretched_length_m", positive=True), tuple(lines))
     mo.finish()
+    drag_bands = _drag_bands(f)
+    band_names = tuple(b.name for b in drag_bands)
     platform = Platform(
         name=f.text("name"), description=f.text("description", ""), environment=env, mass=mass,
-        hub_point_m=f.vector("hub_point_m"), members=tuple(_member(x) for x in f.items("members")),
-        mooring=mooring)
+        hub_point_m=f.vector("hub_point_m"), members=tuple(_member(x, band_names) for x in f.items("members")),
+        mooring=mooring, drag_bands=drag_bands)
     f.used.update(k for k in f.data if k.endswith(("_zones", "_end")))  # YAML anchors' holders
     f.finish()
     return platform

@@ -1,5 +1,6 @@
-"""The platform model: composes waves, Morison strips, hydrostatics, mooring, gravity and an
-external wrench into a 6-DOF time-domain simulation (no ROS here).
+"""The platform model: composes waves, Morison strips (constant or band-filtered drag),
+hydrostatics, mooring, gravity and an external wrench into a 6-DOF time-domain simulation
+(no ROS here).
 
     model = PlatformModel(load_platform("windmoor12"), synthesize(sea, 3600.0))
     result = model.run(600.0)            # batch
@@ -14,12 +15,14 @@ import numpy as np
 import scipy.fft
 
 from . import dynamics
-from .config import ConfigError, Platform
+from .config import DRAG_MODELS, ConfigError, Platform
+from .drag_filters import StateSpace, band_velocities, bank_state_space, nonzero_entries, state_response
 from .dynamics import LOAD_COMPONENTS, N_BODY_STATES, N_LOADS, KernelData
 from .hydrostatics import Hydrostatics, hydrostatics
-from .kinematics import KinematicsTable, table_step
-from .morison import added_mass_matrices
-from .strips import DRAG_BANDS, Discretisation, discretise
+from .kinematics import KinematicsTable, complex_amplitudes, table_step
+from .morison import added_mass_matrices, relative_velocities
+from .rigid_body import rotation_matrix
+from .strips import Discretisation, discretise
 from .waves import WaveComponents
 
 log = logging.getLogger(__name__)
@@ -55,18 +58,25 @@ class PlatformModel:
     """A floating platform in waves, stepped with a fixed dt.
 
     ``waves`` None is still water. Kinematics are taken at the undisplaced strip points
-    (HydroDyn's WaveDisp = 0) from a table over the waves' repeat period.
+    (HydroDyn's WaveDisp = 0) from a table over the waves' repeat period. ``drag_model``
+    ``constant`` uses each direction's constant Cd; ``filtered`` splits the transverse
+    relative velocity into the platform's drag bands (drag_filters.py).
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
                  drag_model: str = "constant", wave_table_dt_s: float | None = None):
-        if drag_model not in DRAG_BANDS[:1]:
-            raise ConfigError(f"drag model {drag_model!r}: this model supports 'constant'")
+        if drag_model not in DRAG_MODELS:
+            raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
+        if drag_model == "filtered" and not platform.drag_bands:
+            raise ConfigError(f"drag model 'filtered': platform {platform.name} has no drag_bands")
         self.platform = platform
         self.waves = waves
         self.dt_s = float(dt_s)
         self.drag_model = drag_model
         self.geometry: Discretisation = discretise(platform)
+        bands = platform.drag_bands if drag_model == "filtered" else ()
+        self.drag_bands = tuple(b.name for b in bands)
+        self.filter_bank: StateSpace = bank_state_space(bands)
         self.hydrostatics: Hydrostatics = hydrostatics(platform, self.geometry.strips)
         env = platform.environment
         if waves is None or waves.frequency_hz.size == 0:
@@ -86,12 +96,17 @@ class PlatformModel:
     def _kernel_data(self, table: np.ndarray, step: float) -> KernelData:
         p, s, plates = self.platform, self.geometry.strips, self.geometry.plates
         strip_6x6, plate_6x6 = added_mass_matrices(self.geometry)
-        band = DRAG_BANDS.index(self.drag_model)
+        filtered = self.drag_model == "filtered"
+        bank = self.filter_bank
         return KernelData(
             wave_table=table, wave_table_step_s=step,
             strip_centre=s.centre_m, strip_axis=s.axis, strip_directions=s.directions,
             strip_length=s.length_m, strip_inertia=s.inertia_kg_m, strip_added_mass=s.added_mass_kg_m,
-            strip_added_mass_6x6=strip_6x6, strip_drag=np.ascontiguousarray(s.drag_kg_m2[:, band, :]),
+            strip_added_mass_6x6=strip_6x6, strip_drag=s.drag_kg_m2,
+            band_drag=s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
+            strip_filtered=s.filtered & filtered,
+            filter_a=bank.a, filter_a_nonzero=nonzero_entries(bank.a), filter_b=bank.b,
+            filter_c=bank.c, filter_c_nonzero=nonzero_entries(bank.c), filter_d=bank.d,
             strip_point=s.kinematics_point.astype(np.int64),
             plate_centre=plates.centre_m, plate_normal=plates.normal,
             plate_pressure_area=plates.pressure_area_m2, plate_added_mass=plates.added_mass_kg,
@@ -107,21 +122,52 @@ class PlatformModel:
             line_length=p.mooring.unstretched_length_m,
             external_world=np.zeros(6), external_body=np.zeros(6), external_point=np.zeros(3))
 
+    @property
+    def n_strips(self) -> int:
+        return len(self.geometry.strips.length_m)
+
     def reset(self, motion: np.ndarray | None = None, velocity: np.ndarray | None = None) -> None:
-        """Restart at t = 0 from a 6-DOF offset and velocity (default: at rest)."""
-        self._state = np.zeros(N_BODY_STATES)
+        """Restart at t = 0 from a 6-DOF offset and velocity (default: at rest), with the drag
+        filters in steady state."""
+        self._state = np.zeros(N_BODY_STATES + self.n_strips * 2 * self.filter_bank.n_states)
         if motion is not None:
             self._state[0:6] = motion
         if velocity is not None:
             self._state[6:12] = velocity
+        self._state[N_BODY_STATES:] = self._steady_filter_states().ravel()
         self._step_index = 0
         self._loads = np.zeros((N_LOADS, 6))
         self._restart_history()
 
+    def _steady_filter_states(self) -> np.ndarray:
+        """Filter states (n_states, n_strips, 2) at t = 0 in steady state: the harmonic
+        response to the waves' relative velocity (body held at its initial pose) plus the
+        response to the body's initial velocity held constant."""
+        bank, s = self.filter_bank, self.geometry.strips
+        states = np.zeros((bank.n_states, self.n_strips, 2))
+        if bank.n_states == 0:
+            return states
+        rotation = rotation_matrix(*self._state[3:6])
+        body_only = np.zeros((len(self.geometry.points_m), 7))
+        wet, v_body, a_fluid = np.empty(self.n_strips), np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
+        relative_velocities(rotation, self._state[0:3], self._state[6:9], self._state[9:12], body_only,
+                            s.centre_m, s.axis, s.directions, s.length_m, s.kinematics_point, wet, v_body, a_fluid)
+        states += np.linalg.solve(-bank.a, bank.b)[:, None, None] * v_body
+        if self.waves is not None and self.waves.frequency_hz.size:
+            env = self.platform.environment
+            velocity = complex_amplitudes(self.waves, self.geometry.points_m, env.water_depth_m,
+                                          env.gravity_m_s2, env.water_density_kg_m3)[:, 0:3]
+            response = state_response(bank, 2 * np.pi * self.waves.frequency_hz)  # (n_freq, n_states)
+            at_points = np.einsum("pcf,fj->pcj", velocity, response).real  # (points, 3, n_states)
+            directions = s.directions @ rotation.T  # world axes
+            states += np.einsum("nkc,ncj->jnk", directions, at_points[s.kinematics_point])
+        return states
+
     def _restart_history(self) -> None:
         """Forget the integrator's past derivatives (after a jump in state)."""
         self._history = np.full((4, self._state.size), np.nan)
-        self._history[0] = dynamics.derivative(self.time_s, self._state, self._data, self._loads)
+        self._newest = np.zeros(1, dtype=np.int64)  # the ring's latest row
+        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._history[0])
 
     def set_external_wrench(self, wrench: np.ndarray, frame: str = "world") -> None:
         """Hold a wrench [Fx, Fy, Fz, Mx, My, Mz] until the next call.
@@ -138,7 +184,7 @@ class PlatformModel:
         self._data.external_body[:] = 0.0 if frame == "world" else wrench
         self._data.external_point[:] = self.platform.hub_point_m if frame == "hub" else 0.0
         # the derivative at the current time changes with the input
-        self._history[0] = dynamics.derivative(self.time_s, self._state, self._data, self._loads)
+        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._history[self._newest[0]])
 
     # ------------------------------------------------------------------ state
     @property
@@ -155,7 +201,21 @@ class PlatformModel:
 
     @property
     def acceleration(self) -> np.ndarray:
-        return self._history[0, 6:12].copy()
+        return self._history[self._newest[0], 6:12].copy()
+
+    def strip_velocities(self) -> tuple[np.ndarray, np.ndarray]:
+        """Transverse relative velocity of each strip (n_strips, 2: d1, d2, member frame) and
+        its band velocities (n_strips, n_bands, 2) at the current time."""
+        s, data = self.geometry.strips, self._data
+        rotation = rotation_matrix(*self._state[3:6])
+        kinematics = dynamics.interpolate_table(data.wave_table, data.wave_table_step_s, self.time_s)
+        wet, v_rel, a_fluid = np.empty(self.n_strips), np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
+        relative_velocities(rotation, self._state[0:3], self._state[6:9], self._state[9:12], kinematics,
+                            s.centre_m, s.axis, s.directions, s.length_m, s.kinematics_point, wet, v_rel, a_fluid)
+        v_band = np.empty((data.filter_d.size, 2 * self.n_strips))
+        states = self._state[N_BODY_STATES:].reshape(self.filter_bank.n_states, 2 * self.n_strips)
+        band_velocities(states, v_rel.ravel(), data.filter_c, data.filter_c_nonzero, data.filter_d, v_band)
+        return v_rel, v_band.reshape(-1, self.n_strips, 2).transpose(1, 0, 2)
 
     @property
     def loads(self) -> np.ndarray:
@@ -178,7 +238,7 @@ class PlatformModel:
         (default every step), the current time included as the first row."""
         n_steps = int(round(duration_s / self.dt_s))
         every = max(1, int(round((output_interval_s or self.dt_s) / self.dt_s)))
-        first = (self.time_s, self._state.copy(), self.acceleration, self._loads.copy())
+        first = (self.time_s, self._state[:N_BODY_STATES].copy(), self.acceleration, self._loads.copy())
         t, y, acc, loads = self._advance(n_steps, every)
         time = np.concatenate([[first[0]], t])
         states = np.vstack([first[1], y])
@@ -188,11 +248,11 @@ class PlatformModel:
     def _advance(self, n_steps: int, every: int) -> tuple[np.ndarray, ...]:
         n_out = n_steps // every
         out_t = np.empty(n_out)
-        out_y = np.empty((n_out, self._state.size))
+        out_y = np.empty((n_out, N_BODY_STATES))
         out_acc = np.empty((n_out, 6))
         out_loads = np.empty((n_out, N_LOADS, 6))
         dynamics.integrate(self._state, self._step_index, self.dt_s, n_steps, every, self._data,
-                           self._history, out_t, out_y, out_acc, out_loads)
+                           self._history, self._newest, out_t, out_y, out_acc, out_loads)
         self._step_index += n_steps
         if n_out:
             self._loads[:] = out_loads[-1]
@@ -202,6 +262,9 @@ class PlatformModel:
     def prescribed_motion_loads(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray,
                                 acceleration: np.ndarray) -> np.ndarray:
         """Loads (n, N_LOADS, 6) for a prescribed 6-DOF motion, like HydroDyn's driver."""
+        if self.filter_bank.n_states:
+            raise ConfigError("prescribed motion: the filtered drag model's filter states need the "
+                              "time loop; use the constant drag model")
         time_s = np.ascontiguousarray(time_s, dtype=float)
         n = time_s.size
         shapes = {"motion": motion, "velocity": velocity, "acceleration": acceleration}
@@ -217,7 +280,8 @@ class PlatformModel:
     def mass_matrix(self) -> np.ndarray:
         """Rigid-body plus added mass at rest, 6x6 about the reference point."""
         loads = np.zeros((N_LOADS, 6))
-        added = dynamics.applied_loads(0.0, np.zeros(N_BODY_STATES), self._data, loads)
+        rest = np.zeros_like(self._state)
+        added = dynamics.applied_loads(0.0, rest, self._data, loads, np.empty(rest.size - N_BODY_STATES))
         rigid, _ = dynamics.mass_matrix_and_bias(self._data.mass, self._data.cog, self._data.inertia_cog,
                                                  np.eye(3), np.zeros(3))
         return rigid + added
@@ -231,9 +295,9 @@ class PlatformModel:
         for j in range(6):
             wrench = []
             for sign in (1.0, -1.0):
-                y = np.zeros(N_BODY_STATES)
+                y = np.zeros_like(self._state)
                 y[j] = sign * step
-                dynamics.applied_loads(0.0, y, data, loads)
+                dynamics.applied_loads(0.0, y, data, loads, np.empty(y.size - N_BODY_STATES))
                 wrench.append(loads[[3, 4, 5]].sum(axis=0))
             out[:, j] = -(wrench[0] - wrench[1]) / (2 * step)
         return out

@@ -63,7 +63,8 @@ def relative_velocities(rotation: np.ndarray, position: np.ndarray, velocity: np
                         a_fluid: np.ndarray) -> None:
     """Per strip: wetted fraction, transverse relative velocity (d1, d2) and transverse fluid
     acceleration (d1, d2), written to ``wet``, ``v_rel`` and ``a_fluid``: the inputs of the
-    drag and inertia terms (and of drag filters)."""
+    drag and inertia terms. Dry strips get them too (with the kinematics at the water line),
+    so that drag filters see a continuous input."""
     v_body = _to_body(rotation, velocity[0], velocity[1], velocity[2])
     w_body = _to_body(rotation, omega[0], omega[1], omega[2])
     for i in range(centre.shape[0]):
@@ -71,8 +72,6 @@ def relative_velocities(rotation: np.ndarray, position: np.ndarray, velocity: np
         z = position[2] + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2]
         axis_z = rotation[2, 0] * axis[i, 0] + rotation[2, 1] * axis[i, 1] + rotation[2, 2] * axis[i, 2]
         wet[i] = wetted_fraction(z, axis_z, length[i])
-        if wet[i] == 0.0:
-            continue
         p = kinematics_point[i]
         u = _to_body(rotation, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
         a = _to_body(rotation, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
@@ -87,8 +86,8 @@ def relative_velocities(rotation: np.ndarray, position: np.ndarray, velocity: np
 
 
 @njit(cache=True)
-def strip_loads(rotation: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np.ndarray,
-                a_fluid: np.ndarray, drag_coefficient: np.ndarray, centre: np.ndarray,
+def strip_loads(rotation: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: np.ndarray,
+                drag_per_length: np.ndarray, centre: np.ndarray,
                 directions: np.ndarray, length: np.ndarray, inertia: np.ndarray,
                 added_mass: np.ndarray, added_mass_6x6: np.ndarray,
                 out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
@@ -96,7 +95,8 @@ def strip_loads(rotation: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel:
     """Add the strips' drag, fluid-inertia and centripetal added-mass wrenches (body axes,
     about the reference point) and their 6x6 added mass (body axes) to the outputs.
 
-    ``drag_coefficient`` (n, 2) is 0.5 rho Cd b per unit length in each direction.
+    ``drag_per_length`` (n, 2) is the transverse drag per unit wetted length of the drag
+    model (drag_filters.drag_per_length).
     """
     w_body = _to_body(rotation, omega[0], omega[1], omega[2])
     for i in range(centre.shape[0]):
@@ -104,11 +104,10 @@ def strip_loads(rotation: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel:
             continue
         c = centre[i]
         wet_length = wet[i] * length[i]
-        speed = np.sqrt(v_rel[i, 0] ** 2 + v_rel[i, 1] ** 2)
         centripetal = _cross(w_body, _cross(w_body, (c[0], c[1], c[2])))
         for k in range(2):
             d = directions[i, k]
-            drag = drag_coefficient[i, k] * speed * v_rel[i, k] * wet_length
+            drag = drag_per_length[i, k] * wet_length
             fluid = inertia[i, k] * a_fluid[i, k] * wet_length
             spin = -added_mass[i, k] * wet_length * (
                 centripetal[0] * d[0] + centripetal[1] * d[1] + centripetal[2] * d[2])

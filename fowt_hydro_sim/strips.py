@@ -7,7 +7,7 @@ horizontal member) and d2 = axis x d1. Loads (HydroDyn's conventions, platform s
 
 * fluid inertia   rho (A + Ca_k A_k) a_k      (Froude-Krylov + scattering, Cp = 1)
 * added mass      rho Ca_k A_k                 on the body acceleration
-* drag            0.5 rho Cd_k b_k |v_perp| v_k
+* drag            0.5 rho Cd_k b_k |v_perp| v_k   (per band for the filtered model: drag_filters.py)
 
 with A the section area, A_k the added-mass reference area (pi D^2/4; pi h^2/4 for flow
 along the width of a rectangle, pi w^2/4 along its height) and b_k the projected width
@@ -22,9 +22,6 @@ import numpy as np
 
 from .config import ConfigError, Member, Platform
 
-DRAG_BANDS = ("constant", "low_frequency", "wave")
-
-
 @dataclass(frozen=True)
 class Strips:
     centre_m: np.ndarray  # (n, 3) body frame, relative to the reference point
@@ -34,7 +31,9 @@ class Strips:
     area_m2: np.ndarray  # (n,) section area
     inertia_kg_m: np.ndarray  # (n, 2) fluid-inertia coefficient per unit length
     added_mass_kg_m: np.ndarray  # (n, 2)
-    drag_kg_m2: np.ndarray  # (n, 3, 2): 0.5 rho Cd b per band (DRAG_BANDS) and direction
+    drag_kg_m2: np.ndarray  # (n, 2): 0.5 rho Cd b with the constant Cd, per direction
+    band_drag_kg_m2: np.ndarray  # (n, n_bands, 2): 0.5 rho Cd b per drag band (zero if unfiltered)
+    filtered: np.ndarray  # (n, 2) bool: the direction has band Cds
     member: np.ndarray  # (n,) index of the member
     zone: tuple[str, ...]  # zone name of each strip
     kinematics_point: np.ndarray  # (n,) index into Discretisation.points_m
@@ -86,8 +85,9 @@ def _section(member: Member) -> tuple[float, tuple[float, float], tuple[float, f
 
 def discretise(platform: Platform) -> Discretisation:
     rho = platform.environment.water_density_kg_m3
+    n_bands = len(platform.drag_bands)
     rows: dict[str, list] = {k: [] for k in ("centre", "axis", "dirs", "length", "area", "inertia",
-                                               "added", "drag", "member", "zone")}
+                                               "added", "drag", "band_drag", "filtered", "member", "zone")}
     plates: dict[str, list] = {k: [] for k in ("centre", "normal", "pressure", "added", "drag")}
     for index, member in enumerate(platform.members):
         a, b = np.array(member.end_a_m), np.array(member.end_b_m)
@@ -109,8 +109,10 @@ def discretise(platform: Platform) -> Discretisation:
                 rows["area"].append(area)
                 rows["inertia"].append([rho * (area + zone.ca[k] * am_area[k]) for k in range(2)])
                 rows["added"].append([rho * zone.ca[k] * am_area[k] for k in range(2)])
-                rows["drag"].append([[0.5 * rho * getattr(zone.cd[k], band) * width[k] for k in range(2)]
-                                     for band in DRAG_BANDS])
+                rows["drag"].append([0.5 * rho * zone.cd[k].constant * width[k] for k in range(2)])
+                rows["band_drag"].append([[0.5 * rho * (zone.cd[k].bands or (0.0,) * n_bands)[b] * width[k]
+                                           for k in range(2)] for b in range(n_bands)])
+                rows["filtered"].append([zone.cd[k].bands is not None for k in range(2)])
                 rows["member"].append(index)
                 rows["zone"].append(zone.name)
         for plate, end, normal in ((member.end_a_plate, a, axis), (member.end_b_plate, b, -axis)):
@@ -136,7 +138,9 @@ def discretise(platform: Platform) -> Discretisation:
         centre_m=strip_centres, axis=np.array(rows["axis"]), directions=np.array(rows["dirs"]),
         length_m=np.array(rows["length"]), area_m2=np.array(rows["area"]),
         inertia_kg_m=np.array(rows["inertia"]), added_mass_kg_m=np.array(rows["added"]),
-        drag_kg_m2=np.array(rows["drag"]), member=np.array(rows["member"]),
+        drag_kg_m2=np.array(rows["drag"]),
+        band_drag_kg_m2=np.array(rows["band_drag"]).reshape(n, n_bands, 2),
+        filtered=np.array(rows["filtered"], dtype=bool), member=np.array(rows["member"]),
         zone=tuple(rows["zone"]), kinematics_point=index[:n])
     end_plates = EndPlates(
         centre_m=plate_centres, normal=np.array(plates["normal"]).reshape(-1, 3),

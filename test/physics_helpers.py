@@ -31,18 +31,24 @@ def read_hydrodyn_out(path: Path) -> dict[str, np.ndarray]:
 
 
 def uniform_drag(member: Member, cd_1: float, cd_2: float) -> Member:
-    """One zone over the whole member, with one Cd per direction for every band."""
+    """One zone over the whole member, with one unfiltered Cd per direction."""
     zone = member.zones[-1]
-    cds = (DragCoefficients(cd_1, cd_1, cd_1), DragCoefficients(cd_2, cd_2, cd_2))
+    cds = (DragCoefficients(cd_1), DragCoefficients(cd_2))
     return dataclasses.replace(member, zones=(dataclasses.replace(zone, cd=cds, below_z_m=math.inf),))
+
+
+def scaled_cd(cd: DragCoefficients, scale: float, band: int | None = None) -> DragCoefficients:
+    """``cd`` with its constant and band Cds times ``scale``, or only band ``band``'s."""
+    if band is not None:
+        bands = None if cd.bands is None else tuple(c * scale if b == band else c for b, c in enumerate(cd.bands))
+        return dataclasses.replace(cd, bands=bands)
+    return DragCoefficients(scale * cd.constant, None if cd.bands is None else tuple(scale * c for c in cd.bands))
 
 
 def scaled_drag(platform: Platform, scale: float) -> Platform:
     """The platform with every drag coefficient (strips and end plates) times ``scale``."""
     def zone(z):
-        return dataclasses.replace(z, cd=tuple(DragCoefficients(*(scale * getattr(c, f.name)
-                                                                  for f in dataclasses.fields(c)))
-                                               for c in z.cd))
+        return dataclasses.replace(z, cd=tuple(scaled_cd(c, scale) for c in z.cd))
 
     def plate(p):
         return None if p is None else dataclasses.replace(p, cd=scale * p.cd)

@@ -18,7 +18,8 @@ import numpy as np
 import pytest
 import yaml
 
-from fowt_hydro_sim.config import (ConfigError, LoadCase, SeaState, load_case, load_cases, load_platform,
+from fowt_hydro_sim.config import (ConfigError, DragBand, DragCoefficients, LoadCase, SeaState, load_case, load_cases,
+                                   load_platform,
                                    platform_from_dict, run_from_dict, sea_state_from_dict)
 
 PACKAGED_YAML = Path(str(resources.files("fowt_hydro_sim") / "data" / "platforms" / "windmoor12.yaml"))
@@ -75,8 +76,8 @@ def test_windmoor12_matches_spec() -> None:
         submerged, splash = m.zones
         assert submerged.below_z_m == -5.0 and splash.below_z_m == math.inf
         assert submerged.ca == (1.0, 1.0) and splash.ca == (1.0, 1.0)
-        assert (submerged.cd[0].constant, submerged.cd[0].low_frequency, submerged.cd[0].wave) == (0.8, 0.4, 1.0)
-        assert (splash.cd[0].constant, splash.cd[0].low_frequency, splash.cd[0].wave) == (0.6, 0.3, 0.8)
+        assert submerged.cd == (DragCoefficients(0.8, (0.4, 1.0)),) * 2
+        assert splash.cd == (DragCoefficients(0.6, (0.3, 0.8)),) * 2
         assert m.end_a_plate is not None and (m.end_a_plate.ca, m.end_a_plate.cp, m.end_a_plate.cd) == (1, 1, 4.8)
         assert m.end_b_plate is None
     for m in pontoons:
@@ -85,8 +86,8 @@ def test_windmoor12_matches_spec() -> None:
         assert math.dist(m.end_a_m, m.end_b_m) == pytest.approx(46.0, abs=1e-3)  # wetted length
         (zone,) = m.zones
         cd_h, cd_v = zone.cd
-        assert (cd_h.constant, cd_h.low_frequency, cd_h.wave) == (2.0, 1.0, 2.5)
-        assert (cd_v.constant, cd_v.low_frequency, cd_v.wave) == (3.0, 3.0, 3.0)
+        assert cd_h == DragCoefficients(2.0, (1.0, 2.5))
+        assert cd_v == DragCoefficients(3.0)  # vertical drag: one Cd at every frequency
 
     mo = p.mooring
     assert (mo.stiffness_n_m, mo.pretension_n, mo.unstretched_length_m) == (63.2e3, 1.2e6, 600.0)
@@ -198,7 +199,38 @@ BAD_PLATFORMS = {
     "empty members": (_set(["members"], []), r"members", r"must be a non-empty list$"),
     "NaN depth": (_set(["environment", "water_depth_m"], float("nan")), r"environment\.water_depth_m",
                   r"must be finite"),
+    "band Cd missing": (_delete(["members", 0, "zones", 0, "cd", "wave"]), r"members\[0\]\.zones\[0\]\.cd",
+                        r"a Cd for every drag band or for none; missing wave$"),
+    "Cd of an unknown band": (_set(["members", 0, "zones", 0, "cd", "swell"], 0.5), r"members\[0\]\.zones\[0\]\.cd",
+                              r"unknown field\(s\) swell$"),
+    "unknown filter": (_set(["drag_bands", 0, "filter"], "chebyshev"), r"drag_bands\[0\]\.filter",
+                       r"must be one of lowpass, highpass, bandpass, allpass, got 'chebyshev'$"),
+    "fractional order": (_set(["drag_bands", 0, "order"], 2.5), r"drag_bands\[0\]\.order",
+                         r"must be a whole number, got 2.5$"),
+    "band without cutoff": (_delete(["drag_bands", 1, "cutoff_hz"]), r"drag_bands\[1\]\.cutoff_hz", r"missing$"),
+    "duplicate band names": (_set(["drag_bands", 1, "name"], "low_frequency"), r"drag_bands",
+                             r"band names must be unique and not 'constant'"),
 }
+
+
+def test_windmoor12_drag_bands_are_the_papers_case_2() -> None:
+    """Oracle: platform_windmoor12.md, 'Case 2 uses ... a 5th-order low-pass Butterworth for the
+    low-frequency band and a 1st-order high-pass Butterworth for the wave band, both with cutoff
+    0.05 Hz'; a band-pass band reads centre and Q, an all-pass band nothing."""
+    assert load_platform().drag_bands == (DragBand("low_frequency", "lowpass", 5, cutoff_hz=0.05),
+                                          DragBand("wave", "highpass", 1, cutoff_hz=0.05))
+    data = packaged()
+    data["drag_bands"] = [{"name": "resonance", "filter": "bandpass", "centre_hz": 0.01, "q": 0.7},
+                          {"name": "rest", "filter": "allpass"}]
+    for zone in (*data["column_zones"], *data["pontoon_zones"]):
+        for key in ("cd", "cd_horizontal"):
+            if key in zone:
+                zone[key] = {"constant": 1.0, "resonance": 0.5, "rest": 2.0}
+    platform = platform_from_dict(data)
+    assert platform.drag_bands == (DragBand("resonance", "bandpass", 1, centre_hz=0.01, q=0.7),
+                                   DragBand("rest", "allpass", 0))
+    assert platform.members[0].zones[0].cd[0] == DragCoefficients(1.0, (0.5, 2.0))
+    assert platform.members[3].zones[0].cd == (DragCoefficients(1.0, (0.5, 2.0)), DragCoefficients(3.0))
 
 
 @pytest.mark.parametrize("case", list(BAD_PLATFORMS))
