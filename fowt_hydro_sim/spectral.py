@@ -1,0 +1,39 @@
+"""Power spectral densities and band standard deviations of motion records (the metric of
+shared/spec/load_cases.md: band STD = square root of the PSD integrated over the band)."""
+from __future__ import annotations
+
+import numpy as np
+import scipy.signal
+
+# default bands of the paper's metric [Hz]: low-frequency (resonance) and wave-frequency
+BANDS_HZ = {"low_frequency": (0.005, 0.05), "wave": (0.05, 0.25)}
+SEGMENT_S = 2048.0  # longest Welch segment: 0.0005 Hz resolution, 10 bins below the 0.005 Hz band edge
+MIN_SEGMENTS = 4  # a record holds at least this many segment lengths (7 averaged with the overlap)
+
+
+def psd(signal: np.ndarray, dt_s: float, segment_s: float = SEGMENT_S) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided Welch PSD (Hann window, 50 % overlap, mean removed): frequency [Hz], PSD
+    [unit^2/Hz]. Segments of ``segment_s``, shortened to a quarter of a shorter record."""
+    signal = np.asarray(signal, dtype=float)
+    if signal.ndim != 1 or signal.size < 8 * MIN_SEGMENTS or not np.all(np.isfinite(signal)):
+        raise ValueError(f"psd: need a finite 1-D record of at least {8 * MIN_SEGMENTS} samples, "
+                         f"got shape {signal.shape}")
+    n = min(signal.size // MIN_SEGMENTS, int(round(segment_s / dt_s)))
+    return scipy.signal.welch(signal, fs=1.0 / dt_s, window="hann", nperseg=n, detrend="constant")
+
+
+def band_std(frequency_hz: np.ndarray, density: np.ndarray, band_hz: tuple[float, float]) -> float:
+    """sqrt of the PSD integrated over [low, high) (rectangle rule on the Welch bins)."""
+    low, high = band_hz
+    if not 0 <= low < high:
+        raise ValueError(f"band {band_hz}: need 0 <= low < high")
+    df = frequency_hz[1] - frequency_hz[0]
+    inside = (frequency_hz >= low) & (frequency_hz < high)
+    return float(np.sqrt(np.sum(density[inside]) * df))
+
+
+def band_stds(signal: np.ndarray, dt_s: float, bands_hz: dict[str, tuple[float, float]] | None = None,
+              segment_s: float = SEGMENT_S) -> dict[str, float]:
+    """Band STDs of a record by band name (default: the paper's two bands)."""
+    frequency, density = psd(signal, dt_s, segment_s)
+    return {name: band_std(frequency, density, band) for name, band in (bands_hz or BANDS_HZ).items()}
