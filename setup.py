@@ -46,6 +46,7 @@ setup(
         'scipy',
         'pyyaml',
         'numba',
+        'matplotlib',
     ],
     extras_require={
         'ros': ROS_WHEELS,

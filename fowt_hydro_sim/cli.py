@@ -16,9 +16,11 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__
-from .config import ConfigError, SeaState, load_case, load_platform, load_run_file
+from .config import DRAG_MODELS, ConfigError, SeaState, load_case, load_platform, load_run_file
+from .load_case_study import STUDY_CASES, run_study
 from .model import DOF_NAMES, PlatformModel, RunResult
 from .output import write_run
+from .spectral import BANDS_HZ, MIN_SEGMENTS, band_stds
 from .waves import WaveComponents, from_elevation_record, read_comp_file, repeat_period, synthesize
 
 log = logging.getLogger("fowt_hydro_sim")
@@ -97,20 +99,27 @@ def simulate(args: argparse.Namespace) -> int:
         "performance": {"wall_time_s": wall, "set_up_s": built - start,
                         "real_time_factor": args.duration / (end - built),
                         "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024},
-        "statistics": _statistics(result),
+        "statistics": _statistics(result, args.transient),
     }
     write_run(out, result, summary)
     _print_summary(summary, out)
     return 0
 
 
-def _statistics(result: RunResult) -> dict:
-    stats = {}
+def _statistics(result: RunResult, transient_s: float) -> dict:
+    """Per DOF: mean, std, extremes and the paper's band STDs, leaving out the first
+    ``transient_s`` seconds."""
+    keep = result.time_s >= result.time_s[0] + transient_s
+    if not keep.any():
+        raise ConfigError(f"--transient {transient_s:g} s leaves nothing of the run to analyse")
+    dt = float(result.time_s[1] - result.time_s[0]) if result.time_s.size > 1 else 1.0
+    stats: dict = {"analysed_from_s": float(result.time_s[keep][0]), "bands_hz": BANDS_HZ}
     for j, name in enumerate(DOF_NAMES):
-        x = result.motion[:, j] * (180 / np.pi if j >= 3 else 1.0)
+        x = result.motion[keep, j] * (180 / np.pi if j >= 3 else 1.0)
         stats[name] = {"unit": "deg" if j >= 3 else "m", "mean": float(x.mean()), "std": float(x.std()),
-                       "min": float(x.min()), "max": float(x.max())}
-    eta = result.wave_elevation_m
+                       "min": float(x.min()), "max": float(x.max()),
+                       "band_std": band_stds(x, dt) if x.size >= 8 * MIN_SEGMENTS else None}  # (too short)
+    eta = result.wave_elevation_m[keep]
     stats["wave_elevation"] = {"unit": "m", "mean": float(eta.mean()), "std": float(eta.std()),
                                "hs_4std": float(4 * eta.std())}
     return stats
@@ -122,10 +131,15 @@ def _print_summary(summary: dict, out: Path) -> None:
           f"{summary['run']['duration_s']:g} s simulated in {perf['wall_time_s'] - perf['set_up_s']:.2f} s "
           f"({perf['real_time_factor']:.0f}x real time; set-up {perf['set_up_s']:.1f} s, which includes "
           f"compiling the kernels on a first run)")
-    print(f"{'':16s}{'mean':>10s}{'std':>10s}{'min':>10s}{'max':>10s}")
-    for name, s in summary["statistics"].items():
-        if "min" in s:
-            print(f"{name + ' [' + s['unit'] + ']':16s}{s['mean']:10.3f}{s['std']:10.3f}{s['min']:10.3f}{s['max']:10.3f}")
+    stats = summary["statistics"]
+    print(f"statistics from t = {stats['analysed_from_s']:g} s; band STDs over "
+          + ", ".join(f"{b} {lo:g}-{hi:g} Hz" for b, (lo, hi) in stats["bands_hz"].items()))
+    print(f"{'':16s}{'mean':>10s}{'std':>10s}{'min':>10s}{'max':>10s}{'std LF':>10s}{'std WF':>10s}")
+    for name in DOF_NAMES:
+        s = stats[name]
+        bands = "".join(f"{s['band_std'][b]:10.3f}" for b in BANDS_HZ) if s["band_std"] else ""
+        print(f"{name + ' [' + s['unit'] + ']':16s}{s['mean']:10.3f}{s['std']:10.3f}{s['min']:10.3f}{s['max']:10.3f}"
+              + bands)
     print(f"wave Hs (4 std) at the reference point: {summary['statistics']['wave_elevation']['hs_4std']:.2f} m")
     print(f"wrote {out / 'timeseries.csv'} and {out / 'summary.json'}")
 
@@ -148,16 +162,45 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
     waves.add_argument("--elevation", type=Path, help="CSV time_s,elevation_m measured at --elevation-point")
     waves.add_argument("--elevation-point", type=float, nargs=2, default=(0.0, 0.0), metavar=("X", "Y"))
     waves.add_argument("--still-water", action="store_true", help="no waves")
-    p.add_argument("--drag", default="constant", choices=("constant",), help="drag model")
+    p.add_argument("--drag", default="constant", choices=DRAG_MODELS,
+                   help="drag model: constant Cd (the paper's case 1) or filtered, one Cd per frequency "
+                        "band (case 2; bands in the platform YAML)")
     p.add_argument("--duration", type=float, default=600.0, help="simulated time [s]")
     p.add_argument("--dt", type=float, default=0.05, help="time step [s]")
     p.add_argument("--wave-table-dt", type=float, help="kinematics table step [s] (default: chosen "
                                                          "for 1e-3 interpolation error); must divide the repeat period")
     p.add_argument("--output-interval", type=float, default=0.25, help="output sample interval [s]")
+    p.add_argument("--transient", type=float, default=0.0, help="seconds at the start left out of the "
+                                                                  "summary statistics (start-up)")
     p.add_argument("--initial", type=float, nargs=6, metavar="Q", help="initial offset: 3 m, 3 rad")
     p.add_argument("-o", "--output", default="out/simulate", help="output folder")
     p.add_argument("--overwrite", action="store_true", help="replace files in a non-empty output folder")
     p.set_defaults(func=simulate)
+
+
+def load_cases(args: argparse.Namespace) -> int:
+    out = Path(args.output)
+    if out.exists() and any(out.iterdir()) and not args.overwrite:
+        raise ConfigError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
+    cases = tuple(load_case(c).name for c in args.cases)
+    rows = run_study(load_platform(args.platform), cases, args.duration, args.transient, args.seed, out)
+    print((out / "band_stds.md").read_text(), end="")
+    print(f"wrote {out / 'band_stds.csv'}, {out / 'band_stds.md'} and {len(cases)} PSD plots ({len(rows)} rows)")
+    return 0
+
+
+def _add_load_cases(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("load-cases", help="the paper's load cases with both drag models: band STDs and PSDs",
+                       description="Run load cases with the constant and the filtered drag model and write "
+                                   "band_stds.csv, band_stds.md and psd_<case>.png to the output folder.")
+    p.add_argument("--platform", default="windmoor12", help="packaged platform name or YAML file")
+    p.add_argument("--cases", nargs="+", default=list(STUDY_CASES), help="load cases (default: %(default)s)")
+    p.add_argument("--duration", type=float, default=12000.0, help="analysed seconds per run")
+    p.add_argument("--transient", type=float, default=600.0, help="start-up seconds simulated before them")
+    p.add_argument("--seed", type=int, default=1, help="random phase seed (the same for both models)")
+    p.add_argument("-o", "--output", default="out/load_cases", help="output folder")
+    p.add_argument("--overwrite", action="store_true", help="replace files in a non-empty output folder")
+    p.set_defaults(func=load_cases)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -165,6 +208,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = parser.add_subparsers(dest="command", required=True)
     _add_simulate(sub)
+    _add_load_cases(sub)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.DEBUG if args.verbose else logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     try:

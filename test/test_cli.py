@@ -1,6 +1,7 @@
 """``fowt-sim simulate`` as a user runs it: a real subprocess, real files."""
 from __future__ import annotations
 
+import csv
 import json
 import subprocess
 import sys
@@ -68,3 +69,35 @@ def test_simulate_from_a_run_file(tmp_path: Path):
     run_file.write_text("run: {dt_s: -1}\n")
     done = fowt_sim("simulate", "--config", str(run_file), "-o", str(tmp_path / "bad"))
     assert done.returncode == 2 and "bad.yaml: run.dt_s: must be a positive number" in done.stderr
+
+
+def test_filtered_simulate_and_the_load_case_study_agree(tmp_path: Path):
+    """``simulate --drag filtered`` and ``load-cases`` on the same sea (seed, duration,
+    start-up) report the same band STDs; the study writes its CSV, Markdown table and a PNG
+    per load case, and the band STDs in the summary are those of the written time series."""
+    from fowt_hydro_sim.spectral import band_stds
+
+    sim = tmp_path / "sim"
+    done = fowt_sim("simulate", "--load-case", "lc5.0", "--drag", "filtered", "--duration", "700",
+                    "--transient", "100", "--seed", "4", "-o", str(sim))
+    assert done.returncode == 0, done.stderr
+    summary = json.loads((sim / "summary.json").read_text())
+    assert summary["drag_model"] == "filtered" and summary["statistics"]["analysed_from_s"] == 100.0
+    columns = read_run(sim)
+    keep = columns["time_s"] >= 100.0
+    assert summary["statistics"]["heave"]["band_std"] == pytest.approx(band_stds(columns["heave_m"][keep], 0.25), rel=1e-6)
+
+    study = tmp_path / "study"
+    done = fowt_sim("load-cases", "--cases", "lc5.0", "--duration", "600", "--transient", "100", "--seed", "4",
+                    "-o", str(study))
+    assert done.returncode == 0, done.stderr
+    assert (study / "psd_lc5.0.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    rows = list(csv.DictReader(open(study / "band_stds.csv")))
+    assert [r["dof"] for r in rows] == ["surge", "heave", "pitch"]
+    for row in rows:
+        expected = summary["statistics"][row["dof"]]["band_std"]
+        for band in ("low_frequency", "wave"):
+            assert float(row[f"{band}_case2"]) == pytest.approx(expected[band], rel=1e-6)
+            change = 100 * (float(row[f"{band}_case2"]) / float(row[f"{band}_case1"]) - 1)
+            assert float(row[f"{band}_change_percent"]) == pytest.approx(change)
+    assert "| lc5.0 | surge [m] |" in (study / "band_stds.md").read_text()
