@@ -116,3 +116,36 @@ def point_jacobian(r: np.ndarray) -> np.ndarray:
     out[:, :3] = np.eye(3)
     out[:, 3:] = -skew(np.asarray(r, dtype=float))
     return out
+
+
+def quaternion_from_euler(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """Unit quaternion (x, y, z, w), w >= 0, of R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr = np.cos(0.5 * roll), np.sin(0.5 * roll)
+    cp, sp = np.cos(0.5 * pitch), np.sin(0.5 * pitch)
+    cy, sy = np.cos(0.5 * yaw), np.sin(0.5 * yaw)
+    q = np.array([
+        sr * cp * cy - cr * sp * sy,
+        cr * sp * cy + sr * cp * sy,
+        cr * cp * sy - sr * sp * cy,
+        cr * cp * cy + sr * sp * sy,
+    ])
+    return -q if q[3] < 0.0 else q
+
+
+def euler_from_quaternion(q) -> np.ndarray:
+    """Roll, pitch, yaw of a quaternion (x, y, z, w), normalised first; pitch in [-pi/2, pi/2]."""
+    q = np.asarray(q, dtype=float)
+    if q.shape != (4,):
+        raise ValueError(f"quaternion must have shape (4,), got {q.shape}")
+    if not np.all(np.isfinite(q)):
+        raise ValueError(f"quaternion has non-finite components: {q}")
+    norm = np.linalg.norm(q)
+    if norm == 0.0:
+        raise ValueError("quaternion is zero and has no orientation")
+    x, y, z, w = q / norm
+    r20 = 2.0 * (x * z - w * y)
+    r21 = 2.0 * (y * z + w * x)
+    r22 = 1.0 - 2.0 * (x * x + y * y)
+    r10 = 2.0 * (x * y + w * z)
+    r00 = 1.0 - 2.0 * (y * y + z * z)
+    return np.array([np.arctan2(r21, r22), np.arctan2(-r20, np.hypot(r21, r22)), np.arctan2(r10, r00)])

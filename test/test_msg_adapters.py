@@ -1,0 +1,130 @@
+"""msg_adapters: ROS message conversions and the Euler/quaternion pair in rigid_body.
+
+Oracles: Hamilton products written here, scipy's Rotation, integer nanosecond arithmetic
+and exact Fraction rounding for stamps, and a hand-worked yawed-body odometry case.
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+import msg_adapters as ma
+from fowt_hydro_sim.rigid_body import euler_from_quaternion, quaternion_from_euler, rotation_matrix
+
+RNG = np.random.default_rng(20240611)
+
+
+def random_motion() -> np.ndarray:
+    return np.concatenate([RNG.uniform(-30.0, 30.0, 3), RNG.uniform(-3.1, 3.1, 1),
+                           RNG.uniform(-1.4, 1.4, 1), RNG.uniform(-3.1, 3.1, 1)])
+
+
+def hamilton(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Quaternion product, (x, y, z, w) storage."""
+    (ax, ay, az, aw), (bx, by, bz, bw) = a, b
+    return np.array([aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+                     aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz])
+
+
+@pytest.mark.parametrize("trial", range(50))
+def test_quaternion_rotates_like_rotation_matrix_and_matches_scipy(trial):
+    roll, pitch, yaw = random_motion()[3:]
+    q = quaternion_from_euler(roll, pitch, yaw)
+    assert q[3] >= 0.0 and np.linalg.norm(q) == pytest.approx(1.0, abs=1e-15)
+    v = RNG.normal(size=3)
+    rotated = hamilton(hamilton(q, np.append(v, 0.0)), q * [-1, -1, -1, 1])
+    np.testing.assert_allclose(rotated[:3], rotation_matrix(roll, pitch, yaw) @ v, atol=1e-13)
+    ref = Rotation.from_euler("ZYX", [yaw, pitch, roll]).as_quat()
+    np.testing.assert_allclose(q * np.sign(q @ ref), ref, atol=1e-14)
+    np.testing.assert_allclose(euler_from_quaternion(-3.7 * q), [roll, pitch, yaw], atol=1e-12)
+
+
+@pytest.mark.parametrize("bad, problem", [([0, 0, 0, 0], "zero"), ([np.nan, 0, 0, 1], "non-finite"),
+                                          ([0, 0, np.inf, 1], "non-finite"), ([0, 0, 1], "shape")])
+def test_euler_from_bad_quaternion_raises(bad, problem):
+    with pytest.raises(ValueError, match=problem):
+        euler_from_quaternion(bad)
+
+
+@pytest.mark.parametrize("t", [0.0, 0.05 * 10**7, 0.05 * (10**7 + 7), 1e9 + 0.123456789, 12.3456789012])
+def test_stamp_is_nearest_nanosecond_and_round_trips(t):
+    ns = round(Fraction(t) * 10**9)
+    msg = ma.stamp(t)
+    assert (msg.sec, msg.nanosec) == (ns // 10**9, ns % 10**9)
+    back = ma.seconds(msg)
+    assert abs(Fraction(back) - Fraction(ns, 10**9)) <= Fraction(1, 2 * 10**9)
+    assert ma.stamp(back) == msg
+    assert ma.clock_msg(t).clock == msg
+
+
+def test_stamps_of_fixed_steps_at_large_step_counts():
+    for n in range(10**7, 10**7 + 2000):
+        msg = ma.stamp(0.05 * n)
+        assert (msg.sec, msg.nanosec) == (n // 20, (n % 20) * 50_000_000)
+    assert ma.seconds(ma.stamp(1e9 + 0.123456789)) == 1e9 + 0.123456789
+
+
+@pytest.mark.parametrize("t", [-1e-12, -0.05, float("nan")])
+def test_negative_or_nan_time_raises(t):
+    with pytest.raises(ValueError, match="time"):
+        ma.stamp(t)
+
+
+@pytest.mark.parametrize("trial", range(20))
+def test_round_trips(trial):
+    t = RNG.uniform(0.0, 1e4)
+    motion, velocity, acc, wrench = random_motion(), RNG.normal(size=6), RNG.normal(size=6), 1e6 * RNG.normal(size=6)
+    pose = ma.pose_msg(t, motion)
+    t_back, m_back = ma.motion_from_pose(pose)
+    assert abs(t_back - t) <= 5e-10 and pose.header.frame_id == "world"
+    np.testing.assert_allclose(m_back, motion, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(ma.velocity_from_twist(ma.twist_msg(t, velocity))[1], velocity)
+    np.testing.assert_array_equal(ma.acceleration_from_accel(ma.accel_msg(t, acc))[1], acc)
+    t_w, w_back, frame = ma.wrench_from_msg(ma.wrench_msg(t, wrench, frame_id="platform"))
+    np.testing.assert_array_equal(w_back, wrench)
+    assert frame == "platform" and t_w == ma.seconds(ma.stamp(t))
+    t_o, m_o, v_o = ma.state_from_odometry(ma.odometry_msg(t, motion, velocity))
+    np.testing.assert_allclose(m_o, motion, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(v_o, velocity, rtol=0, atol=1e-12)
+    x, y, eta = RNG.normal(size=3)
+    assert ma.elevation_from_msg(ma.elevation_msg(t, x, y, eta, "sea")) == (t_o, x, y, eta, "sea")
+
+
+def test_odometry_twist_is_in_body_axes():
+    # Body x axis points along world +y after +90 deg yaw; world +x is then body -y.
+    motion = np.array([1.0, 2.0, -3.0, 0.0, 0.0, np.pi / 2])
+    msg = ma.odometry_msg(5.0, motion, [2.0, 0.0, 0.0, 0.0, 0.0, 0.3], child_frame_id="hull")
+    assert msg.child_frame_id == "hull"
+    lin, ang = msg.twist.twist.linear, msg.twist.twist.angular
+    np.testing.assert_allclose([lin.x, lin.y, lin.z], [0.0, -2.0, 0.0], atol=1e-15)
+    np.testing.assert_allclose([ang.x, ang.y, ang.z], [0.0, 0.0, 0.3], atol=1e-15)
+    # Pitched by p: world +z in body axes is the third row of Ry(p), (-sin p, 0, cos p).
+    pitch = 0.5
+    msg = ma.odometry_msg(5.0, [0, 0, 0, 0, pitch, 0], [0, 0, 1.0, 0, 0, 0])
+    lin = msg.twist.twist.linear
+    np.testing.assert_allclose([lin.x, lin.y, lin.z], [-np.sin(pitch), 0.0, np.cos(pitch)], atol=1e-15)
+    assert (msg.header.frame_id, msg.child_frame_id) == ("world", "platform")
+    assert not msg.pose.covariance.any() and not msg.twist.covariance.any()
+    o = msg.pose.pose.orientation
+    np.testing.assert_allclose([o.x, o.y, o.z, o.w], [0, np.sin(pitch / 2), 0, np.cos(pitch / 2)], atol=1e-15)
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: ma.pose_msg(0.0, np.zeros(5)), r"motion must have shape \(6,\)"),
+    (lambda: ma.twist_msg(0.0, np.zeros((6, 1))), r"velocity must have shape \(6,\)"),
+    (lambda: ma.accel_msg(0.0, np.zeros(7)), r"acceleration must have shape \(6,\)"),
+    (lambda: ma.wrench_msg(0.0, [1.0, 2.0]), r"wrench must have shape \(6,\)"),
+    (lambda: ma.odometry_msg(0.0, np.zeros(6), np.zeros(3)), r"velocity must have shape \(6,\)"),
+    (lambda: ma.odometry_msg(0.0, np.zeros(3), np.zeros(6)), r"motion must have shape \(6,\)"),
+])
+def test_wrong_shapes_raise_naming_the_argument(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()
+
+
+def test_non_finite_values_pass_through():
+    _, w = ma.velocity_from_twist(ma.twist_msg(1.0, [np.nan, np.inf, 0, 0, 0, 0]))
+    assert np.isnan(w[0]) and np.isinf(w[1])
