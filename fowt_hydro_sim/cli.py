@@ -203,8 +203,24 @@ def _add_load_cases(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=load_cases)
 
 
+def _ros_command(name: str, argv: list[str]) -> int:
+    """``fowt-sim node|controller [--ros-args ...]``: the ROS 2 nodes (their arguments are ROS's)."""
+    if any(a in ("-h", "--help") for a in argv[:1]):
+        print(f"usage: fowt-sim {name} [--ros-args -p name:=value ... --params-file file.yaml]")
+        return 0
+    if name == "node":
+        from .node import main as run
+    else:
+        from .controller import main as run
+    return run(["fowt-sim", *argv])
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] in (["node"], ["controller"]):
+        return _ros_command(argv[0], argv[1:])
+    parser = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator "
+                                     "(also: fowt-sim node | controller [--ros-args ...], the ROS 2 nodes)")
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = parser.add_subparsers(dest="command", required=True)
     _add_simulate(sub)

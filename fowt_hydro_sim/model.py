@@ -186,6 +186,28 @@ class PlatformModel:
         # the derivative at the current time changes with the input
         dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._history[self._newest[0]])
 
+    def use_streamed_waves(self, step_s: float, n_rows: int = 256) -> None:
+        """Take the wave kinematics from ``write_waves`` (a stream, e.g. a wave topic) instead of
+        the precomputed table: a ring of ``n_rows`` samples every ``step_s``, still water until
+        written. Rows from the current time to 2 steps past the next step end must be written
+        before stepping; a row is reused ``n_rows`` steps later."""
+        if n_rows < 8 or step_s <= 0:
+            raise ValueError(f"streamed waves: need step_s > 0 and n_rows >= 8, got {step_s}, {n_rows}")
+        table = np.zeros((n_rows, len(self.geometry.points_m), 7), dtype=np.float32)
+        self._data = self._data._replace(wave_table=table, wave_table_step_s=float(step_s))
+        self._elevation = np.zeros((n_rows, 1, 1))
+        self.wave_table_step_s = float(step_s)
+        self.waves = None
+        self._restart_history()  # the derivative at t changes with the table
+
+    def write_waves(self, time_s: float, kinematics: np.ndarray, elevation_m: float) -> None:
+        """Streamed kinematics (points, 7) at the model's points and the elevation at the
+        reference point, for ``time_s`` (a multiple of the stream's step)."""
+        rows = self._data.wave_table.shape[0]
+        row = int(round(time_s / self.wave_table_step_s)) % rows
+        self._data.wave_table[row] = kinematics
+        self._elevation[row, 0, 0] = elevation_m
+
     # ------------------------------------------------------------------ state
     @property
     def time_s(self) -> float:

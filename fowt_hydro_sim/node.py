@@ -1,0 +1,383 @@
+"""The ``fowt_hydro_sim`` ROS 2 node: steps the platform model in real or accelerated time and
+publishes its motion and loads (contract: shared/spec/ros_interface.md).
+
+The node stays thin: parameters become a ``PlatformModel``; messages go in and out through
+``msg_adapters``; input checks live in ``inputs.py``. The simulator owns time: ``/clock`` and
+every stamp are simulation time. A stepping thread advances the model one publish period
+at a time, paced against the wall clock (``real_time_factor``), while the executor serves
+the subscriptions.
+"""
+from __future__ import annotations
+
+import logging
+import math
+import threading
+import time
+from collections import deque
+from dataclasses import dataclass
+
+import numpy as np
+import rclpy
+from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, WrenchStamped
+from nav_msgs.msg import Odometry
+from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rclpy.node import Node
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rosgraph_msgs.msg import Clock
+
+import msg_adapters as adapt
+
+from .config import DRAG_MODELS, ConfigError, SeaState, load_case, load_platform
+from .dynamics import LOAD_COMPONENTS
+from .inputs import ElevationResampler, InputError, check_wrench
+from .model import PlatformModel
+from .waves import repeat_period, synthesize
+
+WAVE_SOURCES = ("internal", "topic")
+CONTRACT_TOTAL = ("drag", "inertia", "hydrostatic", "mooring", "external")  # /platform/loads/total
+MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
+
+# name: (default, description)
+PARAMETERS = {
+    "platform": ("windmoor12", "packaged platform name or platform YAML file"),
+    "drag_model": ("filtered", f"drag model: {', '.join(DRAG_MODELS)}"),
+    "load_case": ("lc5.3", "load case giving the sea state (lc5.0 .. lc6.5); hs_m/tp_s > 0 override it"),
+    "hs_m": (0.0, "significant wave height [m]; 0 = the load case's"),
+    "tp_s": (0.0, "peak period [s]; 0 = the load case's"),
+    "gamma": (0.0, "JONSWAP peak enhancement; 0 = the load case's"),
+    "heading_deg": (0.0, "wave direction [deg], 0 = toward +x"),
+    "seed": (1, "random phase seed of the internal waves"),
+    "wave_source": ("internal", "internal: synthesised from the sea state; topic: /waves/elevation"),
+    "wave_point_xy": ([0.0, 0.0], "where the /waves/elevation samples are measured (world x, y) [m]"),
+    "wave_sample_dt_s": (0.1, "step of the streamed elevation series [s] (samples are resampled onto it)"),
+    "preview_s": (60.0, "delay of the streamed wave kinematics behind the elevation samples [s]"),
+    "wave_timeout_s": (2.0, "wall seconds without elevation samples before still water is assumed"),
+    "dt_s": (0.05, "model time step [s]"),
+    "real_time_factor": (1.0, "1 = real time, N = N times faster, 0 = as fast as possible"),
+    "publish_rate_hz": (20.0, "output rate in simulation time [Hz]; a multiple of it must be 1/dt_s"),
+    "duration_s": (0.0, "simulated seconds, then stop stepping; 0 = until stopped"),
+    "world_frame_id": ("world", "frame id of the world frame"),
+    "platform_frame_id": ("platform", "frame id of the platform (body) frame"),
+    "lockstep": (False, "wait for an external wrench stamped for each publish time before stepping"),
+    "lockstep_timeout_s": (5.0, "wall seconds to wait for the wrench in lockstep, then step anyway"),
+}
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The node's validated parameters."""
+
+    platform: str
+    drag_model: str
+    sea_state: SeaState
+    wave_source: str
+    wave_point_xy: tuple[float, float]
+    wave_sample_dt_s: float
+    preview_s: float
+    wave_timeout_s: float
+    dt_s: float
+    real_time_factor: float
+    steps_per_publish: int
+    duration_s: float
+    world_frame_id: str
+    platform_frame_id: str
+    lockstep: bool
+    lockstep_timeout_s: float
+
+
+def settings_from_parameters(values: dict) -> Settings:
+    """Validate the parameter values; ConfigError names the parameter."""
+    def positive(name: str) -> float:
+        value = float(values[name])
+        if not math.isfinite(value) or value <= 0:
+            raise ConfigError(f"parameter {name}: must be a positive number, got {values[name]!r}")
+        return value
+
+    def choice(name: str, options: tuple[str, ...]) -> str:
+        if values[name] not in options:
+            raise ConfigError(f"parameter {name}: must be one of {', '.join(options)}, got {values[name]!r}")
+        return values[name]
+
+    dt = positive("dt_s")
+    ratio = 1.0 / (positive("publish_rate_hz") * dt)
+    if abs(ratio - round(ratio)) > 1e-6 or round(ratio) < 1:
+        raise ConfigError(f"parameter publish_rate_hz: 1/(publish_rate_hz dt_s) must be a whole number, got {ratio:g}")
+    rtf = float(values["real_time_factor"])
+    if not math.isfinite(rtf) or rtf < 0:
+        raise ConfigError(f"parameter real_time_factor: must be >= 0, got {values['real_time_factor']!r}")
+    duration = float(values["duration_s"])
+    if not math.isfinite(duration) or duration < 0:
+        raise ConfigError(f"parameter duration_s: must be >= 0, got {values['duration_s']!r}")
+    case = load_case(str(values["load_case"])).sea_state
+    hs, tp, gamma = (float(values[k]) for k in ("hs_m", "tp_s", "gamma"))
+    if min(hs, tp, gamma) < 0 or not all(map(math.isfinite, (hs, tp, gamma))):
+        raise ConfigError("parameters hs_m, tp_s, gamma: must be >= 0 (0 = the load case's)")
+    sea = SeaState(hs or case.hs_m, tp or case.tp_s, gamma or case.gamma, heading_deg=float(values["heading_deg"]),
+                   seed=int(values["seed"]))
+    point = [float(v) for v in values["wave_point_xy"]]
+    if len(point) != 2 or not all(map(math.isfinite, point)):
+        raise ConfigError(f"parameter wave_point_xy: must be two finite numbers, got {values['wave_point_xy']!r}")
+    frames = [str(values[k]) for k in ("world_frame_id", "platform_frame_id")]
+    if not all(frames):
+        raise ConfigError("parameters world_frame_id, platform_frame_id: must not be empty")
+    return Settings(
+        platform=str(values["platform"]), drag_model=choice("drag_model", DRAG_MODELS), sea_state=sea,
+        wave_source=choice("wave_source", WAVE_SOURCES), wave_point_xy=(point[0], point[1]),
+        wave_sample_dt_s=positive("wave_sample_dt_s"), preview_s=positive("preview_s"),
+        wave_timeout_s=positive("wave_timeout_s"), dt_s=dt, real_time_factor=rtf,
+        steps_per_publish=int(round(ratio)), duration_s=duration, world_frame_id=frames[0],
+        platform_frame_id=frames[1], lockstep=bool(values["lockstep"]),
+        lockstep_timeout_s=positive("lockstep_timeout_s"))
+
+
+class SimulatorNode(Node):
+    """The simulator node. ``settings`` None reads them from the ROS parameters."""
+
+    def __init__(self, **node_kwargs):
+        super().__init__("fowt_hydro_sim", **node_kwargs)
+        for name, (default, description) in PARAMETERS.items():
+            self.declare_parameter(name, default, ParameterDescriptor(description=description))
+        values = {name: self.get_parameter(name).value for name in PARAMETERS}
+        self.settings = settings_from_parameters(values)
+        s = self.settings
+        platform = load_platform(s.platform)
+        waves = None
+        if s.wave_source == "internal":
+            waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
+        self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model)
+        self._stream = None
+        if s.wave_source == "topic":
+            self._stream = self._elevation_stream(platform)
+            self.model.use_streamed_waves(s.wave_sample_dt_s)
+            self._resampler = ElevationResampler(*s.wave_point_xy, s.world_frame_id, s.wave_sample_dt_s)
+            self._samples: deque[tuple[float, float]] = deque(maxlen=1_000_000)
+            self._waves_until_s = -math.inf  # kinematics are written up to this time
+            self._last_sample_wall = time.monotonic()
+            self._still_water = False
+        self._lock = threading.Condition()
+        self._wrench = (np.zeros(6), "world", -math.inf)  # wrench, frame, stamp
+        self._rtf = s.real_time_factor
+        self._stop = threading.Event()
+        self.step_log: list[tuple[float, float]] = []  # (wall, target wall) per publish, for pacing stats
+        self._make_interface()
+        self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.get_logger().info(
+            f"{platform.name}, drag {s.drag_model}, waves {s.wave_source}"
+            + (f" (Hs {s.sea_state.hs_m:g} m, Tp {s.sea_state.tp_s:g} s, seed {s.sea_state.seed})"
+               if s.wave_source == "internal" else f" from /waves/elevation at {s.wave_point_xy}, "
+                                                    f"kinematics {s.preview_s:g} s behind the samples")
+            + f", dt {s.dt_s:g} s, real-time factor {s.real_time_factor:g}"
+            + (", lockstep" if s.lockstep else ""))
+        self._thread = threading.Thread(target=self._run, name="fowt_stepping", daemon=True)
+
+    # ------------------------------------------------------------------ set-up
+    def _elevation_stream(self, platform):
+        from .wave_stream import ElevationStream
+        s, env = self.settings, platform.environment
+        return ElevationStream(self.model.geometry.points_m, s.wave_point_xy, s.sea_state.heading_deg,
+                               env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3,
+                               s.wave_sample_dt_s, s.preview_s)
+
+    def _make_interface(self) -> None:
+        out = QoSProfile(depth=1000)  # accelerated runs: room for a slower subscriber
+        topics = {"odom": Odometry, "pose": PoseStamped, "twist": TwistStamped, "accel": AccelStamped}
+        self._pub = {name: self.create_publisher(kind, f"/platform/{name}", out) for name, kind in topics.items()}
+        for name in ("total", *LOAD_COMPONENTS):
+            self._pub[name] = self.create_publisher(WrenchStamped, f"/platform/loads/{name}", out)
+        self._pub["clock"] = self.create_publisher(Clock, "/clock", out)
+        self._pub["elevation_used"] = self.create_publisher(PointStamped, "/waves/elevation_used", out)
+        inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
+        self.create_subscription(WrenchStamped, "/platform/external_wrench", self._on_wrench, inputs)
+        if self._stream is not None:
+            self.create_subscription(PointStamped, "/waves/elevation", self._on_elevation, inputs)
+
+    def _on_set_parameters(self, changes) -> SetParametersResult:
+        for p in changes:
+            if p.name == "real_time_factor" and isinstance(p.value, (int, float)) and p.value >= 0:
+                self._rtf = float(p.value)
+                continue
+            return SetParametersResult(successful=False, reason=f"{p.name}: only real_time_factor (>= 0) can "
+                                                                f"change while running; restart the node")
+        return SetParametersResult(successful=True)
+
+    # ------------------------------------------------------------------ inputs
+    def _on_wrench(self, msg: WrenchStamped) -> None:
+        t, wrench, frame = adapt.wrench_from_msg(msg)
+        try:
+            wrench = check_wrench(wrench, frame)
+        except InputError as exc:
+            self.get_logger().warning(f"{exc}; keeping the last good wrench")
+            return
+        with self._lock:
+            self._wrench = (wrench, frame, t)
+            self._lock.notify_all()
+
+    def _on_elevation(self, msg: PointStamped) -> None:
+        t, x, y, eta, frame = adapt.elevation_from_msg(msg)
+        with self._lock:
+            try:
+                samples = self._resampler.accept(t, x, y, eta, frame, self.model.time_s)
+            except InputError as exc:
+                self.get_logger().warning(f"{exc}; sample ignored")
+                return
+            self._samples.extend(samples)
+            self._last_sample_wall = time.monotonic()
+            if self._still_water and samples:
+                self.get_logger().info("wave elevation samples again: leaving still water")
+                self._still_water = False
+            self._lock.notify_all()
+
+    def _feed_stream(self) -> None:
+        """Push the queued elevation samples through the stream into the model's table."""
+        while self._samples:
+            t, eta = self._samples.popleft()
+            out = self._stream.push(eta)
+            if out is not None:
+                kinematics, elevation = out
+                self.model.write_waves(t - self._stream.delay_s, kinematics, elevation)
+                self._waves_until_s = t - self._stream.delay_s
+
+    def _wait_for_waves(self, until_s: float) -> bool:
+        """Stream kinematics up to ``until_s``; after wave_timeout_s without samples, go on in
+        still water (said once). False if the node is stopping."""
+        s = self.settings
+        with self._lock:
+            while not self._stop.is_set():
+                self._feed_stream()
+                if self._waves_until_s >= until_s:
+                    return True
+                silent = time.monotonic() - self._last_sample_wall
+                if silent > s.wave_timeout_s:
+                    if not self._still_water:
+                        self.get_logger().warning(
+                            f"no wave elevation on /waves/elevation for {silent:.1f} s: going on in still water")
+                        self._still_water = True
+                    needed = until_s + self._stream.delay_s
+                    self._samples.extend(self._resampler.fill_still_water(needed))
+                    continue
+                self._lock.wait(timeout=0.05)
+        return False
+
+    def _wait_for_controller(self) -> None:
+        """Lockstep: before the first step, wait until a controller is connected both ways."""
+        said = time.monotonic()
+        while not self._stop.is_set() and (self._pub["odom"].get_subscription_count() == 0
+                                           or self.count_publishers("/platform/external_wrench") == 0):
+            if time.monotonic() - said > 5.0:
+                self.get_logger().info("lockstep: waiting for a controller on /platform/odom and "
+                                       "/platform/external_wrench")
+                said = time.monotonic()
+            time.sleep(0.05)
+        time.sleep(0.5)  # let discovery finish on the controller's side too
+
+    def _wait_for_lockstep(self, time_s: float) -> None:
+        """Wait for a wrench stamped ``time_s``, sending the state again every 0.5 s."""
+        deadline = time.monotonic() + self.settings.lockstep_timeout_s
+        with self._lock:
+            while self._wrench[2] < time_s - 1e-9 and not self._stop.is_set():
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    self.get_logger().warning(f"lockstep: no external wrench stamped {time_s:.3f} s within "
+                                              f"{self.settings.lockstep_timeout_s:g} s; stepping with the last one")
+                    return
+                if not self._lock.wait(timeout=min(remaining, 0.5)):
+                    self._publish()
+
+    # ------------------------------------------------------------------ stepping
+    def start(self) -> None:
+        self._thread.start()
+
+    def stop(self) -> None:
+        self._stop.set()
+        with self._lock:
+            self._lock.notify_all()
+        if self._thread.is_alive():
+            self._thread.join(timeout=10)
+
+    @property
+    def finished(self) -> bool:
+        return not self._thread.is_alive()
+
+    def _run(self) -> None:
+        s, model = self.settings, self.model
+        period = s.steps_per_publish * s.dt_s
+        if s.lockstep:
+            self._wait_for_controller()
+        self._publish()
+        wall0, sim0, rtf = time.monotonic(), model.time_s, self._rtf
+        while not self._stop.is_set():
+            if s.duration_s and model.time_s >= s.duration_s - 1e-9:
+                self.get_logger().info(f"duration {s.duration_s:g} s reached: stepping stopped")
+                return
+            if s.lockstep:
+                self._wait_for_lockstep(model.time_s)
+            if self._stream is not None:
+                margin = 3 * s.wave_sample_dt_s
+                if not self._wait_for_waves(model.time_s + period + margin):
+                    return
+            with self._lock:
+                wrench, frame, _ = self._wrench
+            model.set_external_wrench(wrench, frame)
+            model.step(s.steps_per_publish)
+            if not self._healthy():
+                return
+            if self._rtf != rtf:  # re-anchor the pacing after a change of speed
+                wall0, sim0, rtf = time.monotonic(), model.time_s - period, self._rtf
+            if rtf > 0:
+                target = wall0 + (model.time_s - sim0) / rtf
+                delay = target - time.monotonic()
+                if delay > 0:
+                    time.sleep(delay)
+                self.step_log.append((time.monotonic(), target))
+            self._publish()
+
+    def _healthy(self) -> bool:
+        motion, velocity = self.model.motion, self.model.velocity
+        if np.all(np.isfinite(motion)) and np.all(np.isfinite(velocity)) and np.all(np.abs(motion) < MOTION_LIMITS):
+            return True
+        self.get_logger().error(f"the state diverged at t = {self.model.time_s:.3f} s (motion {motion.tolist()}): "
+                                f"stepping stopped, nothing more is published")
+        return False
+
+    def _publish(self) -> None:
+        s, model = self.settings, self.model
+        t = model.time_s
+        world, body = s.world_frame_id, s.platform_frame_id
+        motion, velocity, loads = model.motion, model.velocity, model.loads
+        self._pub["clock"].publish(adapt.clock_msg(t))
+        self._pub["pose"].publish(adapt.pose_msg(t, motion, world))
+        self._pub["twist"].publish(adapt.twist_msg(t, velocity, world))
+        self._pub["accel"].publish(adapt.accel_msg(t, model.acceleration, world))
+        self._pub["odom"].publish(adapt.odometry_msg(t, motion, velocity, world, body))
+        total = sum(loads[LOAD_COMPONENTS.index(c)] for c in CONTRACT_TOTAL)
+        self._pub["total"].publish(adapt.wrench_msg(t, total, world))
+        for i, name in enumerate(LOAD_COMPONENTS):
+            self._pub[name].publish(adapt.wrench_msg(t, loads[i], world))
+        eta = float(model.wave_elevation(t)[0])
+        self._pub["elevation_used"].publish(adapt.elevation_msg(t, 0.0, 0.0, eta, world))
+
+
+def main(args: list[str] | None = None) -> int:
+    """``fowt-sim node [--ros-args ...]``: run the node until stopped or its duration is done."""
+    logging.basicConfig(level=logging.INFO, format="[%(levelname)s] [%(name)s]: %(message)s")
+    log = logging.getLogger("fowt_hydro_sim")
+    try:
+        rclpy.init(args=args)
+        node = SimulatorNode()
+    except Exception as exc:  # bad parameters, parameter file or platform: one line, no traceback
+        log.error(f"fowt-sim node: {exc}".splitlines()[0])
+        rclpy.try_shutdown()
+        return 2
+    node.start()
+    try:
+        while rclpy.ok() and not node.finished:
+            rclpy.spin_once(node, timeout_sec=0.1)
+        for _ in range(5):  # let the last messages go out
+            rclpy.spin_once(node, timeout_sec=0.1)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        node.stop()
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0

@@ -1,0 +1,198 @@
+"""The simulator node over real DDS (loopback): the node and the controller run as child
+processes (``fowt-sim node|controller``), the test's listener node records their topics.
+
+Oracles: the offline model (same seed and dt: bit for bit), the static stiffness (mean
+pitch under a thrust), the wall clock (pacing), and the node's own log for refused input.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+
+pytest.importorskip("rclpy")
+
+from geometry_msgs.msg import PointStamped, PoseStamped, WrenchStamped  # noqa: E402
+from rosgraph_msgs.msg import Clock  # noqa: E402
+
+import msg_adapters as adapt  # noqa: E402
+from fowt_hydro_sim.config import load_case, load_platform  # noqa: E402
+from fowt_hydro_sim.model import PlatformModel  # noqa: E402
+from fowt_hydro_sim.waves import repeat_period, synthesize  # noqa: E402
+from ros_helpers import Listener, finish, start  # noqa: E402
+
+
+def poses(listener: Listener) -> tuple[np.ndarray, np.ndarray]:
+    """Times and motions of the received poses, in time order, duplicates dropped."""
+    rows = {}
+    for msg in listener.messages["/platform/pose"]:
+        t, motion = adapt.motion_from_pose(msg)
+        rows[t] = motion
+    times = np.array(sorted(rows))
+    return times, np.array([rows[t] for t in times])
+
+
+def run_node(duration_s: float, topics: dict | None = None, timeout_s: float = 120.0, **parameters):
+    listener = Listener(topics or {"/platform/pose": PoseStamped, "/clock": Clock})
+    node = start("node", duration_s=duration_s, **parameters)
+    try:
+        listener.wait_for(lambda: node.poll() is not None, timeout_s)
+        output = finish(node, 10)
+        time.sleep(0.3)
+    finally:
+        listener.close()
+    return listener, output
+
+
+def test_internal_waves_match_the_offline_model_bit_for_bit():
+    listener, output = run_node(30.0, real_time_factor=0.0, load_case="lc5.2", seed=3, drag_model="filtered")
+    assert "duration 30 s reached" in output, output
+    t, motion = poses(listener)
+    assert len(t) >= 0.9 * 601 and t[-1] == pytest.approx(30.0)
+    sea = load_case("lc5.2").sea_state
+    sea = type(sea)(sea.hs_m, sea.tp_s, sea.gamma, seed=3)
+    model = PlatformModel(load_platform(), synthesize(sea, repeat_period(sea, 30.0)), dt_s=0.05, drag_model="filtered")
+    offline = model.run(30.0, output_interval_s=0.05)
+    index = np.rint(t / 0.05).astype(int)
+    assert np.abs(offline.time_s[index] - t).max() < 1e-9
+    np.testing.assert_array_equal(motion[:, :3], offline.motion[index, :3])
+    np.testing.assert_allclose(motion[:, 3:], offline.motion[index, 3:], rtol=0, atol=1e-12)  # via quaternions
+    clock = [adapt.seconds(m.clock) for m in listener.messages["/clock"]]
+    assert clock and max(clock) == pytest.approx(30.0)  # simulation time, not the wall clock
+
+
+def _controlled_run(duration_s: float, real_time_factor: float, damping: float, publish_rate_hz: float,
+                    load_case: str = "lc5.0") -> tuple[np.ndarray, np.ndarray, str]:
+    listener = Listener({"/platform/pose": PoseStamped})
+    controller = start("controller", mean_thrust_n=1.5e6, pitch_damping_n_s_rad=damping)
+    node = start("node", duration_s=duration_s, real_time_factor=real_time_factor, lockstep=True,
+                 publish_rate_hz=publish_rate_hz, load_case=load_case, drag_model="constant")
+    try:
+        listener.wait_for(lambda: node.poll() is not None, 180.0)
+        output = finish(node, 10)
+        time.sleep(0.3)
+    finally:
+        controller.terminate()
+        finish(controller, 10)
+        listener.close()
+    t, motion = poses(listener)
+    return t, motion, output
+
+
+def test_controller_thrust_sets_the_static_mean_pitch():
+    """A 1.5 MN hub thrust with pitch damping, in lockstep: the mean pitch and surge over the
+    last 300 s of 600 s are K^-1 F, K the linear restoring matrix (hydrostatics, mooring)."""
+    t, motion, output = _controlled_run(600.0, 0.0, damping=2e7, publish_rate_hz=2.0)
+    assert "duration 600 s reached" in output, output
+    assert "lockstep: no external wrench" not in output, output
+    model = PlatformModel(load_platform(), None)
+    hub_z = load_platform().hub_point_m[2]
+    static = np.linalg.solve(model.restoring_matrix(), np.array([1.5e6, 0, 0, 0, 1.5e6 * hub_z, 0]))
+    late = t >= 300.0
+    assert motion[late, 4].mean() == pytest.approx(static[4], rel=0.03)
+    assert motion[late, 0].mean() == pytest.approx(static[0], rel=0.05)
+    assert abs(static[4]) > math.radians(1.0)  # a visible tilt, not a rounding effect
+
+
+def test_lockstep_is_deterministic_at_any_speed():
+    """The same closed loop at real-time factors 0 (as fast as possible) and 20: identical poses."""
+    t0, fast, out0 = _controlled_run(60.0, 0.0, damping=5e7, publish_rate_hz=20.0, load_case="lc5.3")
+    t1, paced, out1 = _controlled_run(60.0, 20.0, damping=5e7, publish_rate_hz=20.0, load_case="lc5.3")
+    assert "lockstep: no external wrench" not in out0 + out1
+    # the listener may join late in the fast run: compare the poses both runs delivered
+    common, i0, i1 = np.intersect1d(t0, t1, return_indices=True)
+    assert len(common) >= 400 and common[-1] == pytest.approx(60.0)
+    np.testing.assert_array_equal(fast[i0], paced[i1])
+    assert np.ptp(fast[i0, 4]) > 1e-4  # the pitch moves: there is something to compare
+
+
+@pytest.mark.parametrize("factor", [1.0, 10.0])
+def test_pacing_follows_the_real_time_factor(factor: float):
+    """Simulated time over wall time, from /clock as it arrives, over about 20 s: within 2 %."""
+    listener = Listener({"/clock": Clock})
+    node = start("node", real_time_factor=factor, drag_model="constant")
+    try:
+        listener.wait_for(lambda: len(listener.messages["/clock"]) > 20, 60.0)
+        time.sleep(20.0)
+        arrivals = np.array(listener.arrival["/clock"])
+        sim = np.array([adapt.seconds(m.clock) for m in listener.messages["/clock"]])
+    finally:
+        node.terminate()
+        finish(node, 10)
+        listener.close()
+    keep = arrivals >= arrivals[0] + 1.0  # after the first second
+    ratio = (sim[keep][-1] - sim[keep][0]) / (arrivals[keep][-1] - arrivals[keep][0])
+    assert arrivals[keep][-1] - arrivals[keep][0] > 15.0
+    assert ratio == pytest.approx(factor, rel=0.02)
+
+
+def _log_after(output: str, needle: str) -> bool:
+    return any(needle in line for line in output.splitlines())
+
+
+def test_bad_wrenches_are_refused_and_the_node_keeps_running():
+    """NaN, absurd and unknown-frame wrenches: one log line each, the node keeps stepping on
+    the last good wrench, and publishes no NaN."""
+    listener = Listener({"/platform/pose": PoseStamped, "/platform/loads/external": WrenchStamped})
+    node = start("node", real_time_factor=5.0, drag_model="constant", load_case="lc5.0")
+    wrenches = listener.publisher(WrenchStamped, "/platform/external_wrench")
+    try:
+        listener.wait_for(lambda: len(listener.messages["/platform/pose"]) > 5, 60.0)
+        time.sleep(0.5)
+        good = adapt.wrench_msg(0.0, np.array([1e6, 0, 0, 0, 0, 0]), "hub")
+        bad = [adapt.wrench_msg(0.0, np.array([np.nan, 0, 0, 0, 0, 0]), "hub"),
+               adapt.wrench_msg(0.0, np.array([0, 0, 5e12, 0, 0, 0]), "world"),
+               adapt.wrench_msg(0.0, np.array([1, 0, 0, 0, 0, 0]), "nacelle")]
+        wrenches.publish(good)
+        time.sleep(1.0)
+        for msg in bad:
+            wrenches.publish(msg)
+            time.sleep(0.3)
+        count = len(listener.messages["/platform/pose"])
+        time.sleep(1.5)
+        assert node.poll() is None and len(listener.messages["/platform/pose"]) > count  # still stepping
+    finally:
+        node.terminate()
+        output = finish(node, 10)
+        listener.close()
+    assert _log_after(output, "external wrench: non-finite value"), output
+    assert _log_after(output, "external wrench: absurd value"), output
+    assert _log_after(output, "external wrench: unknown frame_id 'nacelle'"), output
+    external = np.array([adapt.wrench_from_msg(m)[1] for m in listener.messages["/platform/loads/external"]])
+    assert np.all(np.isfinite(external))
+    assert np.abs(external[-1, 0] - 1e6) < 1e6 * 0.2  # the good hub thrust still acts (rotated by the pitch)
+    for msg in listener.messages["/platform/pose"]:
+        assert np.all(np.isfinite(adapt.motion_from_pose(msg)[1]))
+
+
+def test_a_diverging_state_stops_the_stepping():
+    """A 0.9 GN thrust at the hub (accepted, under the absurd limit) overturns the platform:
+    the node says the state diverged, stops stepping and publishes nothing beyond the bound."""
+    listener = Listener({"/platform/pose": PoseStamped})
+    node = start("node", real_time_factor=0.0, drag_model="constant", lockstep=False, duration_s=600.0)
+    wrenches = listener.publisher(WrenchStamped, "/platform/external_wrench")
+    try:
+        listener.wait_for(lambda: len(listener.messages["/platform/pose"]) > 0, 60.0)
+        wrenches.publish(adapt.wrench_msg(0.0, np.array([9e8, 0, 0, 0, 0, 0]), "hub"))
+        listener.wait_for(lambda: node.poll() is not None, 60.0)
+        output = finish(node, 10)
+    finally:
+        listener.close()
+    assert _log_after(output, "the state diverged"), output
+    motions = np.array([adapt.motion_from_pose(m)[1] for m in listener.messages["/platform/pose"]])
+    assert np.all(np.isfinite(motions)) and np.abs(motions[:, 4]).max() < 1.2
+
+
+@pytest.mark.parametrize("args, message", [
+    ({"dt_s": -0.05}, "parameter dt_s: must be a positive number"),
+    ({"drag_model": "smart"}, "parameter drag_model: must be one of constant, filtered"),
+    ({"platform": "nowhere.yaml"}, "platform 'nowhere.yaml': no such file"),
+    ({"publish_rate_hz": 7.0}, "parameter publish_rate_hz"),
+    ({"load_case": "lc9.9"}, "load case 'lc9.9': unknown"),
+])
+def test_bad_parameters_end_with_one_line(args: dict, message: str):
+    node = start("node", **args)
+    output = finish(node, 60)
+    assert node.returncode == 2 and message in output and "Traceback" not in output, output
