@@ -17,6 +17,7 @@ import rclpy
 from geometry_msgs.msg import WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile, ReliabilityPolicy
@@ -24,6 +25,7 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 import msg_adapters as adapt
 
 from .model import WRENCH_FRAMES
+from .node import init_ros
 
 
 class ThrustController(Node):
@@ -56,7 +58,7 @@ class ThrustController(Node):
 def main(args: list[str] | None = None) -> int:
     """``fowt-sim controller [--ros-args ...]``."""
     logging.basicConfig(level=logging.INFO)
-    rclpy.init(args=args)
+    init_ros(args)
     try:
         node = ThrustController()
     except ValueError as exc:
@@ -65,7 +67,7 @@ def main(args: list[str] | None = None) -> int:
         return 2
     try:
         rclpy.spin(node)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         node.destroy_node()

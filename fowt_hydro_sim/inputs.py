@@ -40,6 +40,7 @@ class ElevationResampler:
         self.sample_dt_s, self.tolerance_m = sample_dt_s, tolerance_m
         self.last: tuple[float, float] | None = None  # last accepted (time, elevation)
         self.next_index = 0  # the next grid sample: index * sample_dt_s
+        self.gap_s = 0.0  # time since the previous accepted sample
 
     def accept(self, time_s: float, x_m: float, y_m: float, elevation_m: float, frame_id: str,
                now_s: float) -> list[tuple[float, float]]:
@@ -57,6 +58,7 @@ class ElevationResampler:
         if time_s > now_s + MAX_AHEAD_S:
             raise InputError(f"wave elevation: sample at t = {time_s:.3f} s is more than {MAX_AHEAD_S:g} s "
                              f"ahead of the simulation ({now_s:.3f} s)")
+        self.gap_s = 0.0 if self.last is None else time_s - self.last[0]
         out = []
         if self.last is None:
             self.next_index = max(self.next_index, math.ceil(time_s / self.sample_dt_s - 1e-9))

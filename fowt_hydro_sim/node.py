@@ -10,6 +10,7 @@ the subscriptions.
 from __future__ import annotations
 
 import logging
+import signal
 import math
 import threading
 import time
@@ -21,6 +22,8 @@ import rclpy
 from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rclpy.executors import ExternalShutdownException
+from rclpy.signals import SignalHandlerOptions
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rosgraph_msgs.msg import Clock
@@ -35,6 +38,7 @@ from .waves import repeat_period, synthesize
 
 WAVE_SOURCES = ("internal", "topic")
 CONTRACT_TOTAL = ("drag", "inertia", "hydrostatic", "mooring", "external")  # /platform/loads/total
+MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
 
 # name: (default, description)
@@ -148,7 +152,9 @@ class SimulatorNode(Node):
         self._stream = None
         if s.wave_source == "topic":
             self._stream = self._elevation_stream(platform)
-            self.model.use_streamed_waves(s.wave_sample_dt_s)
+            # the ring holds the kernel's span and more: the first output lands preview_s ahead
+            span_s = self._stream.n_taps * s.wave_sample_dt_s + 60.0
+            self.model.use_streamed_waves(s.wave_sample_dt_s, int(math.ceil(span_s / s.wave_sample_dt_s)))
             self._resampler = ElevationResampler(*s.wave_point_xy, s.world_frame_id, s.wave_sample_dt_s)
             self._samples: deque[tuple[float, float]] = deque(maxlen=1_000_000)
             self._waves_until_s = -math.inf  # kinematics are written up to this time
@@ -158,7 +164,7 @@ class SimulatorNode(Node):
         self._wrench = (np.zeros(6), "world", -math.inf)  # wrench, frame, stamp
         self._rtf = s.real_time_factor
         self._stop = threading.Event()
-        self.step_log: list[tuple[float, float]] = []  # (wall, target wall) per publish, for pacing stats
+        self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
         self._make_interface()
         self.add_on_set_parameters_callback(self._on_set_parameters)
         self.get_logger().info(
@@ -176,7 +182,7 @@ class SimulatorNode(Node):
         s, env = self.settings, platform.environment
         return ElevationStream(self.model.geometry.points_m, s.wave_point_xy, s.sea_state.heading_deg,
                                env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3,
-                               s.wave_sample_dt_s, s.preview_s)
+                               s.wave_sample_dt_s, s.preview_s, elevation_points_xy_m=np.zeros((1, 2)))
 
     def _make_interface(self) -> None:
         out = QoSProfile(depth=1000)  # accelerated runs: room for a slower subscriber
@@ -188,8 +194,9 @@ class SimulatorNode(Node):
         self._pub["elevation_used"] = self.create_publisher(PointStamped, "/waves/elevation_used", out)
         inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
         self.create_subscription(WrenchStamped, "/platform/external_wrench", self._on_wrench, inputs)
-        if self._stream is not None:
-            self.create_subscription(PointStamped, "/waves/elevation", self._on_elevation, inputs)
+        if self._stream is not None:  # room for a record replayed faster than it is read
+            samples = QoSProfile(depth=100_000, reliability=ReliabilityPolicy.RELIABLE)
+            self.create_subscription(PointStamped, "/waves/elevation", self._on_elevation, samples)
 
     def _on_set_parameters(self, changes) -> SetParametersResult:
         for p in changes:
@@ -220,6 +227,9 @@ class SimulatorNode(Node):
             except InputError as exc:
                 self.get_logger().warning(f"{exc}; sample ignored")
                 return
+            if self._resampler.gap_s > 2.5 * self._resampler.sample_dt_s and not self._still_water:
+                self.get_logger().warning(f"wave elevation: {self._resampler.gap_s:.2f} s gap before t = {t:.3f} s, "
+                                          f"interpolated")
             self._samples.extend(samples)
             self._last_sample_wall = time.monotonic()
             if self._still_water and samples:
@@ -227,14 +237,14 @@ class SimulatorNode(Node):
                 self._still_water = False
             self._lock.notify_all()
 
-    def _feed_stream(self) -> None:
-        """Push the queued elevation samples through the stream into the model's table."""
-        while self._samples:
+    def _feed_stream(self, until_s: float) -> None:
+        """Push queued elevation samples through the stream into the model's table until the
+        kinematics reach ``until_s`` (no further: the table is a ring)."""
+        while self._samples and self._waves_until_s < until_s:
             t, eta = self._samples.popleft()
-            out = self._stream.push(eta)
-            if out is not None:
-                kinematics, elevation = out
-                self.model.write_waves(t - self._stream.delay_s, kinematics, elevation)
+            kinematics = self._stream.push(eta)
+            if kinematics is not None:
+                self.model.write_waves(t - self._stream.delay_s, kinematics, float(self._stream.elevation_m[0]))
                 self._waves_until_s = t - self._stream.delay_s
 
     def _wait_for_waves(self, until_s: float) -> bool:
@@ -243,7 +253,7 @@ class SimulatorNode(Node):
         s = self.settings
         with self._lock:
             while not self._stop.is_set():
-                self._feed_stream()
+                self._feed_stream(until_s)
                 if self._waves_until_s >= until_s:
                     return True
                 silent = time.monotonic() - self._last_sample_wall
@@ -252,8 +262,8 @@ class SimulatorNode(Node):
                         self.get_logger().warning(
                             f"no wave elevation on /waves/elevation for {silent:.1f} s: going on in still water")
                         self._still_water = True
-                    needed = until_s + self._stream.delay_s
-                    self._samples.extend(self._resampler.fill_still_water(needed))
+                    next_sample_s = self._resampler.next_index * s.wave_sample_dt_s
+                    self._samples.extend(self._resampler.fill_still_water(next_sample_s))  # one sample
                     continue
                 self._lock.wait(timeout=0.05)
         return False
@@ -299,6 +309,20 @@ class SimulatorNode(Node):
         return not self._thread.is_alive()
 
     def _run(self) -> None:
+        start_wall, start_sim = time.monotonic(), self.model.time_s
+        try:
+            self._step_until_done()
+        finally:
+            wall = time.monotonic() - start_wall
+            report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
+                     f"simulated in {wall:.1f} s of wall time"
+            if self.lateness_s:
+                late = np.array(self.lateness_s) * 1e3
+                report += (f"; pacing lateness p50 {np.percentile(late, 50):.3f} ms, p99 "
+                           f"{np.percentile(late, 99):.3f} ms over {late.size} steps")
+            self.get_logger().info(report)
+
+    def _step_until_done(self) -> None:
         s, model = self.settings, self.model
         period = s.steps_per_publish * s.dt_s
         if s.lockstep:
@@ -326,9 +350,12 @@ class SimulatorNode(Node):
             if rtf > 0:
                 target = wall0 + (model.time_s - sim0) / rtf
                 delay = target - time.monotonic()
-                if delay > 0:
-                    time.sleep(delay)
-                self.step_log.append((time.monotonic(), target))
+                if delay < -MAX_LATENESS_S:  # after a stall (waiting for input): no catching up
+                    wall0, sim0 = time.monotonic(), model.time_s
+                else:
+                    if delay > 0:
+                        time.sleep(delay)
+                    self.lateness_s.append(time.monotonic() - target)
             self._publish()
 
     def _healthy(self) -> bool:
@@ -357,12 +384,19 @@ class SimulatorNode(Node):
         self._pub["elevation_used"].publish(adapt.elevation_msg(t, 0.0, 0.0, eta, world))
 
 
+def init_ros(args: list[str] | None) -> None:
+    """rclpy without its signal handlers: SIGINT and SIGTERM stop the node through
+    KeyboardInterrupt in the main thread, so the stepping ends before the context does."""
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+
+
 def main(args: list[str] | None = None) -> int:
     """``fowt-sim node [--ros-args ...]``: run the node until stopped or its duration is done."""
     logging.basicConfig(level=logging.INFO, format="[%(levelname)s] [%(name)s]: %(message)s")
     log = logging.getLogger("fowt_hydro_sim")
     try:
-        rclpy.init(args=args)
+        init_ros(args)
         node = SimulatorNode()
     except Exception as exc:  # bad parameters, parameter file or platform: one line, no traceback
         log.error(f"fowt-sim node: {exc}".splitlines()[0])
@@ -374,7 +408,7 @@ def main(args: list[str] | None = None) -> int:
             rclpy.spin_once(node, timeout_sec=0.1)
         for _ in range(5):  # let the last messages go out
             rclpy.spin_once(node, timeout_sec=0.1)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         node.stop()
