@@ -40,6 +40,9 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
+        # `ros2 run fowt_hydro_sim node|controller` (colcon); named apart from console scripts
+        # so that pip does not put a `node` in <venv>/bin
+        ('lib/' + package_name, ['scripts/node', 'scripts/controller']),
     ],
     install_requires=[
         'numpy',
