@@ -49,6 +49,8 @@ def main() -> None:
     done = re.search(r"([\d.]+) s simulated in ([\d.]+) s of wall time", output)
     received = {topic: len(msgs) for topic, msgs in listener.messages.items()}
     print(f"accelerated, {len(TOPICS)} topics at 20 Hz simulated, drag {args.drag}, {args.duration:g} s:")
+    if not done or "duration" not in output:
+        print(output)
     if done:
         sim, wall = map(float, done.groups())
         print(f"  {sim / wall:.0f} simulated s per wall s ({sim:g} s in {wall:.2f} s, target >= 500)")

@@ -6,6 +6,8 @@ velocity.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -120,9 +122,9 @@ def point_jacobian(r: np.ndarray) -> np.ndarray:
 
 def quaternion_from_euler(roll: float, pitch: float, yaw: float) -> np.ndarray:
     """Unit quaternion (x, y, z, w), w >= 0, of R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr = np.cos(0.5 * roll), np.sin(0.5 * roll)
-    cp, sp = np.cos(0.5 * pitch), np.sin(0.5 * pitch)
-    cy, sy = np.cos(0.5 * yaw), np.sin(0.5 * yaw)
+    cr, sr = math.cos(0.5 * roll), math.sin(0.5 * roll)  # scalar math: a few us per message
+    cp, sp = math.cos(0.5 * pitch), math.sin(0.5 * pitch)
+    cy, sy = math.cos(0.5 * yaw), math.sin(0.5 * yaw)
     q = np.array([
         sr * cp * cy - cr * sp * sy,
         cr * sp * cy + sr * cp * sy,

@@ -128,3 +128,34 @@ def test_wrong_shapes_raise_naming_the_argument(call, name):
 def test_non_finite_values_pass_through():
     _, w = ma.velocity_from_twist(ma.twist_msg(1.0, [np.nan, np.inf, 0, 0, 0, 0]))
     assert np.isnan(w[0]) and np.isinf(w[1])
+
+
+# --------------------------------------------------------------------------- CDR bytes
+def test_cdr_bytes_are_rclpys_serialisation():
+    """Oracle: rclpy's own (de)serialisation. Our bytes deserialise to the message the adapters
+    build, and have the length of serialize_message's output (which differs only in the
+    padding bytes, left uninitialised there), for random states, times and frame ids of
+    several lengths (alignment)."""
+    from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, WrenchStamped
+    from nav_msgs.msg import Odometry
+    from rclpy.serialization import deserialize_message, serialize_message
+    from rosgraph_msgs.msg import Clock
+
+    from msg_adapters import cdr
+
+    rng = np.random.default_rng(7)
+    for frame, child in (("world", "platform"), ("w", "p1"), ("a_longer_world_frame", "hub")):
+        t = float(rng.uniform(0, 1e5))
+        motion = np.concatenate([rng.normal(0, 5, 3), rng.uniform(-1.2, 1.2, 3)])
+        velocity, values = rng.normal(0, 1, 6), rng.normal(0, 1e6, 6)
+        cases = [(cdr.clock(t), ma.clock_msg(t), Clock),
+                 (cdr.pose(t, motion, frame), ma.pose_msg(t, motion, frame), PoseStamped),
+                 (cdr.six(t, velocity, frame), ma.twist_msg(t, velocity, frame), TwistStamped),
+                 (cdr.six(t, values, frame), ma.accel_msg(t, values, frame), AccelStamped),
+                 (cdr.six(t, values, frame), ma.wrench_msg(t, values, frame), WrenchStamped),
+                 (cdr.point(t, 1.5, -2.0, 0.3, frame), ma.elevation_msg(t, 1.5, -2.0, 0.3, frame), PointStamped),
+                 (cdr.odometry(t, motion, velocity, frame, child),
+                  ma.odometry_msg(t, motion, velocity, frame, child), Odometry)]
+        for data, message, kind in cases:
+            assert deserialize_message(data, kind) == message, kind
+            assert len(data) == len(serialize_message(message)), kind
