@@ -290,3 +290,12 @@ def test_a_parameter_file_that_does_not_parse(tmp_path):
                            str(broken)], capture_output=True, text=True, timeout=60)
     output = done.stdout + done.stderr
     assert done.returncode == 2 and "fowt-sim node:" in output and "Traceback" not in output, output
+
+
+def test_a_platform_file_that_does_not_parse(tmp_path):
+    broken = tmp_path / "broken_platform.yaml"
+    broken.write_text("name: broken\nmembers: [\n")
+    node = start("node", platform=str(broken))
+    output = finish(node, 60)
+    assert node.returncode == 2 and "broken_platform.yaml:" in output and "not valid YAML" in output, output
+    assert "Traceback" not in output
