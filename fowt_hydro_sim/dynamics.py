@@ -178,7 +178,7 @@ def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, load
     y += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)  # a node publishes the last batch while the next one runs
 def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_every: int,
               d: KernelData, history: np.ndarray, newest: np.ndarray, out_t: np.ndarray,
               out_y: np.ndarray, out_acceleration: np.ndarray, out_loads: np.ndarray) -> int:

@@ -15,6 +15,7 @@ import math
 import threading
 import time
 from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -169,6 +170,8 @@ class SimulatorNode(Node):
         self._stop = threading.Event()
         self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
         self.dropped = 0  # messages DDS refused (a subscriber too slow for the pace)
+        self._publisher = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fowt_publish")
+        self._published: Future | None = None  # the batch being published
         self._make_interface()
         self.add_on_set_parameters_callback(self._on_set_parameters)
         self.get_logger().info(
@@ -308,6 +311,7 @@ class SimulatorNode(Node):
             self._lock.notify_all()
         if self._thread.is_alive():
             self._thread.join(timeout=10)
+        self._publisher.shutdown(wait=True)
 
     @property
     def finished(self) -> bool:
@@ -333,43 +337,66 @@ class SimulatorNode(Node):
         if s.lockstep:
             self._wait_for_controller()
         self._publish_now()
-        wall0, sim0, rtf = time.monotonic(), model.time_s, self._rtf
-        while not self._stop.is_set():
-            if s.duration_s and model.time_s >= s.duration_s - 1e-9:
-                self.get_logger().info(f"duration {s.duration_s:g} s reached: stepping stopped")
-                return
-            if s.lockstep:
-                self._wait_for_lockstep(model.time_s)
-            # as fast as possible: a batch of publish periods per compiled call, published after
-            periods = 1 if self._rtf > 0 or s.lockstep else max(1, int(round(BATCH_S / period)))
-            if s.duration_s:
-                periods = max(1, min(periods, int(round((s.duration_s - model.time_s) / period))))
-            if self._stream is not None:
-                margin = 3 * s.wave_sample_dt_s
-                if not self._wait_for_waves(model.time_s + periods * period + margin):
+        self._anchor = (time.monotonic(), model.time_s, self._rtf)  # pacing: wall, sim, factor
+        try:
+            while not self._stop.is_set():
+                if s.duration_s and model.time_s >= s.duration_s - 1e-9:
+                    self.get_logger().info(f"duration {s.duration_s:g} s reached: stepping stopped")
                     return
-            with self._lock:
-                wrench, frame, _ = self._wrench
-            model.set_external_wrench(wrench, frame)
-            if periods > 1:
-                if not self._publish_batch(model.run(periods * period, output_interval_s=period)):
+                if s.lockstep:
+                    self._wait_for_lockstep(model.time_s)
+                # as fast as possible: a batch of publish periods per compiled call
+                periods = 1 if self._rtf > 0 or s.lockstep else max(1, int(round(BATCH_S / period)))
+                if s.duration_s:
+                    periods = max(1, min(periods, int(round((s.duration_s - model.time_s) / period))))
+                if self._stream is not None and not self._wait_for_waves(
+                        model.time_s + periods * period + 3 * s.wave_sample_dt_s):
                     return
-                continue
-            model.step(s.steps_per_publish)
-            if not self._healthy(model.time_s, model.motion, model.velocity):
-                return
-            if self._rtf != rtf:  # re-anchor the pacing after a change of speed
-                wall0, sim0, rtf = time.monotonic(), model.time_s - period, self._rtf
-            if rtf > 0:
-                target = wall0 + (model.time_s - sim0) / rtf
-                delay = target - time.monotonic()
-                if delay < -MAX_LATENESS_S:  # after a stall (waiting for input): no catching up
-                    wall0, sim0 = time.monotonic(), model.time_s
-                else:
-                    if delay > 0:
-                        time.sleep(delay)
-                    self.lateness_s.append(time.monotonic() - target)
-            self._publish_now()
+                with self._lock:
+                    wrench, frame, _ = self._wrench
+                model.set_external_wrench(wrench, frame)
+                if periods > 1:
+                    if not self._step_batch(periods * period, period):
+                        return
+                    continue
+                self._finish_publishing()
+                model.step(s.steps_per_publish)
+                if not self._healthy(model.time_s, model.motion, model.velocity):
+                    return
+                self._pace(period)
+                self._publish_now()
+        finally:
+            self._finish_publishing()
+
+    def _step_batch(self, duration_s: float, period_s: float) -> bool:
+        """Step a batch, computed (without the GIL) while the previous batch is published;
+        False if it diverged."""
+        result = self.model.run(duration_s, output_interval_s=period_s)
+        healthy = self._healthy_rows(result)
+        self._finish_publishing()
+        self._published = self._publisher.submit(self._publish_batch, result, healthy)
+        return healthy == len(result.time_s) - 1
+
+    def _finish_publishing(self) -> None:
+        if self._published is not None:
+            self._published.result()
+            self._published = None
+
+    def _pace(self, period_s: float) -> None:
+        """Sleep until the wall-clock time of the current simulated time."""
+        wall0, sim0, rtf = self._anchor
+        if self._rtf != rtf:  # re-anchor after a change of speed
+            wall0, sim0, rtf = time.monotonic(), self.model.time_s - period_s, self._rtf
+        if rtf > 0:
+            target = wall0 + (self.model.time_s - sim0) / rtf
+            delay = target - time.monotonic()
+            if delay < -MAX_LATENESS_S:  # after a stall (waiting for input): no catching up
+                wall0, sim0 = time.monotonic(), self.model.time_s
+            else:
+                if delay > 0:
+                    time.sleep(delay)
+                self.lateness_s.append(time.monotonic() - target)
+        self._anchor = (wall0, sim0, rtf)
 
     def _healthy(self, time_s: float, motion: np.ndarray, velocity: np.ndarray) -> bool:
         if np.all(np.isfinite(motion)) and np.all(np.isfinite(velocity)) and np.all(np.abs(motion) < MOTION_LIMITS):
@@ -379,16 +406,19 @@ class SimulatorNode(Node):
         self._stop.set()
         return False
 
-    def _publish_batch(self, result: RunResult) -> bool:
-        """Publish a batch's samples after its first row (the time it started from), up to the
-        first unhealthy one."""
+    def _healthy_rows(self, result: RunResult) -> int:
+        """How many of a batch's samples after its first row are healthy (all, or up to the
+        first that is not, which is logged and stops the stepping)."""
         for i in range(1, len(result.time_s)):
-            t = float(result.time_s[i])
-            if not self._healthy(t, result.motion[i], result.velocity[i]):
-                return False
-            self._publish(t, result.motion[i], result.velocity[i], result.acceleration[i], result.loads[i],
-                          float(result.wave_elevation_m[i]))
-        return True
+            if not self._healthy(float(result.time_s[i]), result.motion[i], result.velocity[i]):
+                return i - 1
+        return len(result.time_s) - 1
+
+    def _publish_batch(self, result: RunResult, n_rows: int) -> None:
+        """Publish a batch's first ``n_rows`` samples after its first row (where it started)."""
+        for i in range(1, n_rows + 1):
+            self._publish(float(result.time_s[i]), result.motion[i], result.velocity[i], result.acceleration[i],
+                          result.loads[i], float(result.wave_elevation_m[i]))
 
     def _publish_now(self) -> None:
         m = self.model
@@ -398,16 +428,16 @@ class SimulatorNode(Node):
                  loads: np.ndarray, elevation_m: float) -> None:
         """Every output at time t, as pre-serialised CDR (msg_adapters.cdr)."""
         world, body = self.settings.world_frame_id, self.settings.platform_frame_id
-        send = self._send
+        send, head = self._send, cdr.header(t, world)  # one header for the world-frame messages
         send("clock", cdr.clock(t))
-        send("pose", cdr.pose(t, motion, world))
-        send("twist", cdr.six(t, velocity, world))
-        send("accel", cdr.six(t, acceleration, world))
+        send("pose", cdr.doubles(head, cdr.pose_values(motion)))
+        send("twist", cdr.doubles(head, velocity.tolist()))
+        send("accel", cdr.doubles(head, acceleration.tolist()))
         send("odom", cdr.odometry(t, motion, velocity, world, body))
-        send("total", cdr.six(t, loads[self._total_rows].sum(axis=0), world))
-        for i, name in enumerate(LOAD_COMPONENTS):
-            send(name, cdr.six(t, loads[i], world))
-        send("elevation_used", cdr.point(t, 0.0, 0.0, elevation_m, world))
+        send("total", cdr.doubles(head, loads[self._total_rows].sum(axis=0).tolist()))
+        for name, row in zip(LOAD_COMPONENTS, loads.tolist()):
+            send(name, cdr.doubles(head, row))
+        send("elevation_used", cdr.doubles(head, [0.0, 0.0, elevation_m]))
 
     def _send(self, name: str, data: bytes) -> None:
         """Publish; a reliable subscriber too slow for an accelerated run makes DDS refuse the

@@ -19,6 +19,7 @@ from msg_adapters.stamps import stamp_parts
 
 ENCAPSULATION = b"\x00\x01\x00\x00"  # CDR, little endian
 _ZERO_COVARIANCE = struct.pack("<36d", *([0.0] * 36))
+_DOUBLES = {n: struct.Struct(f"<{n}d") for n in (3, 6, 7)}
 
 
 @lru_cache(maxsize=64)
@@ -32,17 +33,21 @@ def _align8(body: bytes) -> bytes:
     return body + b"\0" * (-len(body) % 8)
 
 
-def _header(time_s: float, frame_id: str) -> bytes:
+def header(time_s: float, frame_id: str) -> bytes:
+    """Encapsulation and Header, padded for the float64 fields that follow: shared by every
+    stamped message of one time and frame."""
     sec, nanosec = stamp_parts(time_s)
-    return struct.pack("<iI", sec, nanosec) + _string(frame_id, 8)
+    return ENCAPSULATION + _align8(struct.pack("<iI", sec, nanosec) + _string(frame_id, 8))
 
 
-def _stamped(time_s: float, frame_id: str, values) -> bytes:
-    """A Header followed by float64 fields (PoseStamped, TwistStamped, WrenchStamped ...)."""
-    return ENCAPSULATION + _align8(_header(time_s, frame_id)) + struct.pack(f"<{len(values)}d", *values)
+def doubles(head: bytes, values) -> bytes:
+    """A stamped message of float64 fields: PoseStamped (7: position, quaternion x y z w),
+    TwistStamped / AccelStamped / WrenchStamped (6), PointStamped (3)."""
+    return head + _DOUBLES[len(values)].pack(*values)
 
 
-def _pose_values(motion: np.ndarray) -> list[float]:
+def pose_values(motion) -> list[float]:
+    """Position and quaternion (x, y, z, w) of a motion [surge, sway, heave, roll, pitch, yaw]."""
     x, y, z, roll, pitch, yaw = map(float, motion)
     return [x, y, z, *quaternion_from_euler(roll, pitch, yaw).tolist()]
 
@@ -52,28 +57,30 @@ def clock(time_s: float) -> bytes:
     return ENCAPSULATION + struct.pack("<iI", *stamp_parts(time_s))
 
 
-def pose(time_s: float, motion: np.ndarray, frame_id: str = "world") -> bytes:
+def pose(time_s: float, motion, frame_id: str = "world") -> bytes:
     """geometry_msgs/PoseStamped (as ``pose_msg``)."""
-    return _stamped(time_s, frame_id, _pose_values(motion))
+    return doubles(header(time_s, frame_id), pose_values(motion))
 
 
-def six(time_s: float, values: np.ndarray, frame_id: str = "world") -> bytes:
+def six(time_s: float, values, frame_id: str = "world") -> bytes:
     """TwistStamped, AccelStamped or WrenchStamped of six values (as ``twist_msg``,
     ``accel_msg``, ``wrench_msg``: the three share one layout)."""
-    return _stamped(time_s, frame_id, [float(v) for v in values])
+    return doubles(header(time_s, frame_id), [float(v) for v in values])
 
 
 def point(time_s: float, x_m: float, y_m: float, z_m: float, frame_id: str = "world") -> bytes:
     """geometry_msgs/PointStamped (as ``elevation_msg``)."""
-    return _stamped(time_s, frame_id, [float(x_m), float(y_m), float(z_m)])
+    return doubles(header(time_s, frame_id), [float(x_m), float(y_m), float(z_m)])
 
 
-def odometry(time_s: float, motion: np.ndarray, velocity: np.ndarray, frame_id: str = "world",
-             child_frame_id: str = "platform") -> bytes:
+def odometry(time_s: float, motion, velocity, frame_id: str = "world", child_frame_id: str = "platform") -> bytes:
     """nav_msgs/Odometry (as ``odometry_msg``: twist in the platform axes, zero covariances)."""
-    head = _header(time_s, frame_id)
+    sec, nanosec = stamp_parts(time_s)
+    head = struct.pack("<iI", sec, nanosec) + _string(frame_id, 8)
     head += _string(child_frame_id, len(head))
-    to_body = rotation_matrix(*map(float, motion[3:6])).T
-    twist = np.concatenate([to_body @ velocity[:3], to_body @ velocity[3:]])
-    return (ENCAPSULATION + _align8(head) + struct.pack("<7d", *_pose_values(motion)) + _ZERO_COVARIANCE
-            + struct.pack("<6d", *map(float, twist)) + _ZERO_COVARIANCE)
+    pose_part = pose_values(motion)
+    to_body = rotation_matrix(float(motion[3]), float(motion[4]), float(motion[5])).T
+    v = [float(c) for c in velocity]
+    twist = [*(to_body @ v[:3]).tolist(), *(to_body @ v[3:]).tolist()]
+    return (ENCAPSULATION + _align8(head) + _DOUBLES[7].pack(*pose_part) + _ZERO_COVARIANCE
+            + _DOUBLES[6].pack(*twist) + _ZERO_COVARIANCE)
