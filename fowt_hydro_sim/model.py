@@ -147,11 +147,7 @@ class PlatformModel:
         states = np.zeros((bank.n_states, self.n_strips, 2))
         if bank.n_states == 0:
             return states
-        rotation = rotation_matrix(*self._state[3:6])
-        body_only = np.zeros((len(self.geometry.points_m), 7))
-        wet, v_body, a_fluid = np.empty(self.n_strips), np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
-        relative_velocities(rotation, self._state[0:3], self._state[6:9], self._state[9:12], body_only,
-                            s.centre_m, s.axis, s.directions, s.length_m, s.kinematics_point, wet, v_body, a_fluid)
+        v_body = self._relative_velocities(np.zeros((len(self.geometry.points_m), 7)))  # still water
         states += np.linalg.solve(-bank.a, bank.b)[:, None, None] * v_body
         if self.waves is not None and self.waves.frequency_hz.size:
             env = self.platform.environment
@@ -159,9 +155,19 @@ class PlatformModel:
                                           env.gravity_m_s2, env.water_density_kg_m3)[:, 0:3]
             response = state_response(bank, 2 * np.pi * self.waves.frequency_hz)  # (n_freq, n_states)
             at_points = np.einsum("pcf,fj->pcj", velocity, response).real  # (points, 3, n_states)
-            directions = s.directions @ rotation.T  # world axes
+            directions = s.directions @ rotation_matrix(*self._state[3:6]).T  # world axes
             states += np.einsum("nkc,ncj->jnk", directions, at_points[s.kinematics_point])
         return states
+
+    def _relative_velocities(self, kinematics: np.ndarray) -> np.ndarray:
+        """Transverse relative velocity (n_strips, 2) at the current state in the given point
+        kinematics (points, 7)."""
+        s = self.geometry.strips
+        wet, v_rel, a_fluid = np.empty(self.n_strips), np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
+        relative_velocities(rotation_matrix(*self._state[3:6]), self._state[0:3], self._state[6:9],
+                            self._state[9:12], kinematics, s.centre_m, s.axis, s.directions, s.length_m,
+                            s.kinematics_point, wet, v_rel, a_fluid)
+        return v_rel
 
     def _restart_history(self) -> None:
         """Forget the integrator's past derivatives (after a jump in state)."""
@@ -228,12 +234,9 @@ class PlatformModel:
     def strip_velocities(self) -> tuple[np.ndarray, np.ndarray]:
         """Transverse relative velocity of each strip (n_strips, 2: d1, d2, member frame) and
         its band velocities (n_strips, n_bands, 2) at the current time."""
-        s, data = self.geometry.strips, self._data
-        rotation = rotation_matrix(*self._state[3:6])
-        kinematics = dynamics.interpolate_table(data.wave_table, data.wave_table_step_s, self.time_s)
-        wet, v_rel, a_fluid = np.empty(self.n_strips), np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
-        relative_velocities(rotation, self._state[0:3], self._state[6:9], self._state[9:12], kinematics,
-                            s.centre_m, s.axis, s.directions, s.length_m, s.kinematics_point, wet, v_rel, a_fluid)
+        data = self._data
+        v_rel = self._relative_velocities(dynamics.interpolate_table(data.wave_table, data.wave_table_step_s,
+                                                                     self.time_s))
         v_band = np.empty((data.filter_d.size, 2 * self.n_strips))
         states = self._state[N_BODY_STATES:].reshape(self.filter_bank.n_states, 2 * self.n_strips)
         band_velocities(states, v_rel.ravel(), data.filter_c, data.filter_c_nonzero, data.filter_d, v_band)

@@ -139,7 +139,7 @@ def settings_from_parameters(values: dict) -> Settings:
 
 
 class SimulatorNode(Node):
-    """The simulator node. ``settings`` None reads them from the ROS parameters."""
+    """The simulator node; its settings come from the ROS parameters (``PARAMETERS``)."""
 
     def __init__(self, **node_kwargs):
         super().__init__("fowt_hydro_sim", **node_kwargs)

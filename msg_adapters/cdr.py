@@ -12,8 +12,6 @@ from __future__ import annotations
 import struct
 from functools import lru_cache
 
-import numpy as np
-
 from fowt_hydro_sim.rigid_body import quaternion_from_euler, rotation_matrix
 from msg_adapters.stamps import stamp_parts
 
