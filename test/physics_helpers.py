@@ -45,18 +45,22 @@ def scaled_cd(cd: DragCoefficients, scale: float, band: int | None = None) -> Dr
     return DragCoefficients(scale * cd.constant, None if cd.bands is None else tuple(scale * c for c in cd.bands))
 
 
+def with_cds(platform: Platform, change, **platform_changes) -> Platform:
+    """The platform with every zone's DragCoefficients ``c`` replaced by ``change(c)``."""
+    members = tuple(dataclasses.replace(m, zones=tuple(dataclasses.replace(z, cd=tuple(change(c) for c in z.cd))
+                                                       for z in m.zones)) for m in platform.members)
+    return dataclasses.replace(platform, members=members, **platform_changes)
+
+
 def scaled_drag(platform: Platform, scale: float) -> Platform:
     """The platform with every drag coefficient (strips and end plates) times ``scale``."""
-    def zone(z):
-        return dataclasses.replace(z, cd=tuple(scaled_cd(c, scale) for c in z.cd))
-
     def plate(p):
         return None if p is None else dataclasses.replace(p, cd=scale * p.cd)
 
-    members = tuple(dataclasses.replace(m, zones=tuple(zone(z) for z in m.zones),
-                                        end_a_plate=plate(m.end_a_plate), end_b_plate=plate(m.end_b_plate))
-                    for m in platform.members)
-    return dataclasses.replace(platform, members=members)
+    scaled = with_cds(platform, lambda c: scaled_cd(c, scale))
+    members = tuple(dataclasses.replace(m, end_a_plate=plate(m.end_a_plate), end_b_plate=plate(m.end_b_plate))
+                    for m in scaled.members)
+    return dataclasses.replace(scaled, members=members)
 
 
 def windmoor12() -> Platform:

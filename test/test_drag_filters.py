@@ -25,7 +25,7 @@ from fowt_hydro_sim.model import PlatformModel
 from fowt_hydro_sim.rigid_body import rotation_matrix
 from fowt_hydro_sim.spectral import band_stds
 from fowt_hydro_sim.waves import WaveComponents, synthesize
-from physics_helpers import windmoor12
+from physics_helpers import scaled_cd, windmoor12, with_cds
 
 DRAG = LOAD_COMPONENTS.index("drag")
 PAPER_BANDS = (DragBand("low_frequency", "lowpass", 5, cutoff_hz=0.05), DragBand("wave", "highpass", 1, cutoff_hz=0.05))
@@ -137,9 +137,7 @@ def test_one_all_pass_band_equals_the_constant_model_exactly():
     def all_pass(cd: DragCoefficients) -> DragCoefficients:
         return DragCoefficients(cd.constant, (cd.constant,))
 
-    members = tuple(dataclasses.replace(m, zones=tuple(dataclasses.replace(z, cd=tuple(all_pass(c) for c in z.cd))
-                                                       for z in m.zones)) for m in p.members)
-    single = dataclasses.replace(p, members=members, drag_bands=(DragBand("all", "allpass", 0),))
+    single = with_cds(p, all_pass, drag_bands=(DragBand("all", "allpass", 0),))
     waves = synthesize(SeaState(11.0, 12.0, 4.9, seed=3), 3600.0)
     constant = PlatformModel(p, waves, drag_model="constant").run(300.0)
     filtered = PlatformModel(single, waves, drag_model="filtered").run(300.0)
@@ -195,12 +193,10 @@ def test_spinning_body_filters_in_the_member_frame():
     def low_frequency_only(cd: DragCoefficients) -> DragCoefficients:
         return cd if cd.bands is None else DragCoefficients(cd.bands[0])
 
-    members = tuple(dataclasses.replace(m, zones=tuple(dataclasses.replace(z, cd=tuple(low_frequency_only(c) for c in z.cd))
-                                                       for z in m.zones)) for m in p.members)
     yaw_rate = 2 * np.pi * 0.05
     drag = {}
     for name, platform in (("filtered", dataclasses.replace(p, mass=HEAVY)),
-                           ("constant", dataclasses.replace(p, mass=HEAVY, members=members))):
+                           ("constant", with_cds(p, low_frequency_only, mass=HEAVY))):
         model = PlatformModel(platform, None, drag_model=name)
         model.set_external_wrench(np.array([0.0, 0.0, HEAVY_KG * p.environment.gravity_m_s2, 0, 0, 0]))
         model.reset(velocity=np.array([0, 0, 0, 0, 0, yaw_rate]))
@@ -237,16 +233,10 @@ def test_band_cds_act_on_their_bands_in_lc53():
     """
     p = windmoor12()
 
-    def band_scaled(band: int, scale: float) -> Platform:
-        def cd(c: DragCoefficients) -> DragCoefficients:
-            return c if c.bands is None else dataclasses.replace(
-                c, bands=tuple(x * scale if b == band else x for b, x in enumerate(c.bands)))
-        return dataclasses.replace(p, members=tuple(dataclasses.replace(m, zones=tuple(
-            dataclasses.replace(z, cd=tuple(cd(c) for c in z.cd)) for z in m.zones)) for m in p.members))
-
     waves = synthesize(SeaState(11.0, 12.0, 4.9, seed=1), 3900.0)
     stds = {}
-    for name, platform in (("base", p), ("low_frequency", band_scaled(0, 2.0)), ("wave", band_scaled(1, 2.0))):
+    for name, platform in (("base", p), ("low_frequency", with_cds(p, lambda c: scaled_cd(c, 2.0, band=0))),
+                           ("wave", with_cds(p, lambda c: scaled_cd(c, 2.0, band=1)))):
         result = PlatformModel(platform, waves, drag_model="filtered").run(3900.0, output_interval_s=0.25)
         keep = result.time_s >= 300.0
         stds[name] = {dof: band_stds(result.motion[keep, j], 0.25) for dof, j in (("surge", 0), ("heave", 2), ("pitch", 4))}
