@@ -219,6 +219,12 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] in (["node"], ["controller"]):
         return _ros_command(argv[0], argv[1:])
+    if argv[:1] == ["play"]:
+        from .player import main as play
+        return play(argv[1:])
+    if argv[:1] == ["record"]:
+        from .recorder import main as record
+        return record(argv[1:])
     parser = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator "
                                      "(also: fowt-sim node | controller [--ros-args ...], the ROS 2 nodes)")
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")

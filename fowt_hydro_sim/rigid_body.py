@@ -135,19 +135,20 @@ def quaternion_from_euler(roll: float, pitch: float, yaw: float) -> np.ndarray:
 
 
 def euler_from_quaternion(q) -> np.ndarray:
-    """Roll, pitch, yaw of a quaternion (x, y, z, w), normalised first; pitch in [-pi/2, pi/2]."""
+    """Roll, pitch, yaw of quaternions (x, y, z, w) in the last axis, normalised first;
+    pitch in [-pi/2, pi/2]."""
     q = np.asarray(q, dtype=float)
-    if q.shape != (4,):
-        raise ValueError(f"quaternion must have shape (4,), got {q.shape}")
+    if q.ndim == 0 or q.shape[-1] != 4:
+        raise ValueError(f"quaternion must have shape (4,) or (n, 4), got {q.shape}")
     if not np.all(np.isfinite(q)):
         raise ValueError(f"quaternion has non-finite components: {q}")
-    norm = np.linalg.norm(q)
-    if norm == 0.0:
+    norm = np.linalg.norm(q, axis=-1, keepdims=True)
+    if np.any(norm == 0.0):
         raise ValueError("quaternion is zero and has no orientation")
-    x, y, z, w = q / norm
+    x, y, z, w = np.moveaxis(q / norm, -1, 0)
     r20 = 2.0 * (x * z - w * y)
     r21 = 2.0 * (y * z + w * x)
     r22 = 1.0 - 2.0 * (x * x + y * y)
     r10 = 2.0 * (x * y + w * z)
     r00 = 1.0 - 2.0 * (y * y + z * z)
-    return np.array([np.arctan2(r21, r22), np.arctan2(-r20, np.hypot(r21, r22)), np.arctan2(r10, r00)])
+    return np.stack([np.arctan2(r21, r22), np.arctan2(-r20, np.hypot(r21, r22)), np.arctan2(r10, r00)], axis=-1)

@@ -12,8 +12,10 @@ from __future__ import annotations
 import struct
 from functools import lru_cache
 
+import numpy as np
+
 from fowt_hydro_sim.rigid_body import quaternion_from_euler, rotation_matrix
-from msg_adapters.stamps import stamp_parts
+from msg_adapters.sim_time import stamp_parts
 
 ENCAPSULATION = b"\x00\x01\x00\x00"  # CDR, little endian
 _ZERO_COVARIANCE = struct.pack("<36d", *([0.0] * 36))
@@ -82,3 +84,35 @@ def odometry(time_s: float, motion, velocity, frame_id: str = "world", child_fra
     twist = [*(to_body @ v[:3]).tolist(), *(to_body @ v[3:]).tolist()]
     return (ENCAPSULATION + _align8(head) + _DOUBLES[7].pack(*pose_part) + _ZERO_COVARIANCE
             + _DOUBLES[6].pack(*twist) + _ZERO_COVARIANCE)
+
+
+# ---------------------------------------------------------------------- decoding
+# Every contract type ends in float64 fields after its strings; Clock has none.
+TRAILING_DOUBLES = {"rosgraph_msgs/msg/Clock": 0, "geometry_msgs/msg/PointStamped": 3,
+                    "geometry_msgs/msg/PoseStamped": 7, "geometry_msgs/msg/TwistStamped": 6,
+                    "geometry_msgs/msg/AccelStamped": 6, "geometry_msgs/msg/WrenchStamped": 6,
+                    "nav_msgs/msg/Odometry": 85}
+_STAMP = np.dtype([("sec", "<i4"), ("nanosec", "<u4")])
+
+
+def decode_stamped(type_name: str, messages: list[bytes]) -> tuple[np.ndarray, np.ndarray]:
+    """Stamps [s] (n,) and trailing float64 fields (n, k) of messages of one contract type,
+    vectorised over the messages of each length. ValueError names a type without this
+    layout or bytes that are not little-endian CDR of it."""
+    if type_name not in TRAILING_DOUBLES:
+        raise ValueError(f"type {type_name} is not a stamped contract type ({', '.join(TRAILING_DOUBLES)})")
+    k = TRAILING_DOUBLES[type_name]
+    time_s, values = np.empty(len(messages)), np.empty((len(messages), k))
+    lengths = np.fromiter(map(len, messages), dtype=np.int64, count=len(messages))
+    for length in np.unique(lengths):
+        rows = np.flatnonzero(lengths == length)
+        if length < 12 + 8 * k:
+            raise ValueError(f"{type_name}: a message of {length} bytes is too short")
+        raw = np.frombuffer(b"".join(messages[i] for i in rows), dtype=np.uint8).reshape(len(rows), length)
+        if np.any(raw[:, :2] != np.frombuffer(ENCAPSULATION[:2], dtype=np.uint8)):
+            raise ValueError(f"{type_name}: messages are not little-endian CDR")
+        stamps = raw[:, 4:12].copy().view(_STAMP)[:, 0]
+        time_s[rows] = stamps["sec"] + stamps["nanosec"] * 1e-9
+        if k:
+            values[rows] = raw[:, length - 8 * k:].copy().view("<f8")
+    return time_s, values

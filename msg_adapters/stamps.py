@@ -1,23 +1,10 @@
 """Simulation time (float seconds) to and from builtin_interfaces/Time and rosgraph_msgs/Clock."""
 from __future__ import annotations
 
-import math
-
 from builtin_interfaces.msg import Time
 from rosgraph_msgs.msg import Clock
 
-NS_PER_S = 10**9
-
-
-def stamp_parts(time_s: float) -> tuple[int, int]:
-    """(sec, nanosec) of a simulation time in seconds, rounded to the nearest nanosecond."""
-    if not math.isfinite(time_s):
-        raise ValueError(f"time must be finite, got {time_s}")
-    if time_s < 0.0:
-        raise ValueError(f"time must be non-negative for a ROS stamp, got {time_s} s")
-    whole = math.floor(time_s)
-    ns = whole * NS_PER_S + round((time_s - whole) * 1e9)  # split: t * 1e9 loses ns above ~1e7 s
-    return ns // NS_PER_S, ns % NS_PER_S
+from msg_adapters.sim_time import stamp_parts
 
 
 def stamp(time_s: float) -> Time:

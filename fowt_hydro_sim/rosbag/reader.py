@@ -1,0 +1,187 @@
+"""Reading rosbag2 bags with MCAP storage: the API the offline tools share.
+
+``Bag(path)`` checks the directory and its metadata and opens the MCAP files with the
+``mcap`` library; ``series(topic)`` decodes a contract topic into numpy arrays (pose as 6
+DOF: surge, sway, heave, roll, pitch, yaw), ``aligned`` puts several on one time base, and
+``config`` is the run configuration the recorder stored. Problems are ``BagError``s
+naming the file and what is wrong.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterator
+
+import numpy as np
+import yaml
+from mcap.exceptions import McapError
+from mcap.reader import make_reader
+from mcap.writer import MCAP0_MAGIC
+
+from msg_adapters import topics as contract
+from msg_adapters.cdr import decode_stamped
+
+from ..rigid_body import euler_from_quaternion
+from .writer import METADATA_FILE, RUN_CONFIG_KEY, BagError
+
+RECOVER_HINT = "`fowt-sim recover {path}` rebuilds it from its complete chunks"
+
+
+@dataclass(frozen=True)
+class TopicInfo:
+    type: str
+    message_count: int
+
+
+@dataclass(frozen=True)
+class Series:
+    """A topic decoded: stamps [s], ascending and unique, and values (n, k)."""
+
+    time_s: np.ndarray
+    values: np.ndarray
+
+
+COLUMNS = {  # names of a decoded series' columns, per type
+    contract.POSE_STAMPED: ("surge", "sway", "heave", "roll", "pitch", "yaw"),
+    contract.ODOMETRY: ("surge", "sway", "heave", "roll", "pitch", "yaw", "u", "v", "w", "p", "q", "r"),
+    contract.POINT_STAMPED: ("x", "y", "z"),
+    contract.TWIST_STAMPED: ("vx", "vy", "vz", "wx", "wy", "wz"),
+    contract.ACCEL_STAMPED: ("ax", "ay", "az", "alpha_x", "alpha_y", "alpha_z"),
+    contract.WRENCH_STAMPED: ("fx", "fy", "fz", "mx", "my", "mz"),
+    contract.CLOCK: (),
+}
+
+
+def _six_dof(doubles: np.ndarray) -> np.ndarray:
+    """Position and quaternion (n, 7) to surge, sway, heave, roll, pitch, yaw."""
+    return np.hstack([doubles[:, :3], euler_from_quaternion(doubles[:, 3:7])])
+
+
+class Bag:
+    """A rosbag2 directory with MCAP storage, opened for reading."""
+
+    def __init__(self, path: str | Path):
+        self.path = Path(path)
+        if not self.path.exists():
+            raise BagError(f"bag {self.path}: no such directory")
+        if not self.path.is_dir():
+            raise BagError(f"bag {self.path}: not a directory (a rosbag2 bag is a directory with {METADATA_FILE})")
+        meta_path = self.path / METADATA_FILE
+        if not meta_path.is_file():
+            raise BagError(f"bag {self.path}: no {METADATA_FILE}, so this directory is not a rosbag2 bag")
+        try:
+            info = yaml.safe_load(meta_path.read_text())["rosbag2_bagfile_information"]
+            files = [self.path / Path(p).name for p in info["relative_file_paths"]]
+            storage = info["storage_identifier"]
+            custom = info.get("custom_data") or {}
+        except (yaml.YAMLError, KeyError, TypeError) as exc:
+            raise BagError(f"bag {self.path}: {METADATA_FILE} is not rosbag2 metadata ({type(exc).__name__}: {exc})")
+        if storage != "mcap":
+            raise BagError(f"bag {self.path}: storage {storage!r}; only mcap bags are read")
+        if missing := [f.name for f in files if not f.is_file()]:
+            raise BagError(f"bag {self.path}: file(s) listed in {METADATA_FILE} missing: {', '.join(missing)}")
+        self.files = files
+        self.topics: dict[str, TopicInfo] = {}
+        self._metadata: dict[str, dict[str, str]] = {}
+        for file in files:
+            self._read_summary(file)
+        config_yaml = custom.get(RUN_CONFIG_KEY) or self._metadata.get(RUN_CONFIG_KEY, {}).get("yaml")
+        self.config: dict | None = yaml.safe_load(config_yaml) if config_yaml else None
+
+    def _read_summary(self, file: Path) -> None:
+        with open(file, "rb") as stream:
+            head = stream.read(len(MCAP0_MAGIC))
+            stream.seek(max(0, file.stat().st_size - len(MCAP0_MAGIC)))
+            tail = stream.read()
+        if head != MCAP0_MAGIC:
+            raise BagError(f"bag {self.path}: {file.name} is not an MCAP file")
+        if tail != MCAP0_MAGIC or file.stat().st_size < 2 * len(MCAP0_MAGIC):
+            raise BagError(f"bag {self.path}: {file.name} is truncated (its recording was not closed: killed, or "
+                           f"the disk filled up); " + RECOVER_HINT.format(path=self.path))
+        try:
+            with open(file, "rb") as stream:
+                reader = make_reader(stream)
+                summary = reader.get_summary()
+                if summary is None:
+                    raise BagError(f"bag {self.path}: {file.name} has no summary (recording not closed); "
+                                   + RECOVER_HINT.format(path=self.path))
+                for record in reader.iter_metadata():
+                    self._metadata[record.name] = dict(record.metadata)
+        except (McapError, OSError, ValueError, EOFError) as exc:
+            if isinstance(exc, BagError):
+                raise
+            raise BagError(f"bag {self.path}: {file.name} is truncated or not MCAP ({exc}); "
+                           + RECOVER_HINT.format(path=self.path)) from None
+        counts = summary.statistics.channel_message_counts if summary.statistics else {}
+        for channel_id, channel in summary.channels.items():
+            schema = summary.schemas.get(channel.schema_id)
+            type_name = schema.name if schema else ""
+            if channel.topic in self.topics and self.topics[channel.topic].type != type_name:
+                raise BagError(f"bag {self.path}: topic {channel.topic} has two types "
+                               f"({self.topics[channel.topic].type}, {type_name})")
+            before = self.topics[channel.topic].message_count if channel.topic in self.topics else 0
+            self.topics[channel.topic] = TopicInfo(type_name, before + counts.get(channel_id, 0))
+
+    @property
+    def message_count(self) -> int:
+        return sum(t.message_count for t in self.topics.values())
+
+    def messages(self, topics: list[str] | None = None) -> Iterator[tuple[str, int, bytes]]:
+        """(topic, log time [ns], CDR bytes) in log-time order, file by file."""
+        for file in self.files:
+            with open(file, "rb") as stream:
+                for _, channel, message in make_reader(stream).iter_messages(topics=topics, log_time_order=True):
+                    yield channel.topic, message.log_time, message.data
+
+    def check_type(self, topic: str, expected: str | None = None) -> str:
+        """The topic's type, checked against ``expected`` (default: the contract's)."""
+        if topic not in self.topics:
+            raise BagError(f"bag {self.path}: no topic {topic} (topics: {', '.join(sorted(self.topics)) or 'none'})")
+        expected = expected or contract.TYPES.get(topic)
+        actual = self.topics[topic].type
+        if expected and actual != expected:
+            raise BagError(f"bag {self.path}: topic {topic} has type {actual}, expected {expected}")
+        if self.topics[topic].message_count == 0:
+            raise BagError(f"bag {self.path}: topic {topic} has no messages")
+        return actual
+
+    def series(self, topic: str) -> Series:
+        """A stamped contract topic as arrays, sorted by stamp, duplicate stamps dropped (the
+        first kept). Pose and odometry poses become 6 DOF (see ``COLUMNS``)."""
+        type_name = self.check_type(topic)
+        if type_name not in COLUMNS:
+            raise BagError(f"bag {self.path}: topic {topic} has type {type_name}, which has no numeric series")
+        data = [message for _, _, message in self.messages([topic])]
+        try:
+            time_s, values = decode_stamped(type_name, data)
+        except ValueError as exc:
+            raise BagError(f"bag {self.path}: topic {topic}: {exc}") from None
+        if type_name == contract.POSE_STAMPED:
+            values = _six_dof(values)
+        elif type_name == contract.ODOMETRY:
+            values = np.hstack([_six_dof(values[:, :7]), values[:, 43:49]])
+        order = np.argsort(time_s, kind="stable")
+        time_s, values = time_s[order], values[order]
+        keep = np.concatenate([[True], np.diff(time_s) > 0])
+        return Series(time_s[keep], values[keep])
+
+    def aligned(self, topics: list[str], time_s: np.ndarray | None = None) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """Several topics on one time base (default: the first topic's stamps, where all
+        topics have data), linearly interpolated; returns (time_s, {topic: values})."""
+        series = {topic: self.series(topic) for topic in topics}
+        if time_s is None:
+            first = series[topics[0]].time_s
+            start = max(s.time_s[0] for s in series.values())
+            end = min(s.time_s[-1] for s in series.values())
+            time_s = first[(first >= start) & (first <= end)]
+        values = {topic: np.column_stack([np.interp(time_s, s.time_s, column) for column in s.values.T])
+                  if s.values.shape[1] else np.empty((len(time_s), 0)) for topic, s in series.items()}
+        return time_s, values
+
+    def motion(self) -> Series:
+        """The platform's 6-DOF motion from /platform/pose."""
+        return self.series(contract.POSE)
+
+    def elevation(self) -> Series:
+        """The wave elevation samples of /waves/elevation: columns x, y, z (elevation)."""
+        return self.series(contract.ELEVATION)
