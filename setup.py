@@ -3,7 +3,7 @@
 Works both as a ROS 2 ament_python package (colcon build) and as a plain
 pip-installable project on a machine without ROS:
 
-    pip install .            # core simulator only (numpy, scipy, pyyaml, numba)
+    pip install .            # core simulator and bag tools (numpy, scipy, pyyaml, numba, mcap)
     pip install '.[ros]'     # + rclpy and message packages as PyPI wheels
     pip install '.[ros,test]'
 """
@@ -42,7 +42,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         # `ros2 run fowt_hydro_sim node|controller` (colcon); named apart from console scripts
         # so that pip does not put a `node` in <venv>/bin
-        ('lib/' + package_name, ['scripts/node', 'scripts/controller']),
+        ('lib/' + package_name, ['scripts/node', 'scripts/controller', 'scripts/play', 'scripts/record']),
     ],
     install_requires=[
         'numpy',
@@ -50,10 +50,13 @@ setup(
         'pyyaml',
         'numba',
         'matplotlib',
+        'mcap>=1.2',
+        'zstandard',
     ],
     extras_require={
         'ros': ROS_WHEELS,
-        'test': ['pytest'],
+        # independent bag readers, to check the bags we write
+        'test': ['pytest', 'mcap-ros2-support', 'rosbags'],
     },
     zip_safe=False,
     entry_points={

@@ -14,6 +14,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 from . import __version__
 from .config import DRAG_MODELS, ConfigError, SeaState, load_case, load_platform, load_run_file
@@ -203,6 +204,72 @@ def _add_load_cases(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=load_cases)
 
 
+def waves(args: argparse.Namespace) -> int:
+    from .rosbag.wave_bags import write_wave_bag
+    environment = load_platform(args.platform).environment
+    n = write_wave_bag(args.output, _sea_state(args), args.duration, environment, args.sample_dt,
+                       tuple(args.point), overwrite=args.overwrite,
+                       load_case=None if args.hs is not None else args.load_case)
+    log.info(f"{args.output}: {n} elevation samples, {args.duration:g} s")
+    return 0
+
+
+def _add_waves(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("waves", help="write a bag of /waves/elevation for a sea state or load case",
+                       description="Synthesise the sea state's elevation at one point and write it as a bag of "
+                                   "/waves/elevation (geometry_msgs/PointStamped), log time = sample time.")
+    p.add_argument("--load-case", default="lc5.3", help="load case giving the sea state (default: %(default)s)")
+    p.add_argument("--hs", type=float, help="significant wave height [m] (with --tp, instead of a load case)")
+    p.add_argument("--tp", type=float, help="peak period [s]")
+    p.add_argument("--gamma", type=float, help="JONSWAP peak enhancement (default 1 with --hs/--tp)")
+    p.add_argument("--heading", type=float, default=0.0, help="wave direction [deg]")
+    p.add_argument("--seed", type=int, default=1, help="random phase seed")
+    p.add_argument("--duration", type=float, default=10800.0, help="seconds of record")
+    p.add_argument("--sample-dt", type=float, default=0.1, help="sample step [s]")
+    p.add_argument("--point", type=float, nargs=2, default=(0.0, 0.0), metavar=("X", "Y"),
+                   help="where the elevation is measured (world frame) [m]")
+    p.add_argument("--platform", default="windmoor12", help="platform whose water depth and gravity apply")
+    p.add_argument("-o", "--output", required=True, help="bag directory to write")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing bag")
+    p.set_defaults(func=waves)
+
+
+def recover(args: argparse.Namespace) -> int:
+    from .rosbag.recover import recover as rebuild
+    log.info(f"{args.bag}: {rebuild(args.bag)} messages recovered")
+    return 0
+
+
+def info(args: argparse.Namespace) -> int:
+    from .rosbag.reader import Bag
+    from .run_config import write_params_file
+    bag = Bag(args.bag)
+    lines = [f"bag {bag.path}: {bag.message_count} messages"]
+    lines += [f"  {topic}  {t.type}  {t.message_count}" for topic, t in sorted(bag.topics.items())]
+    if bag.config:
+        lines += ["configuration:", *("  " + line for line in yaml.safe_dump(
+            {k: v for k, v in bag.config.items() if k != "platform_yaml"}, sort_keys=False).splitlines())]
+    sys.stdout.write("\n".join(lines) + "\n")
+    if args.params_file:
+        log.info(f"{write_params_file(bag.config or {}, args.params_file)}: rerun with fowt-sim node --ros-args "
+                 f"--params-file {args.params_file}")
+    return 0
+
+
+def _add_bag_tools(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("recover", help="rebuild a bag whose recording was killed",
+                       description="Rewrite a bag left incomplete (killed recording) from its complete chunks; "
+                                   "the damaged file is kept as *.mcap.damaged.")
+    p.add_argument("bag", help="bag directory")
+    p.set_defaults(func=recover)
+    p = sub.add_parser("info", help="a bag's topics, counts and run configuration",
+                       description="Print a bag's topics and run configuration; --params-file writes the node "
+                                   "parameter file that reruns a recorded run.")
+    p.add_argument("bag", help="bag directory")
+    p.add_argument("--params-file", help="write the node parameters reproducing the run to this file")
+    p.set_defaults(func=info)
+
+
 def _ros_command(name: str, argv: list[str]) -> int:
     """``fowt-sim node|controller [--ros-args ...]``: the ROS 2 nodes (their arguments are ROS's)."""
     if any(a in ("-h", "--help") for a in argv[:1]):
@@ -226,11 +293,14 @@ def main(argv: list[str] | None = None) -> int:
         from .recorder import main as record
         return record(argv[1:])
     parser = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator "
-                                     "(also: fowt-sim node | controller [--ros-args ...], the ROS 2 nodes)")
+                                     "(also: fowt-sim node | controller [--ros-args ...], the ROS 2 nodes; "
+                                     "fowt-sim play | record, bag replay and recording)")
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = parser.add_subparsers(dest="command", required=True)
     _add_simulate(sub)
     _add_load_cases(sub)
+    _add_waves(sub)
+    _add_bag_tools(sub)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.DEBUG if args.verbose else logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     try:

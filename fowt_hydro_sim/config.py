@@ -404,14 +404,20 @@ def packaged_platforms() -> list[str]:
     return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".yaml"))
 
 
-def load_platform(name_or_path: str | Path = "windmoor12") -> Platform:
-    """A packaged platform by name (``windmoor12``) or a platform YAML file."""
+def platform_path(name_or_path: str | Path = "windmoor12") -> Path:
+    """The YAML file of a packaged platform (by name) or a platform file."""
     path = Path(name_or_path)
     if not path.suffix and str(name_or_path) in packaged_platforms():
-        path = Path(str(resources.files("fowt_hydro_sim") / "data" / "platforms" / f"{name_or_path}.yaml"))
-    elif not path.exists():
+        return Path(str(resources.files("fowt_hydro_sim") / "data" / "platforms" / f"{name_or_path}.yaml"))
+    if not path.exists():
         raise ConfigError(f"platform {str(name_or_path)!r}: no such file and not a packaged platform "
                           f"({', '.join(packaged_platforms())})")
+    return path
+
+
+def load_platform(name_or_path: str | Path = "windmoor12") -> Platform:
+    """A packaged platform by name (``windmoor12``) or a platform YAML file."""
+    path = platform_path(name_or_path)
     return platform_from_dict(_read_yaml(path), path.name)
 
 

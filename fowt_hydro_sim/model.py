@@ -9,10 +9,9 @@ hydrostatics, mooring, gravity and an external wrench into a 6-DOF time-domain s
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
-import scipy.fft
 
 from . import dynamics
 from .config import DRAG_MODELS, ConfigError, Platform
@@ -45,13 +44,14 @@ class RunResult:
     def load(self, name: str) -> np.ndarray:
         return self.loads[:, LOAD_COMPONENTS.index(name)]
 
-
-def _elevation_table(waves: WaveComponents, step_s: float) -> np.ndarray:
-    """Elevation at the origin over one repeat period, as an (n, 1, 1) table."""
-    n = int(round(waves.period_s / step_s))
-    spectrum = np.zeros(n // 2 + 1, dtype=complex)
-    np.add.at(spectrum, waves.harmonic, waves.amplitude_m * np.exp(1j * waves.phase_rad) * n / 2.0)
-    return scipy.fft.irfft(spectrum, n)[:, None, None]
+    @staticmethod
+    def joined(parts: list[RunResult]) -> RunResult:
+        """Consecutive runs as one: each part after the first starts where the one before
+        ended, so its first row is dropped."""
+        if not parts:
+            raise ValueError("no run to join")
+        return RunResult(**{f.name: np.concatenate([getattr(parts[0], f.name)] + [getattr(p, f.name)[1:] for p in parts[1:]])
+                            for f in fields(RunResult)})
 
 
 class PlatformModel:
@@ -87,7 +87,7 @@ class PlatformModel:
             built = KinematicsTable.build(waves, self.geometry.points_m, step, env.water_depth_m,
                                           env.gravity_m_s2, env.water_density_kg_m3)
             table = built.values
-            self._elevation = _elevation_table(waves, step)
+            self._elevation = waves.elevation_series(0.0, 0.0, step, env.water_depth_m, env.gravity_m_s2)[:, None, None]
         self.wave_table_step_s = step
         self._data = self._kernel_data(table, step)
         self.reset()

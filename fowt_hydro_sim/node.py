@@ -16,7 +16,7 @@ import threading
 import time
 from collections import deque
 from concurrent.futures import Future, ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 import rclpy
@@ -28,19 +28,27 @@ from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.signals import SignalHandlerOptions
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
 
 import msg_adapters as adapt
-from msg_adapters import cdr
+from msg_adapters import cdr, topics
+from msg_adapters.sim_time import nanoseconds
 
-from .config import DRAG_MODELS, ConfigError, SeaState, load_case, load_platform
+from .config import DRAG_MODELS, ConfigError, SeaState, load_case, load_platform, platform_path
 from .dynamics import LOAD_COMPONENTS
-from .inputs import ElevationResampler, InputError, check_wrench
+from .inputs import InputError, check_wrench
 from .model import PlatformModel, RunResult
+from .rosbag.reader import Bag
+from .rosbag.writer import BagWriter
+from .run_config import run_config
+from .wave_feed import WaveFeed
 from .waves import repeat_period, synthesize
 
-WAVE_SOURCES = ("internal", "topic")
-CONTRACT_TOTAL = ("drag", "inertia", "hydrostatic", "mooring", "external")  # /platform/loads/total
+MESSAGE_CLASSES = {topics.type_name(c): c for c in (AccelStamped, Clock, Odometry, PointStamped, PoseStamped,
+                                                    TwistStamped, WrenchStamped)}
+
+WAVE_SOURCES = ("internal", "topic", "bag")
 BATCH_S = 1.0  # simulated seconds stepped per compiled call when running as fast as possible
 MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
@@ -55,7 +63,9 @@ PARAMETERS = {
     "gamma": (0.0, "JONSWAP peak enhancement; 0 = the load case's"),
     "heading_deg": (0.0, "wave direction [deg], 0 = toward +x"),
     "seed": (1, "random phase seed of the internal waves"),
-    "wave_source": ("internal", "internal: synthesised from the sea state; topic: /waves/elevation"),
+    "wave_source": ("internal", "internal: synthesised from the sea state; topic: /waves/elevation; "
+                                "bag: /waves/elevation of wave_bag"),
+    "wave_bag": ("", "bag whose /waves/elevation drives the model (wave_source bag)"),
     "wave_point_xy": ([0.0, 0.0], "where the /waves/elevation samples are measured (world x, y) [m]"),
     "wave_sample_dt_s": (0.1, "step of the streamed elevation series [s] (samples are resampled onto it)"),
     "preview_s": (60.0, "delay of the streamed wave kinematics behind the elevation samples [s]"),
@@ -68,6 +78,8 @@ PARAMETERS = {
     "platform_frame_id": ("platform", "frame id of the platform (body) frame"),
     "lockstep": (False, "wait for an external wrench stamped for each publish time before stepping"),
     "lockstep_timeout_s": (5.0, "wall seconds to wait for the wrench in lockstep, then step anyway"),
+    "record": ("", "bag directory recording every input and output of the run; empty = no recording"),
+    "record_overwrite": (False, "replace an existing bag at the record path"),
 }
 
 
@@ -79,6 +91,7 @@ class Settings:
     drag_model: str
     sea_state: SeaState
     wave_source: str
+    wave_bag: str
     wave_point_xy: tuple[float, float]
     wave_sample_dt_s: float
     preview_s: float
@@ -91,6 +104,8 @@ class Settings:
     platform_frame_id: str
     lockstep: bool
     lockstep_timeout_s: float
+    record: str
+    record_overwrite: bool
 
 
 def settings_from_parameters(values: dict) -> Settings:
@@ -125,17 +140,21 @@ def settings_from_parameters(values: dict) -> Settings:
     point = [float(v) for v in values["wave_point_xy"]]
     if len(point) != 2 or not all(map(math.isfinite, point)):
         raise ConfigError(f"parameter wave_point_xy: must be two finite numbers, got {values['wave_point_xy']!r}")
+    if values["wave_source"] == "bag" and not str(values["wave_bag"]):
+        raise ConfigError("parameter wave_bag: wave_source bag needs the path of a bag with /waves/elevation")
     frames = [str(values[k]) for k in ("world_frame_id", "platform_frame_id")]
     if not all(frames):
         raise ConfigError("parameters world_frame_id, platform_frame_id: must not be empty")
     return Settings(
         platform=str(values["platform"]), drag_model=choice("drag_model", DRAG_MODELS), sea_state=sea,
-        wave_source=choice("wave_source", WAVE_SOURCES), wave_point_xy=(point[0], point[1]),
+        wave_source=choice("wave_source", WAVE_SOURCES), wave_bag=str(values["wave_bag"]),
+        wave_point_xy=(point[0], point[1]),
         wave_sample_dt_s=positive("wave_sample_dt_s"), preview_s=positive("preview_s"),
         wave_timeout_s=positive("wave_timeout_s"), dt_s=dt, real_time_factor=rtf,
         steps_per_publish=int(round(ratio)), duration_s=duration, world_frame_id=frames[0],
         platform_frame_id=frames[1], lockstep=bool(values["lockstep"]),
-        lockstep_timeout_s=positive("lockstep_timeout_s"))
+        lockstep_timeout_s=positive("lockstep_timeout_s"), record=str(values["record"]),
+        record_overwrite=bool(values["record_overwrite"]))
 
 
 class SimulatorNode(Node):
@@ -145,31 +164,33 @@ class SimulatorNode(Node):
         super().__init__("fowt_hydro_sim", **node_kwargs)
         for name, (default, description) in PARAMETERS.items():
             self.declare_parameter(name, default, ParameterDescriptor(description=description))
-        values = {name: self.get_parameter(name).value for name in PARAMETERS}
-        self.settings = settings_from_parameters(values)
+        self.parameter_values = {name: self.get_parameter(name).value for name in PARAMETERS}
+        self.settings = settings_from_parameters(self.parameter_values)
         s = self.settings
         platform = load_platform(s.platform)
         waves = None
         if s.wave_source == "internal":
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
         self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model)
-        self._stream = None
-        if s.wave_source == "topic":
-            self._stream = self._elevation_stream(platform)
-            # the ring holds the kernel's span and more: the first output lands preview_s ahead
-            span_s = self._stream.n_taps * s.wave_sample_dt_s + 60.0
-            self.model.use_streamed_waves(s.wave_sample_dt_s, int(math.ceil(span_s / s.wave_sample_dt_s)))
-            self._resampler = ElevationResampler(*s.wave_point_xy, s.world_frame_id, s.wave_sample_dt_s)
-            self._samples: deque[tuple[float, float]] = deque(maxlen=1_000_000)
-            self._waves_until_s = -math.inf  # kinematics are written up to this time
+        self._feed: WaveFeed | None = None
+        self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
+        if s.wave_source != "internal":
+            self._feed = WaveFeed(self.model, s.wave_point_xy, s.world_frame_id, s.wave_sample_dt_s, s.preview_s,
+                                  s.sea_state.heading_deg)
             self._last_sample_wall = time.monotonic()
             self._still_water = False
+        if s.wave_source == "bag":
+            bag = Bag(s.wave_bag)
+            bag.check_type(topics.ELEVATION)
+            self._wave_bag = bag.messages([topics.ELEVATION])
+        self._recorder = self._open_recorder() if s.record else None
         self._lock = threading.Condition()
         self._wrench = (np.zeros(6), "world", -math.inf)  # wrench, frame, stamp
         self._rtf = s.real_time_factor
         self._stop = threading.Event()
         self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
         self.dropped = 0  # messages DDS refused (a subscriber too slow for the pace)
+        self.published = 0  # messages published (each also recorded when recording)
         self._publisher = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fowt_publish")
         self._published: Future | None = None  # the batch being published
         self._make_interface()
@@ -177,34 +198,33 @@ class SimulatorNode(Node):
         self.get_logger().info(
             f"{platform.name}, drag {s.drag_model}, waves {s.wave_source}"
             + (f" (Hs {s.sea_state.hs_m:g} m, Tp {s.sea_state.tp_s:g} s, seed {s.sea_state.seed})"
-               if s.wave_source == "internal" else f" from /waves/elevation at {s.wave_point_xy}, "
-                                                    f"kinematics {s.preview_s:g} s behind the samples")
+               if s.wave_source == "internal" else
+               f" ({topics.ELEVATION} {'of ' + s.wave_bag if s.wave_bag else ''} at {s.wave_point_xy}, "
+               f"kinematics {self._feed.delay_s:g} s behind the samples)")
             + f", dt {s.dt_s:g} s, real-time factor {s.real_time_factor:g}"
-            + (", lockstep" if s.lockstep else ""))
+            + (", lockstep" if s.lockstep else "") + (f", recording to {s.record}" if s.record else ""))
         self._thread = threading.Thread(target=self._run, name="fowt_stepping", daemon=True)
 
     # ------------------------------------------------------------------ set-up
-    def _elevation_stream(self, platform):
-        from .wave_stream import ElevationStream
-        s, env = self.settings, platform.environment
-        return ElevationStream(self.model.geometry.points_m, s.wave_point_xy, s.sea_state.heading_deg,
-                               env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3,
-                               s.wave_sample_dt_s, s.preview_s, elevation_points_xy_m=np.zeros((1, 2)))
+    def _open_recorder(self) -> BagWriter:
+        """The run's bag, holding its full configuration (reproducible from the bag alone)."""
+        s = self.settings
+        config = run_config(self.parameter_values, platform_path(s.platform).read_text(), asdict(s.sea_state))
+        recorder = BagWriter(s.record, config=config, overwrite=s.record_overwrite)
+        self._channel = {name: recorder.add_topic(topic, kind) for name, (topic, kind) in topics.OUTPUTS.items()}
+        self._input_channel = {topic: recorder.add_topic(topic, kind) for topic, kind in topics.INPUTS.items()}
+        return recorder
 
     def _make_interface(self) -> None:
         out = QoSProfile(depth=1000)  # accelerated runs: room for a slower subscriber
-        topics = {"odom": Odometry, "pose": PoseStamped, "twist": TwistStamped, "accel": AccelStamped}
-        self._pub = {name: self.create_publisher(kind, f"/platform/{name}", out) for name, kind in topics.items()}
-        for name in ("total", *LOAD_COMPONENTS):
-            self._pub[name] = self.create_publisher(WrenchStamped, f"/platform/loads/{name}", out)
-        self._pub["clock"] = self.create_publisher(Clock, "/clock", out)
-        self._pub["elevation_used"] = self.create_publisher(PointStamped, "/waves/elevation_used", out)
-        self._total_rows = [LOAD_COMPONENTS.index(c) for c in CONTRACT_TOTAL]
+        self._pub = {name: self.create_publisher(MESSAGE_CLASSES[kind], topic, out)
+                     for name, (topic, kind) in topics.OUTPUTS.items()}
+        self._total_rows = [LOAD_COMPONENTS.index(c) for c in topics.TOTAL_OF]
         inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
-        self.create_subscription(WrenchStamped, "/platform/external_wrench", self._on_wrench, inputs)
-        if self._stream is not None:  # room for a record replayed faster than it is read
+        self.create_subscription(WrenchStamped, topics.EXTERNAL_WRENCH, self._on_wrench, inputs)
+        if self.settings.wave_source == "topic":  # room for a record replayed faster than it is read
             samples = QoSProfile(depth=100_000, reliability=ReliabilityPolicy.RELIABLE)
-            self.create_subscription(PointStamped, "/waves/elevation", self._on_elevation, samples)
+            self.create_subscription(PointStamped, topics.ELEVATION, self._on_elevation, samples)
 
     def _on_set_parameters(self, changes) -> SetParametersResult:
         for p in changes:
@@ -216,7 +236,12 @@ class SimulatorNode(Node):
         return SetParametersResult(successful=True)
 
     # ------------------------------------------------------------------ inputs
+    def _record_input(self, topic: str, data: bytes) -> None:
+        if self._recorder is not None:
+            self._recorder.write(self._input_channel[topic], nanoseconds(self.model.time_s), data)
+
     def _on_wrench(self, msg: WrenchStamped) -> None:
+        self._record_input(topics.EXTERNAL_WRENCH, serialize_message(msg))
         t, wrench, frame = adapt.wrench_from_msg(msg)
         try:
             wrench = check_wrench(wrench, frame)
@@ -228,50 +253,60 @@ class SimulatorNode(Node):
             self._lock.notify_all()
 
     def _on_elevation(self, msg: PointStamped) -> None:
-        t, x, y, eta, frame = adapt.elevation_from_msg(msg)
+        self._record_input(topics.ELEVATION, serialize_message(msg))
         with self._lock:
-            try:
-                samples = self._resampler.accept(t, x, y, eta, frame, self.model.time_s)
-            except InputError as exc:
-                self.get_logger().warning(f"{exc}; sample ignored")
-                return
-            if self._resampler.gap_s > 2.5 * self._resampler.sample_dt_s and not self._still_water:
-                self.get_logger().warning(f"wave elevation: {self._resampler.gap_s:.2f} s gap before t = {t:.3f} s, "
-                                          f"interpolated")
-            self._samples.extend(samples)
-            self._last_sample_wall = time.monotonic()
-            if self._still_water and samples:
-                self.get_logger().info("wave elevation samples again: leaving still water")
-                self._still_water = False
+            self._accept_elevation(*adapt.elevation_from_msg(msg))
             self._lock.notify_all()
 
-    def _feed_stream(self, until_s: float) -> None:
-        """Push queued elevation samples through the stream into the model's table until the
-        kinematics reach ``until_s`` (no further: the table is a ring)."""
-        while self._samples and self._waves_until_s < until_s:
-            t, eta = self._samples.popleft()
-            kinematics = self._stream.push(eta)
-            if kinematics is not None:
-                self.model.write_waves(t - self._stream.delay_s, kinematics, float(self._stream.elevation_m[0]))
-                self._waves_until_s = t - self._stream.delay_s
+    def _accept_elevation(self, t: float, x: float, y: float, eta: float, frame: str) -> None:
+        """One elevation sample into the wave feed; a refused one is logged and ignored."""
+        feed = self._feed
+        try:
+            made = feed.accept(t, x, y, eta, frame)
+        except InputError as exc:
+            self.get_logger().warning(f"{exc}; sample ignored")
+            return
+        if feed.resampler.gap_s > 2.5 * feed.resampler.sample_dt_s and not self._still_water:
+            self.get_logger().warning(f"wave elevation: {feed.resampler.gap_s:.2f} s gap before t = {t:.3f} s, "
+                                      f"interpolated")
+        self._last_sample_wall = time.monotonic()
+        if self._still_water and made:
+            self.get_logger().info("wave elevation samples again: leaving still water")
+            self._still_water = False
+
+    def _next_bag_sample(self) -> bool:
+        """Feed the wave bag's next elevation sample; False at the end of the bag."""
+        message = next(self._wave_bag, None)
+        if message is None:
+            return False
+        _, _, data = message
+        self._record_input(topics.ELEVATION, data)
+        (t,), ((x, y, eta),) = cdr.decode_stamped(topics.POINT_STAMPED, [data])
+        self._accept_elevation(float(t), float(x), float(y), float(eta), cdr.frame_id(data))
+        return True
 
     def _wait_for_waves(self, until_s: float) -> bool:
-        """Stream kinematics up to ``until_s``; after wave_timeout_s without samples, go on in
-        still water (said once). False if the node is stopping."""
+        """Stream kinematics up to ``until_s``: from the wave bag (False at its end), or from
+        the topic, going on in still water after wave_timeout_s without samples (said once).
+        False if the node is stopping."""
         s = self.settings
         with self._lock:
             while not self._stop.is_set():
-                self._feed_stream(until_s)
-                if self._waves_until_s >= until_s:
+                if self._feed.feed(until_s):
                     return True
+                if self._wave_bag is not None:
+                    if not self._next_bag_sample():
+                        self.get_logger().info(f"wave bag {s.wave_bag} ends: waves known up to t = "
+                                               f"{self._feed.until_s:.2f} s, stepping stopped")
+                        return False
+                    continue
                 silent = time.monotonic() - self._last_sample_wall
                 if silent > s.wave_timeout_s:
                     if not self._still_water:
                         self.get_logger().warning(
-                            f"no wave elevation on /waves/elevation for {silent:.1f} s: going on in still water")
+                            f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s: going on in still water")
                         self._still_water = True
-                    next_sample_s = self._resampler.next_index * s.wave_sample_dt_s
-                    self._samples.extend(self._resampler.fill_still_water(next_sample_s))  # one sample
+                    self._feed.fill_still_water()
                     continue
                 self._lock.wait(timeout=0.05)
         return False
@@ -306,12 +341,15 @@ class SimulatorNode(Node):
         self._thread.start()
 
     def stop(self) -> None:
+        """Stop stepping, finish publishing and close the recording (complete and indexed)."""
         self._stop.set()
         with self._lock:
             self._lock.notify_all()
         if self._thread.is_alive():
             self._thread.join(timeout=10)
         self._publisher.shutdown(wait=True)
+        if self._recorder is not None:
+            self._recorder.close()
 
     @property
     def finished(self) -> bool:
@@ -324,7 +362,7 @@ class SimulatorNode(Node):
         finally:
             wall = time.monotonic() - start_wall
             report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
-                     f"simulated in {wall:.1f} s of wall time"
+                     f"simulated in {wall:.1f} s of wall time, {self.published} messages published"
             if self.lateness_s:
                 late = np.array(self.lateness_s) * 1e3
                 report += (f"; pacing lateness p50 {np.percentile(late, 50):.3f} ms, p99 "
@@ -349,7 +387,7 @@ class SimulatorNode(Node):
                 periods = 1 if self._rtf > 0 or s.lockstep else max(1, int(round(BATCH_S / period)))
                 if s.duration_s:
                     periods = max(1, min(periods, int(round((s.duration_s - model.time_s) / period))))
-                if self._stream is not None and not self._wait_for_waves(
+                if self._feed is not None and not self._wait_for_waves(
                         model.time_s + periods * period + 3 * s.wave_sample_dt_s):
                     return
                 with self._lock:
@@ -426,18 +464,23 @@ class SimulatorNode(Node):
 
     def _publish(self, t: float, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
                  loads: np.ndarray, elevation_m: float) -> None:
-        """Every output at time t, as pre-serialised CDR (msg_adapters.cdr)."""
+        """Every output at time t, as pre-serialised CDR (msg_adapters.cdr), published and recorded."""
         world, body = self.settings.world_frame_id, self.settings.platform_frame_id
-        send, head = self._send, cdr.header(t, world)  # one header for the world-frame messages
-        send("clock", cdr.clock(t))
-        send("pose", cdr.doubles(head, cdr.pose_values(motion)))
-        send("twist", cdr.doubles(head, velocity.tolist()))
-        send("accel", cdr.doubles(head, acceleration.tolist()))
-        send("odom", cdr.odometry(t, motion, velocity, world, body))
-        send("total", cdr.doubles(head, loads[self._total_rows].sum(axis=0).tolist()))
-        for name, row in zip(LOAD_COMPONENTS, loads.tolist()):
-            send(name, cdr.doubles(head, row))
-        send("elevation_used", cdr.doubles(head, [0.0, 0.0, elevation_m]))
+        head = cdr.header(t, world)  # one header for the world-frame messages
+        messages = [("clock", cdr.clock(t)),
+                    ("pose", cdr.doubles(head, cdr.pose_values(motion))),
+                    ("twist", cdr.doubles(head, velocity.tolist())),
+                    ("accel", cdr.doubles(head, acceleration.tolist())),
+                    ("odom", cdr.odometry(t, motion, velocity, world, body)),
+                    ("total", cdr.doubles(head, loads[self._total_rows].sum(axis=0).tolist())),
+                    *((name, cdr.doubles(head, row)) for name, row in zip(LOAD_COMPONENTS, loads.tolist())),
+                    ("elevation_used", cdr.doubles(head, [0.0, 0.0, elevation_m]))]
+        for name, data in messages:
+            self._send(name, data)
+        self.published += len(messages)
+        if self._recorder is not None:
+            channel = self._channel
+            self._recorder.write_many(nanoseconds(t), [(channel[name], data) for name, data in messages])
 
     def _send(self, name: str, data: bytes) -> None:
         """Publish; a reliable subscriber too slow for an accelerated run makes DDS refuse the

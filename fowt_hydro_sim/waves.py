@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import scipy.fft
 
 from .config import ConfigError, SeaState
 from .spectra import spectrum
@@ -77,6 +78,16 @@ class WaveComponents:
         s = x_m * np.cos(self.direction_rad) + y_m * np.sin(self.direction_rad)
         theta = np.outer(np.atleast_1d(t_s), omega) - k * s + self.phase_rad
         return np.cos(theta) @ self.amplitude_m
+
+    def elevation_series(self, x_m: float, y_m: float, step_s: float, depth_m: float,
+                         gravity_m_s2: float) -> np.ndarray:
+        """Elevation at one point every ``step_s`` over one repeat period, by inverse FFT."""
+        n = int(round(self.period_s / step_s))
+        k = wavenumber(2 * np.pi * self.frequency_hz, depth_m, gravity_m_s2)
+        s = x_m * np.cos(self.direction_rad) + y_m * np.sin(self.direction_rad)
+        spectrum = np.zeros(n // 2 + 1, dtype=complex)
+        np.add.at(spectrum, self.harmonic, self.amplitude_m * np.exp(1j * (self.phase_rad - k * s)) * n / 2.0)
+        return scipy.fft.irfft(spectrum, n)
 
     def delayed(self, delay_s: float) -> "WaveComponents":
         """The same sea, arriving ``delay_s`` later (a phase shift of -w delay)."""

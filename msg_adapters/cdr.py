@@ -95,6 +95,12 @@ TRAILING_DOUBLES = {"rosgraph_msgs/msg/Clock": 0, "geometry_msgs/msg/PointStampe
 _STAMP = np.dtype([("sec", "<i4"), ("nanosec", "<u4")])
 
 
+def frame_id(message: bytes) -> str:
+    """The header's frame_id of a stamped message (CDR bytes)."""
+    (length,) = struct.unpack_from("<I", message, 12)
+    return message[16:16 + length - 1].decode()
+
+
 def decode_stamped(type_name: str, messages: list[bytes]) -> tuple[np.ndarray, np.ndarray]:
     """Stamps [s] (n,) and trailing float64 fields (n, k) of messages of one contract type,
     vectorised over the messages of each length. ValueError names a type without this

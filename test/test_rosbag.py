@@ -1,0 +1,276 @@
+"""Bags (rosbag2 directories, MCAP storage): what the node records, read back by two
+independent readers (``mcap`` + ``mcap-ros2-support``, and ``rosbags``); recordings that
+lose nothing, survive SIGINT/SIGTERM and, after SIGKILL, are recovered; the wave bag
+source against the offline model; bad bags with clear errors.
+
+Real nodes in child processes over DDS on loopback, real files."""
+from __future__ import annotations
+
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from mcap.data_stream import RecordBuilder
+from mcap.reader import make_reader
+from mcap.records import Message
+from mcap_ros2.decoder import DecoderFactory
+from rosbags.highlevel import AnyReader
+
+from fowt_hydro_sim.config import load_case, load_platform
+from fowt_hydro_sim.model import PlatformModel
+from fowt_hydro_sim.rosbag.reader import Bag
+from fowt_hydro_sim.rosbag.writer import BagError, BagWriter
+from fowt_hydro_sim.rosbag.wave_bags import write_wave_bag
+from fowt_hydro_sim.wave_feed import run_with_elevation
+from msg_adapters import cdr, topics
+from ros_helpers import REPO, finish, start
+
+OUTPUT_TOPICS = [topic for topic, _ in topics.OUTPUTS.values()]
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", *args], cwd=REPO, capture_output=True,
+                          text=True, timeout=120)
+
+
+def published_count(log: str) -> int:
+    return int(re.search(r"(\d+) messages published", log).group(1))
+
+
+@pytest.fixture(scope="module")
+def recorded_run(tmp_path_factory) -> tuple[Path, str]:
+    """30 s of the default node, as fast as possible, recorded; with its log."""
+    bag = tmp_path_factory.mktemp("runs") / "default"
+    log = finish(start("node", real_time_factor=0.0, duration_s=30.0, record=str(bag)), timeout_s=180)
+    assert "stepping ended" in log, log
+    return bag, log
+
+
+def test_a_recorded_run_holds_exactly_the_messages_published(recorded_run):
+    bag, log = recorded_run
+    counts = {topic: info.message_count for topic, info in Bag(bag).topics.items()}
+    rows = int(round(30.0 / 0.05)) + 1  # the start and every publish period
+    assert {topic: counts[topic] for topic in OUTPUT_TOPICS} == {topic: rows for topic in OUTPUT_TOPICS}
+    assert sum(counts[t] for t in OUTPUT_TOPICS) == published_count(log) == rows * len(OUTPUT_TOPICS)
+
+
+def test_two_independent_readers_read_every_message_and_schema(recorded_run):
+    bag, _ = recorded_run
+    ours = Bag(bag)
+    with open(next(bag.glob("*.mcap")), "rb") as stream:  # mcap + mcap-ros2-support
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        assert reader.get_header().profile == "ros2"
+        summary = reader.get_summary()
+        assert all(s.encoding == "ros2msg" for s in summary.schemas.values())
+        assert all(c.message_encoding == "cdr" and yaml.safe_load(c.metadata["offered_qos_profiles"])[0]["reliability"]
+                   == "reliable" for c in summary.channels.values())
+        assert all(chunk.compression == "zstd" for chunk in summary.chunk_indexes)
+        decoded: dict[str, list] = {}
+        for _, channel, message, msg in reader.iter_decoded_messages(log_time_order=True):
+            decoded.setdefault(channel.topic, []).append((message.log_time, msg))
+    assert {t: len(v) for t, v in decoded.items()} == {t: i.message_count for t, i in ours.topics.items()
+                                                      if i.message_count}
+    pose = decoded[topics.POSE]
+    assert all(log_time == m.header.stamp.sec * 10**9 + m.header.stamp.nanosec for log_time, m in pose)
+    series = ours.series(topics.POSE)
+    np.testing.assert_array_equal(series.values[:, 0], [m.pose.position.x for _, m in pose])
+    odom = decoded["/platform/odom"][-1][1]
+    assert odom.child_frame_id == "platform" and len(odom.twist.covariance) == 36
+
+    with AnyReader([bag]) as reader:  # rosbags
+        assert {c.topic: c.msgcount for c in reader.connections} == {t: i.message_count for t, i in ours.topics.items()}
+        assert all(c.msgdef.data for c in reader.connections)  # every schema carried in the bag
+        n = 0
+        for connection, timestamp, raw in reader.messages():
+            msg = reader.deserialize(raw, connection.msgtype)
+            n += 1
+        assert n == ours.message_count
+        assert reader.connections[0].ext.offered_qos_profiles[0].depth == 1000
+
+
+def test_the_run_configuration_in_the_bag_reproduces_the_run(recorded_run, tmp_path):
+    bag, _ = recorded_run
+    config = Bag(bag).config
+    assert config["software"]["fowt_hydro_sim"] and config["parameters"]["seed"] == 1
+    assert config["sea_state"]["hs_m"] == 11.0 and "members" in yaml.safe_load(config["platform_yaml"])
+    params = tmp_path / "rerun.yaml"
+    result = run_cli("info", str(bag), "--params-file", str(params))
+    assert result.returncode == 0 and "/platform/pose" in result.stdout, result.stderr
+    args = [sys.executable, "-m", "fowt_hydro_sim.cli", "node", "--ros-args", "--params-file", str(params),
+            "-p", f"record:={tmp_path / 'again'}"]
+    rerun = subprocess.run(args, cwd=REPO, capture_output=True, text=True, timeout=180)
+    assert "stepping ended" in rerun.stderr + rerun.stdout
+    first, again = Bag(bag).motion(), Bag(tmp_path / "again").motion()
+    np.testing.assert_array_equal(first.time_s, again.time_s)
+    np.testing.assert_array_equal(first.values, again.values)
+
+
+def test_message_records_are_the_mcap_librarys(tmp_path):
+    """The writer packs Message records itself: the same bytes as mcap.records.Message."""
+    with BagWriter(tmp_path / "b") as writer:
+        channel = writer.add_topic(topics.POSE, topics.POSE_STAMPED)
+        data = cdr.pose(1.25, [1, 2, 3, 0.1, 0.2, 0.3])
+        writer.write(channel, 1_250_000_000, data)
+        packed = bytes(writer._chunk)
+    builder = RecordBuilder()
+    Message(channel_id=channel, log_time=1_250_000_000, publish_time=1_250_000_000, data=data, sequence=0).write(builder)
+    assert packed == builder.end()
+
+
+@pytest.fixture(scope="module")
+def wave_bag(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("waves") / "lc53"
+    result = run_cli("waves", "--load-case", "lc5.3", "--duration", "200", "--seed", "3", "-o", str(path))
+    assert result.returncode == 0, result.stderr
+    return path
+
+
+def test_a_wave_bag_has_the_sea_states_elevation(wave_bag):
+    bag = Bag(wave_bag)
+    elevation = bag.elevation()
+    assert len(elevation.time_s) == 2001 and np.allclose(np.diff(elevation.time_s), 0.1)
+    sea = load_case("lc5.3").sea_state
+    assert bag.config["waves"]["sea_state"]["hs_m"] == sea.hs_m and bag.config["waves"]["sea_state"]["seed"] == 3
+    assert 0.6 * sea.hs_m < 4 * elevation.values[:, 2].std() < 1.4 * sea.hs_m  # 200 s of an 11 m sea
+
+
+def test_bag_wave_source_gives_the_offline_models_motion_and_records_the_same_samples(wave_bag, tmp_path):
+    record = tmp_path / "run"
+    log = finish(start("node", real_time_factor=0.0, wave_source="bag", wave_bag=str(wave_bag),
+                       drag_model="constant", record=str(record)), timeout_s=180)
+    assert "wave bag" in log and "ends" in log, log
+    recorded = Bag(record)
+    source = [data for _, _, data in Bag(wave_bag).messages()]
+    again = [data for _, _, data in recorded.messages([topics.ELEVATION])]
+    assert again == source[:len(again)] and len(again) > 0.9 * len(source)  # bit for bit
+
+    motion = recorded.motion()
+    elevation = Bag(wave_bag).elevation()
+    samples = [(t, x, y, z, "world") for t, (x, y, z) in zip(elevation.time_s, elevation.values)]
+    offline = run_with_elevation(PlatformModel(load_platform(), None, drag_model="constant"), samples, (0.0, 0.0),
+                                 "world", 0.1, 60.0, 0.0, motion.time_s[-1], 0.05)
+    np.testing.assert_allclose(offline.time_s, motion.time_s, atol=1e-9, rtol=0)
+    np.testing.assert_array_equal(offline.motion[:, :3], motion.values[:, :3])
+    np.testing.assert_allclose(offline.motion[:, 3:], motion.values[:, 3:], atol=1e-12, rtol=0)
+    assert offline.motion[:, 0].std() > 0.1  # the waves moved it
+
+
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
+def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
+    bag = tmp_path / "run"
+    process = start("node", real_time_factor=5.0, record=str(bag))
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and not (bag / "metadata.yaml").exists():
+        time.sleep(0.2)
+    time.sleep(4.0)
+    process.send_signal(stop)
+    log = finish(process, timeout_s=30)
+    assert process.returncode == 0, log
+    counts = Bag(bag).topics
+    assert counts[topics.POSE].message_count > 20, log
+    with AnyReader([bag]) as reader:
+        assert sum(1 for _ in reader.messages()) == sum(t.message_count for t in counts.values())
+
+
+def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
+    bag = tmp_path / "run"
+    process = start("node", real_time_factor=10.0, record=str(bag))
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and not (bag / "metadata.yaml").exists():
+        time.sleep(0.2)
+    time.sleep(5.0)
+    process.kill()
+    finish(process)
+    with pytest.raises(BagError, match="truncated.*fowt-sim recover"):
+        Bag(bag)
+    result = run_cli("recover", str(bag))
+    assert result.returncode == 0, result.stderr
+    recovered = Bag(bag)
+    assert recovered.topics[topics.POSE].message_count > 50  # ~5 s at 10x, chunks closed every wall second
+    assert recovered.config["parameters"]["real_time_factor"] == 10.0
+    assert list(bag.glob("*.mcap.damaged"))
+    with AnyReader([bag]) as reader:
+        assert sum(1 for _ in reader.messages()) == recovered.message_count
+
+
+def _bad_bags(root: Path, good: Path) -> dict[str, tuple[Path, str]]:
+    truncated = root / "truncated"
+    shutil.copytree(good, truncated)
+    mcap = next(truncated.glob("*.mcap"))
+    mcap.write_bytes(mcap.read_bytes()[: mcap.stat().st_size // 2])
+    no_metadata = root / "no_metadata"
+    shutil.copytree(good, no_metadata)
+    (no_metadata / "metadata.yaml").unlink()
+    not_a_bag = root / "not_a_bag"
+    not_a_bag.mkdir()
+    (not_a_bag / "notes.txt").write_text("hello")
+    garbage = root / "garbage"
+    shutil.copytree(good, garbage)
+    next(garbage.glob("*.mcap")).write_bytes(b"not an mcap file at all")
+    return {"truncated": (truncated, "truncated"), "no metadata": (no_metadata, "no metadata.yaml"),
+            "not a bag": (not_a_bag, "no metadata.yaml"), "garbage": (garbage, "not an MCAP file"),
+            "missing": (root / "nothing_here", "no such directory"), "file": (root / "not_a_bag" / "notes.txt",
+                                                                          "not a directory")}
+
+
+def test_bad_bags_give_a_clear_error(wave_bag, tmp_path):
+    for name, (path, message) in _bad_bags(tmp_path, wave_bag).items():
+        with pytest.raises(BagError, match=message):
+            Bag(path)
+        result = run_cli("info", str(path))
+        assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr, name
+
+
+def test_wrong_topic_types_and_empty_bags_are_named(tmp_path):
+    with BagWriter(tmp_path / "wrong") as writer:
+        channel = writer.add_topic(topics.POSE, topics.POINT_STAMPED)  # a pose topic of the wrong type
+        writer.write(channel, 0, cdr.point(0.0, 1.0, 2.0, 3.0))
+    with pytest.raises(BagError, match="/platform/pose has type geometry_msgs/msg/PointStamped, expected "
+                                       "geometry_msgs/msg/PoseStamped"):
+        Bag(tmp_path / "wrong").motion()
+    BagWriter(tmp_path / "empty").close()
+    with pytest.raises(BagError, match="no topic /waves/elevation"):
+        Bag(tmp_path / "empty").elevation()
+    log = finish(start("node", wave_source="bag", wave_bag=str(tmp_path / "wrong"), real_time_factor=0.0))
+    assert "no topic /waves/elevation" in log and "Traceback" not in log
+
+
+def test_an_existing_bag_is_not_overwritten_unless_asked(recorded_run, tmp_path):
+    bag, _ = recorded_run
+    before = {p.name: p.stat().st_mtime_ns for p in bag.iterdir()}
+    log = finish(start("node", real_time_factor=0.0, duration_s=1.0, record=str(bag)))
+    assert "already exists" in log and "Traceback" not in log
+    assert {p.name: p.stat().st_mtime_ns for p in bag.iterdir()} == before
+    with pytest.raises(BagError, match="not a bag"):
+        not_a_bag = tmp_path / "precious"
+        not_a_bag.mkdir()
+        (not_a_bag / "data.csv").write_text("1,2\n")
+        BagWriter(not_a_bag, overwrite=True)
+    assert (tmp_path / "precious" / "data.csv").exists()
+
+
+def test_a_wave_bag_measured_away_from_the_origin(tmp_path):
+    n = write_wave_bag(tmp_path / "w", load_case("lc5.0").sea_state, 10.0, load_platform().environment,
+                       sample_dt_s=0.5, point_xy_m=(-50.0, 0.0))
+    elevation = Bag(tmp_path / "w").elevation()
+    assert n == 21 and np.all(elevation.values[:, 0] == -50.0)
+
+
+@pytest.mark.parametrize("case", ["lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4", "lc6.1", "lc6.2", "lc6.3", "lc6.4",
+                                  "lc6.5"])
+def test_the_shipped_sample_bags_hold_their_load_cases(case):
+    """bags/README.md: 1800 s every 0.1 s at (0, 0), seed 1; the record's Hs near the case's
+    (30 minutes of a random sea: within 15 %)."""
+    bag = Bag(REPO / "bags" / case)
+    sea = load_case(case).sea_state
+    assert bag.config["waves"]["sea_state"]["hs_m"] == sea.hs_m and bag.config["waves"]["sea_state"]["seed"] == 1
+    elevation = bag.elevation()
+    assert len(elevation.time_s) == 18001 and np.all(elevation.values[:, :2] == 0.0)
+    assert abs(4 * elevation.values[:, 2].std() / sea.hs_m - 1) < 0.15
