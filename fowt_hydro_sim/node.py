@@ -211,7 +211,7 @@ class SimulatorNode(Node):
         s = self.settings
         config = run_config(self.parameter_values, platform_path(s.platform).read_text(), asdict(s.sea_state))
         recorder = BagWriter(s.record, config=config, overwrite=s.record_overwrite)
-        self._channel = {name: recorder.add_topic(topic, kind) for name, (topic, kind) in topics.OUTPUTS.items()}
+        self._output_channels = [recorder.add_topic(topic, kind) for topic, kind in topics.OUTPUTS.values()]
         self._input_channel = {topic: recorder.add_topic(topic, kind) for topic, kind in topics.INPUTS.items()}
         return recorder
 
@@ -219,6 +219,7 @@ class SimulatorNode(Node):
         out = QoSProfile(depth=1000)  # accelerated runs: room for a slower subscriber
         self._pub = {name: self.create_publisher(MESSAGE_CLASSES[kind], topic, out)
                      for name, (topic, kind) in topics.OUTPUTS.items()}
+        self._output_names = list(topics.OUTPUTS)  # the order of cdr.outputs
         self._total_rows = [LOAD_COMPONENTS.index(c) for c in topics.TOTAL_OF]
         inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
         self.create_subscription(WrenchStamped, topics.EXTERNAL_WRENCH, self._on_wrench, inputs)
@@ -454,33 +455,30 @@ class SimulatorNode(Node):
 
     def _publish_batch(self, result: RunResult, n_rows: int) -> None:
         """Publish a batch's first ``n_rows`` samples after its first row (where it started)."""
-        for i in range(1, n_rows + 1):
-            self._publish(float(result.time_s[i]), result.motion[i], result.velocity[i], result.acceleration[i],
-                          result.loads[i], float(result.wave_elevation_m[i]))
+        rows = slice(1, n_rows + 1)
+        self._publish(result.time_s[rows], result.motion[rows], result.velocity[rows], result.acceleration[rows],
+                      result.loads[rows], result.wave_elevation_m[rows])
 
     def _publish_now(self) -> None:
         m = self.model
-        self._publish(m.time_s, m.motion, m.velocity, m.acceleration, m.loads, float(m.wave_elevation(m.time_s)[0]))
+        self._publish(np.array([m.time_s]), m.motion[None], m.velocity[None], m.acceleration[None], m.loads[None],
+                      np.array([float(m.wave_elevation(m.time_s)[0])]))
 
-    def _publish(self, t: float, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
-                 loads: np.ndarray, elevation_m: float) -> None:
-        """Every output at time t, as pre-serialised CDR (msg_adapters.cdr), published and recorded."""
-        world, body = self.settings.world_frame_id, self.settings.platform_frame_id
-        head = cdr.header(t, world)  # one header for the world-frame messages
-        messages = [("clock", cdr.clock(t)),
-                    ("pose", cdr.doubles(head, cdr.pose_values(motion))),
-                    ("twist", cdr.doubles(head, velocity.tolist())),
-                    ("accel", cdr.doubles(head, acceleration.tolist())),
-                    ("odom", cdr.odometry(t, motion, velocity, world, body)),
-                    ("total", cdr.doubles(head, loads[self._total_rows].sum(axis=0).tolist())),
-                    *((name, cdr.doubles(head, row)) for name, row in zip(LOAD_COMPONENTS, loads.tolist())),
-                    ("elevation_used", cdr.doubles(head, [0.0, 0.0, elevation_m]))]
-        for name, data in messages:
-            self._send(name, data)
-        self.published += len(messages)
+    def _publish(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
+                 loads: np.ndarray, elevation_m: np.ndarray) -> None:
+        """Every output of each sample (rows), as pre-serialised CDR, published and recorded."""
+        total = loads[:, self._total_rows].sum(axis=1)
+        samples = cdr.outputs(time_s, motion, velocity, acceleration, loads, total, elevation_m,
+                              self.settings.world_frame_id, self.settings.platform_frame_id)
+        send, names = self._send, self._output_names
+        for messages in samples:
+            for name, data in zip(names, messages):
+                send(name, data)
+        self.published += len(samples) * len(names)
         if self._recorder is not None:
-            channel = self._channel
-            self._recorder.write_many(nanoseconds(t), [(channel[name], data) for name, data in messages])
+            channels = self._output_channels
+            self._recorder.write_rows((nanoseconds(t), zip(channels, messages))
+                                      for t, messages in zip(time_s.tolist(), samples))
 
     def _send(self, name: str, data: bytes) -> None:
         """Publish; a reliable subscriber too slow for an accelerated run makes DDS refuse the

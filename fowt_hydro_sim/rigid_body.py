@@ -6,8 +6,6 @@ velocity.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
@@ -120,18 +118,28 @@ def point_jacobian(r: np.ndarray) -> np.ndarray:
     return out
 
 
-def quaternion_from_euler(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """Unit quaternion (x, y, z, w), w >= 0, of R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr = math.cos(0.5 * roll), math.sin(0.5 * roll)  # scalar math: a few us per message
-    cp, sp = math.cos(0.5 * pitch), math.sin(0.5 * pitch)
-    cy, sy = math.cos(0.5 * yaw), math.sin(0.5 * yaw)
-    q = np.array([
+def quaternion_from_euler(roll, pitch, yaw) -> np.ndarray:
+    """Unit quaternion (x, y, z, w), w >= 0, of R = Rz(yaw) Ry(pitch) Rx(roll); the angles
+    may be arrays (of one shape), giving quaternions in the last axis."""
+    cr, sr = np.cos(0.5 * np.asarray(roll)), np.sin(0.5 * np.asarray(roll))
+    cp, sp = np.cos(0.5 * np.asarray(pitch)), np.sin(0.5 * np.asarray(pitch))
+    cy, sy = np.cos(0.5 * np.asarray(yaw)), np.sin(0.5 * np.asarray(yaw))
+    q = np.stack([
         sr * cp * cy - cr * sp * sy,
         cr * sp * cy + sr * cp * sy,
         cr * cp * sy - sr * sp * cy,
         cr * cp * cy + sr * sp * sy,
-    ])
-    return -q if q[3] < 0.0 else q
+    ], axis=-1)
+    return np.where(q[..., 3:] < 0.0, -q, q)
+
+
+@njit(cache=True)
+def to_body_axes(angles: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+    """World-axes vectors (n, 3) in the body axes of orientations (n, 3: roll, pitch, yaw)."""
+    out = np.empty_like(vectors)
+    for i in range(vectors.shape[0]):
+        out[i] = rotation_matrix(angles[i, 0], angles[i, 1], angles[i, 2]).T @ vectors[i]
+    return out
 
 
 def euler_from_quaternion(q) -> np.ndarray:

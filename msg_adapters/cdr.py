@@ -14,7 +14,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from fowt_hydro_sim.rigid_body import quaternion_from_euler, rotation_matrix
+from fowt_hydro_sim.rigid_body import quaternion_from_euler, to_body_axes
 from msg_adapters.sim_time import stamp_parts
 
 ENCAPSULATION = b"\x00\x01\x00\x00"  # CDR, little endian
@@ -48,8 +48,26 @@ def doubles(head: bytes, values) -> bytes:
 
 def pose_values(motion) -> list[float]:
     """Position and quaternion (x, y, z, w) of a motion [surge, sway, heave, roll, pitch, yaw]."""
-    x, y, z, roll, pitch, yaw = map(float, motion)
-    return [x, y, z, *quaternion_from_euler(roll, pitch, yaw).tolist()]
+    return _pose_rows(np.asarray(motion, dtype=float)[None, :])[0]
+
+
+def _pose_rows(motion: np.ndarray) -> list[list[float]]:
+    """Position and quaternion of each row of motions (n, 6)."""
+    return np.hstack([motion[:, :3], quaternion_from_euler(motion[:, 3], motion[:, 4], motion[:, 5])]).tolist()
+
+
+def _body_twist_rows(motion: np.ndarray, velocity: np.ndarray) -> list[list[float]]:
+    """World-axes velocities (n, 6) in the body axes (as Odometry's twist)."""
+    angles = np.ascontiguousarray(motion[:, 3:])
+    return np.hstack([to_body_axes(angles, np.ascontiguousarray(velocity[:, :3])),
+                      to_body_axes(angles, np.ascontiguousarray(velocity[:, 3:]))]).tolist()
+
+
+def _odometry(stamp: bytes, frame_id: str, child_frame_id: str, pose_row: list, twist_row: list) -> bytes:
+    head = stamp + _string(frame_id, 8)
+    head += _string(child_frame_id, len(head))
+    return (ENCAPSULATION + _align8(head) + _DOUBLES[7].pack(*pose_row) + _ZERO_COVARIANCE
+            + _DOUBLES[6].pack(*twist_row) + _ZERO_COVARIANCE)
 
 
 def clock(time_s: float) -> bytes:
@@ -75,15 +93,31 @@ def point(time_s: float, x_m: float, y_m: float, z_m: float, frame_id: str = "wo
 
 def odometry(time_s: float, motion, velocity, frame_id: str = "world", child_frame_id: str = "platform") -> bytes:
     """nav_msgs/Odometry (as ``odometry_msg``: twist in the platform axes, zero covariances)."""
-    sec, nanosec = stamp_parts(time_s)
-    head = struct.pack("<iI", sec, nanosec) + _string(frame_id, 8)
-    head += _string(child_frame_id, len(head))
-    pose_part = pose_values(motion)
-    to_body = rotation_matrix(float(motion[3]), float(motion[4]), float(motion[5])).T
-    v = [float(c) for c in velocity]
-    twist = [*(to_body @ v[:3]).tolist(), *(to_body @ v[3:]).tolist()]
-    return (ENCAPSULATION + _align8(head) + _DOUBLES[7].pack(*pose_part) + _ZERO_COVARIANCE
-            + _DOUBLES[6].pack(*twist) + _ZERO_COVARIANCE)
+    motion = np.asarray(motion, dtype=float)[None, :]
+    velocity = np.asarray(velocity, dtype=float)[None, :]
+    return _odometry(struct.pack("<iI", *stamp_parts(time_s)), frame_id, child_frame_id, _pose_rows(motion)[0],
+                     _body_twist_rows(motion, velocity)[0])
+
+
+def outputs(time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
+            loads: np.ndarray, total: np.ndarray, elevation_m: np.ndarray, frame_id: str,
+            child_frame_id: str) -> list[list[bytes]]:
+    """The node's outputs for each row of a batch, in ``topics.OUTPUTS`` order (clock, odom,
+    pose, twist, accel, total, each load of ``loads`` (n, 7, 6), elevation_used); the
+    numerics are vectorised over the batch, leaving one ``struct`` pack per message."""
+    poses, twists = _pose_rows(motion), _body_twist_rows(motion, velocity)
+    rows = zip(time_s.tolist(), poses, twists, velocity.tolist(), acceleration.tolist(), total.tolist(),
+               loads.tolist(), elevation_m.tolist())
+    frame = _string(frame_id, 8)
+    six, seven, three = _DOUBLES[6].pack, _DOUBLES[7].pack, _DOUBLES[3].pack
+    out = []
+    for t, pose_row, twist_row, v, a, f, components, eta in rows:
+        stamp = struct.pack("<iI", *stamp_parts(t))
+        head = ENCAPSULATION + _align8(stamp + frame)
+        out.append([ENCAPSULATION + stamp, _odometry(stamp, frame_id, child_frame_id, pose_row, twist_row),
+                    head + seven(*pose_row), head + six(*v), head + six(*a), head + six(*f),
+                    *(head + six(*c) for c in components), head + three(0.0, 0.0, eta)])
+    return out
 
 
 # ---------------------------------------------------------------------- decoding

@@ -159,3 +159,26 @@ def test_cdr_bytes_are_rclpys_serialisation():
         for data, message, kind in cases:
             assert deserialize_message(data, kind) == message, kind
             assert len(data) == len(serialize_message(message)), kind
+
+
+def test_a_batch_of_outputs_is_each_messages_own_serialisation():
+    """cdr.outputs (vectorised over a batch) against the one-message functions, topic by
+    topic in the contract's order; the contract's loads are the model's components."""
+    from fowt_hydro_sim.dynamics import LOAD_COMPONENTS
+    from msg_adapters import cdr, topics
+
+    assert topics.LOADS == LOAD_COMPONENTS and set(topics.TOTAL_OF) <= set(LOAD_COMPONENTS)
+    rng = np.random.default_rng(3)
+    n = 5
+    time_s = np.sort(rng.uniform(0, 1e4, n))
+    motion = np.hstack([rng.normal(0, 5, (n, 3)), rng.uniform(-1.2, 1.2, (n, 3))])
+    velocity, acceleration = rng.normal(0, 1, (n, 6)), rng.normal(0, 1, (n, 6))
+    loads, total, eta = rng.normal(0, 1e6, (n, 7, 6)), rng.normal(0, 1e6, (n, 6)), rng.normal(0, 2, n)
+    batch = cdr.outputs(time_s, motion, velocity, acceleration, loads, total, eta, "world", "platform")
+    assert [len(row) for row in batch] == [len(topics.OUTPUTS)] * n
+    for i, row in enumerate(batch):
+        t = float(time_s[i])
+        expected = [cdr.clock(t), cdr.odometry(t, motion[i], velocity[i]), cdr.pose(t, motion[i]),
+                    cdr.six(t, velocity[i]), cdr.six(t, acceleration[i]), cdr.six(t, total[i]),
+                    *(cdr.six(t, loads[i, k]) for k in range(7)), cdr.point(t, 0.0, 0.0, eta[i])]
+        assert row == expected

@@ -86,7 +86,7 @@ class BagWriter:
         self._channels: dict[str, Channel] = {}
         self._types: dict[int, str] = {}
         self._qos: dict[int, list[dict]] = {}
-        self.counts: dict[int, int] = defaultdict(int)
+        self.counts: dict[int, int] = defaultdict(int)  # per channel, in written chunks
         self._chunk_indexes: list[ChunkIndex] = []
         self._metadata_indexes: list[MetadataIndex] = []
         self._start_ns, self._end_ns = 2**63 - 1, 0
@@ -123,27 +123,24 @@ class BagWriter:
     # ------------------------------------------------------------------ messages
     def write(self, channel_id: int, log_time_ns: int, data: bytes) -> None:
         """One message (CDR bytes) with its log time (simulation time) in ns."""
-        with self._lock:
-            self._add(channel_id, log_time_ns, data)
-            self._maybe_write_chunk()
+        self.write_rows([(log_time_ns, [(channel_id, data)])])
 
     def write_many(self, log_time_ns: int, messages: Iterable[tuple[int, bytes]]) -> None:
         """Several messages of one log time: (channel id, CDR bytes) pairs."""
-        with self._lock:
-            for channel_id, data in messages:
-                self._add(channel_id, log_time_ns, data)
-            self._maybe_write_chunk()
+        self.write_rows([(log_time_ns, messages)])
 
-    def _add(self, channel_id: int, log_time_ns: int, data: bytes) -> None:
-        chunk = self._chunk
-        self._offsets[channel_id].append((log_time_ns, len(chunk)))
-        chunk += _MESSAGE_HEAD.pack(Opcode.MESSAGE, 22 + len(data), channel_id, 0, log_time_ns, log_time_ns)
-        chunk += data
-        self.counts[channel_id] += 1
-        if log_time_ns < self._chunk_start_ns:
-            self._chunk_start_ns = log_time_ns
-        if log_time_ns > self._chunk_end_ns:
-            self._chunk_end_ns = log_time_ns
+    def write_rows(self, rows: Iterable[tuple[int, Iterable[tuple[int, bytes]]]]) -> None:
+        """Messages grouped by log time: (log time [ns], [(channel id, CDR bytes), ...]) rows."""
+        with self._lock:
+            chunk, offsets, pack = self._chunk, self._offsets, _MESSAGE_HEAD.pack
+            for log_time_ns, messages in rows:
+                for channel_id, data in messages:
+                    offsets[channel_id].append((log_time_ns, len(chunk)))
+                    chunk += pack(Opcode.MESSAGE, 22 + len(data), channel_id, 0, log_time_ns, log_time_ns)
+                    chunk += data
+                self._chunk_start_ns = min(self._chunk_start_ns, log_time_ns)
+                self._chunk_end_ns = max(self._chunk_end_ns, log_time_ns)
+            self._maybe_write_chunk()
 
     def _maybe_write_chunk(self) -> None:
         if len(self._chunk) >= self._chunk_size or time.monotonic() - self._chunk_opened > self._chunk_interval_s:
@@ -176,6 +173,8 @@ class BagWriter:
             message_index_length=builder.count - chunk_length, compression="zstd",
             compressed_size=len(compressed), uncompressed_size=len(data),
             message_start_time=self._chunk_start_ns, message_end_time=self._chunk_end_ns))
+        for channel_id, records in self._offsets.items():
+            self.counts[channel_id] += len(records)
         self._start_ns = min(self._start_ns, self._chunk_start_ns)
         self._end_ns = max(self._end_ns, self._chunk_end_ns)
         self._file.write(builder.end())
@@ -199,7 +198,8 @@ class BagWriter:
     # ------------------------------------------------------------------ closing
     @property
     def message_count(self) -> int:
-        return sum(self.counts.values())
+        """Messages written so far (in the file or in the open chunk)."""
+        return sum(self.counts.values()) + sum(map(len, self._offsets.values()))
 
     def close(self) -> None:
         """Write the last chunk, the summary and the final metadata.yaml."""
