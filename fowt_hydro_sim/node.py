@@ -28,7 +28,7 @@ from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.signals import SignalHandlerOptions
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from rclpy.serialization import serialize_message
+from rclpy.serialization import deserialize_message
 from rosgraph_msgs.msg import Clock
 
 import msg_adapters as adapt
@@ -222,10 +222,11 @@ class SimulatorNode(Node):
         self._output_names = list(topics.OUTPUTS)  # the order of cdr.outputs
         self._total_rows = [LOAD_COMPONENTS.index(c) for c in topics.TOTAL_OF]
         inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
-        self.create_subscription(WrenchStamped, topics.EXTERNAL_WRENCH, self._on_wrench, inputs)
+        # raw: the bytes as sent are recorded (rclpy's serialisation leaves padding bytes unset)
+        self.create_subscription(WrenchStamped, topics.EXTERNAL_WRENCH, self._on_wrench, inputs, raw=True)
         if self.settings.wave_source == "topic":  # room for a record replayed faster than it is read
             samples = QoSProfile(depth=100_000, reliability=ReliabilityPolicy.RELIABLE)
-            self.create_subscription(PointStamped, topics.ELEVATION, self._on_elevation, samples)
+            self.create_subscription(PointStamped, topics.ELEVATION, self._on_elevation, samples, raw=True)
 
     def _on_set_parameters(self, changes) -> SetParametersResult:
         for p in changes:
@@ -241,9 +242,9 @@ class SimulatorNode(Node):
         if self._recorder is not None:
             self._recorder.write(self._input_channel[topic], nanoseconds(self.model.time_s), data)
 
-    def _on_wrench(self, msg: WrenchStamped) -> None:
-        self._record_input(topics.EXTERNAL_WRENCH, serialize_message(msg))
-        t, wrench, frame = adapt.wrench_from_msg(msg)
+    def _on_wrench(self, data: bytes) -> None:
+        self._record_input(topics.EXTERNAL_WRENCH, data)
+        t, wrench, frame = adapt.wrench_from_msg(deserialize_message(data, WrenchStamped))
         try:
             wrench = check_wrench(wrench, frame)
         except InputError as exc:
@@ -253,10 +254,10 @@ class SimulatorNode(Node):
             self._wrench = (wrench, frame, t)
             self._lock.notify_all()
 
-    def _on_elevation(self, msg: PointStamped) -> None:
-        self._record_input(topics.ELEVATION, serialize_message(msg))
+    def _on_elevation(self, data: bytes) -> None:
+        self._record_input(topics.ELEVATION, data)
         with self._lock:
-            self._accept_elevation(*adapt.elevation_from_msg(msg))
+            self._accept_elevation(*adapt.elevation_from_msg(deserialize_message(data, PointStamped)))
             self._lock.notify_all()
 
     def _accept_elevation(self, t: float, x: float, y: float, eta: float, frame: str) -> None:
@@ -497,7 +498,9 @@ def init_ros(args: list[str] | None) -> None:
     """rclpy without its signal handlers: SIGINT and SIGTERM stop the node through
     KeyboardInterrupt in the main thread, so the stepping ends before the context does."""
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    # SIGINT too: a shell starting the node in the background (`&`) leaves SIGINT ignored
+    for stop in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(stop, signal.default_int_handler)
 
 
 def main(args: list[str] | None = None) -> int:
