@@ -11,15 +11,20 @@ SEGMENT_S = 2048.0  # longest Welch segment: 0.0005 Hz resolution, 10 bins below
 MIN_SEGMENTS = 4  # a record holds at least this many segment lengths (7 averaged with the overlap)
 
 
-def psd(signal: np.ndarray, dt_s: float, segment_s: float = SEGMENT_S) -> tuple[np.ndarray, np.ndarray]:
-    """One-sided Welch PSD (Hann window, 50 % overlap, mean removed): frequency [Hz], PSD
-    [unit^2/Hz]. Segments of ``segment_s``, shortened to a quarter of a shorter record."""
+def psd(signal: np.ndarray, dt_s: float, segment_s: float = SEGMENT_S, window: str = "hann",
+        overlap: float = 0.5) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided Welch PSD (mean removed): frequency [Hz], PSD [unit^2/Hz]. Segments of
+    ``segment_s`` (shortened to a quarter of a shorter record), ``window`` (a scipy window
+    name) and ``overlap`` (fraction of a segment)."""
     signal = np.asarray(signal, dtype=float)
     if signal.ndim != 1 or signal.size < 8 * MIN_SEGMENTS or not np.all(np.isfinite(signal)):
         raise ValueError(f"psd: need a finite 1-D record of at least {8 * MIN_SEGMENTS} samples, "
                          f"got shape {signal.shape}")
+    if not 0 <= overlap < 1:
+        raise ValueError(f"psd: overlap must be in [0, 1), got {overlap}")
     n = min(signal.size // MIN_SEGMENTS, int(round(segment_s / dt_s)))
-    return scipy.signal.welch(signal, fs=1.0 / dt_s, window="hann", nperseg=n, detrend="constant")
+    return scipy.signal.welch(signal, fs=1.0 / dt_s, window=window, nperseg=n, noverlap=int(overlap * n),
+                              detrend="constant")
 
 
 def band_std(frequency_hz: np.ndarray, density: np.ndarray, band_hz: tuple[float, float]) -> float:
@@ -37,3 +42,15 @@ def band_stds(signal: np.ndarray, dt_s: float, bands_hz: dict[str, tuple[float, 
     """Band STDs of a record by band name (default: the paper's two bands)."""
     frequency, density = psd(signal, dt_s, segment_s)
     return {name: band_std(frequency, density, band) for name, band in (bands_hz or BANDS_HZ).items()}
+
+
+def band_dof(frequency_hz: np.ndarray, density: np.ndarray, band_hz: tuple[float, float], record_s: float) -> float:
+    """Equivalent degrees of freedom of a band variance from a record of ``record_s``
+    (Satterthwaite: 2 T (sum S df)^2 / sum S^2 df, the bound a full-record estimate reaches;
+    Bendat and Piersol, Random Data, sec. 8.5)."""
+    df = frequency_hz[1] - frequency_hz[0]
+    inside = (frequency_hz >= band_hz[0]) & (frequency_hz < band_hz[1])
+    s = density[inside]
+    if not np.any(s > 0):
+        return float("nan")
+    return float(2.0 * record_s * (np.sum(s) * df) ** 2 / (np.sum(s**2) * df))
