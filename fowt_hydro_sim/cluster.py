@@ -1,0 +1,35 @@
+"""Many model runs on a Dask cluster: a LocalCluster on this machine (loopback only) by
+default, or an existing cluster by its scheduler address, with no code change; a progress
+bar on stderr."""
+from __future__ import annotations
+
+import os
+from contextlib import contextmanager
+from typing import Callable, Iterator, Sequence
+
+
+@contextmanager
+def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator:
+    """A ``dask.distributed.Client``: of the cluster at ``scheduler``, else of a local cluster
+    of ``workers`` single-threaded processes (default: one per core) on 127.0.0.1."""
+    from dask.distributed import Client, LocalCluster
+    if scheduler:
+        with Client(scheduler) as client:
+            yield client
+        return
+    with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                      host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
+        yield client
+
+
+def map_with_progress(client, function: Callable, items: Sequence, description: str, **shared) -> list:
+    """``function(item, **shared)`` for every item on the cluster, in order, with a progress
+    bar; ``shared`` values (e.g. a measured record) are sent to the workers once."""
+    from dask.distributed import as_completed
+    from tqdm import tqdm
+    shared = {k: client.scatter(v, broadcast=True, hash=False) for k, v in shared.items()}
+    futures = client.map(function, list(items), pure=False, **shared)
+    with tqdm(total=len(futures), desc=description, unit="run", leave=False) as bar:
+        for _ in as_completed(futures):
+            bar.update()
+    return client.gather(futures)

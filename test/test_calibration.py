@@ -1,0 +1,91 @@
+"""Drag calibration: parameter paths on the platform YAML, recovery of hidden Cds from a
+synthetic measured run (replayed with its own wave record), on a real Dask LocalCluster
+through ``fowt-sim calibrate``, and the Hs/D regression with the blind prediction."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from fowt_hydro_sim.analysis import AnalysisSettings
+from fowt_hydro_sim.calibration import (MeasuredRun, calibrate, get_parameter, measured_run, predict, regress, replay,
+                                        with_parameters)
+from fowt_hydro_sim.config import ConfigError, _read_yaml, platform_path
+from fowt_hydro_sim.rosbag.reader import Bag
+from fowt_hydro_sim.synthetic import write_measured_bag
+from ros_helpers import REPO
+
+LF_COLUMNS = "column*.submerged.cd.low_frequency"
+RECORD_S = 1500.0
+
+
+@pytest.fixture(scope="module")
+def document() -> dict:
+    return _read_yaml(platform_path("windmoor12"))
+
+
+def test_parameter_paths_read_and_set_every_matching_member(document):
+    assert get_parameter(document, LF_COLUMNS) == 0.4
+    changed = with_parameters(document, {LF_COLUMNS: 0.9, "pontoon*.submerged.cd_vertical": 4.0,
+                                         "column1.end_a_plate.cd": 5.0})
+    assert get_parameter(document, LF_COLUMNS) == 0.4  # the original is untouched
+    columns = [m for m in changed["members"] if m["name"].startswith("column")]
+    assert [m["zones"][0]["cd"]["low_frequency"] for m in columns] == [0.9] * 3
+    assert [m["zones"][0]["cd"]["wave"] for m in columns] == [1.0] * 3
+    assert [m["end_a_plate"]["cd"] for m in columns] == [5.0, 4.8, 4.8]
+    assert get_parameter(changed, "pontoon23.submerged.cd_vertical") == 4.0
+    for bad, message in [("column*.submerged.cd.swell", "no band 'swell'"), ("tower*.submerged.cd", "no member"),
+                         ("column1.cd", "expected MEMBERS"), ("column1.splash.cm", "has no splash.cm")]:
+        with pytest.raises(ConfigError, match=message):
+            get_parameter(document, bad)
+
+
+@pytest.fixture(scope="module")
+def measured(tmp_path_factory, document):
+    """A measured run made by the model with the columns' low-frequency Cd at 0.8 (0.4 in
+    the platform file), LC5.3 waves from the sample bag."""
+    waves = Bag(REPO / "bags" / "lc5.3").elevation()
+    keep = waves.time_s <= RECORD_S
+    truth = with_parameters(document, {LF_COLUMNS: 0.8})
+    t, eta = waves.time_s[keep], waves.values[keep, 2]
+    time_s, motion = replay(truth, MeasuredRun("lc53", t, eta, (0.0, 0.0), t, np.zeros((t.size, 6))), "filtered")
+    return write_measured_bag(tmp_path_factory.mktemp("measured") / "lc53", t, eta, (0.0, 0.0), time_s, motion)
+
+
+def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, document):
+    settings = AnalysisSettings(transient_s=300.0, dofs=("surge", "pitch"))
+    result = calibrate(measured_run(measured), document, [LF_COLUMNS], settings)
+    assert abs(result.parameters[LF_COLUMNS] / 0.8 - 1) < 0.03, result
+    assert abs(result.errors_before["surge.low_frequency"]) > 10  # 0.4 instead of 0.8: a real gap
+    assert max(abs(e) for e in result.errors_after.values()) < 1.0
+    assert result.model_runs <= 20
+
+
+def test_fowt_sim_calibrate_on_a_local_dask_cluster_then_regress_and_predict(measured, tmp_path):
+    out = tmp_path / "cal"
+    result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "calibrate", "--measured", str(measured),
+                             "--params", LF_COLUMNS, "--dofs", "surge", "--transient", "300", "--workers", "2",
+                             "-o", str(out)], cwd=REPO, capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stderr
+    calibration = json.loads((out / "calibration.json").read_text())
+    fitted = calibration["runs"][0]["parameters"][LF_COLUMNS]
+    assert abs(fitted / 0.8 - 1) < 0.03 and "errors after" in result.stdout
+    regression = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "calibrate", "--regress",
+                                 str(out / "calibration.json"), "--predict-hs", "5.0", "-o", str(out)],
+                                cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert regression.returncode == 0, regression.stderr
+    predicted = _read_yaml(out / "platform_predicted.yaml")
+    assert abs(get_parameter(predicted, LF_COLUMNS) - fitted) < 1e-9  # one run: a constant
+
+
+def test_the_regression_over_hs_over_d_and_its_prediction():
+    x = np.array([0.13, 0.25, 0.41, 0.73, 0.25])
+    law = np.array([-0.5, 1.2, 0.3])  # Cd = -0.5 x^2 + 1.2 x + 0.3
+    coefficients = regress(x, np.polyval(law, x))
+    np.testing.assert_allclose(coefficients, law, atol=1e-10)
+    assert predict({"cd": coefficients}, 0.30)["cd"] == pytest.approx(np.polyval(law, 0.30))
+    assert predict({"cd": np.array([-10.0, 0.0])}, 1.0)["cd"] == 0.02  # a Cd never goes below the floor
+    np.testing.assert_allclose(regress(x[:2], x[:2] * 2.0), [2.0, 0.0], atol=1e-12)  # 2 points: a line
