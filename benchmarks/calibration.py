@@ -22,9 +22,9 @@ from pathlib import Path
 import numpy as np
 
 from fowt_hydro_sim.analysis import AnalysisSettings, analyse
-from fowt_hydro_sim.calibration import (MeasuredRun, calibrate, errors, get_parameter, measured_run, predict, regress,
-                                        replay, rms, with_parameters)
-from fowt_hydro_sim.calibration_cli import cluster_map
+from fowt_hydro_sim.calibration import (MeasuredRun, errors, get_parameter, measured_run, predict, regress, replay, rms,
+                                        with_parameters)
+from fowt_hydro_sim.calibration_cli import calibrate_all
 from fowt_hydro_sim.cluster import dask_client
 from fowt_hydro_sim.config import SeaState, _read_yaml, load_case, platform_path
 from fowt_hydro_sim.synthetic import write_measured_bag
@@ -70,14 +70,11 @@ def main() -> None:
         bags = {case: make_measured(Path(folder), document, case, args.duration, args.noise, seed)
                 for seed, case in enumerate((*TUNING, BLIND), start=1)}
         print(f"measured runs made: {len(bags)} x {args.duration:g} s in {time.perf_counter() - made:.0f} s")
-        results, began = {}, time.perf_counter()
+        began = time.perf_counter()
         with dask_client(args.scheduler, args.workers) as client:
-            for case in TUNING:
-                run = measured_run(bags[case])
-                measured = analyse(case, run.motion_time_s, run.motion, settings)
-                namespace = argparse.Namespace(drag="filtered", heading=0.0)
-                results[case] = calibrate(run, document, SURGE_CDS, settings,
-                                          cluster_map(client, run, measured, settings, namespace), "filtered")
+            calibrated = calibrate_all(client, [measured_run(bags[case]) for case in TUNING], document, SURGE_CDS,
+                                       settings)
+        results = dict(zip(TUNING, calibrated))
         wall = time.perf_counter() - began
         print(f"calibration of {len(SURGE_CDS)} surge Cds on {', '.join(TUNING)} ({args.duration:g} s runs, "
               f"{args.workers} local workers): {wall:.0f} s wall, {sum(r.model_runs for r in results.values())} "

@@ -33,16 +33,34 @@ def _column_diameter_m(document: dict) -> float:
     return float(max(diameters))
 
 
-def cluster_map(client, run: MeasuredRun, measured, settings, args: argparse.Namespace):
+def cluster_map(client, run: MeasuredRun, measured, settings, drag_model: str, heading_deg: float, position: int = 0):
     """Replays of platform documents on the cluster: their band STD errors, in order."""
     from .cluster import map_with_progress
-    task = partial(replay_errors, settings=settings, drag_model=args.drag, heading_deg=args.heading)
-    return lambda documents: map_with_progress(client, task, documents, f"{run.name}: model runs", run=run,
-                                               measured=measured)
+    task = partial(replay_errors, settings=settings, drag_model=drag_model, heading_deg=heading_deg)
+    return lambda documents: map_with_progress(client, task, documents, f"{run.name}: model runs", position,
+                                               run=run, measured=measured)
+
+
+def calibrate_all(client, runs: list[MeasuredRun], document: dict, parameters: list[str], settings,
+                  drag_model: str = "filtered", heading_deg: float = 0.0, max_iterations: int = 8) -> list[Calibration]:
+    """Calibrate every run, all at once on the cluster (each run's fit in its own thread,
+    so the workers stay busy while one fit waits for a single run)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from .analysis import analyse
+
+    def one(index_run: tuple[int, MeasuredRun]) -> Calibration:
+        index, run = index_run
+        measured = analyse(run.name, run.motion_time_s, run.motion, settings)
+        return calibrate(run, document, parameters, settings,
+                         cluster_map(client, run, measured, settings, drag_model, heading_deg, index),
+                         drag_model, heading_deg, max_iterations=max_iterations)
+
+    with ThreadPoolExecutor(max_workers=len(runs)) as pool:
+        return list(pool.map(one, enumerate(runs)))
 
 
 def fit(args: argparse.Namespace) -> int:
-    from .analysis import analyse
     from .cluster import dask_client
     if not args.params:
         raise ConfigError("--params: name the Cds to calibrate, e.g. 'column*.submerged.cd.low_frequency'")
@@ -52,18 +70,15 @@ def fit(args: argparse.Namespace) -> int:
         get_parameter(document, p)  # a bad path fails before any run
     settings = _settings(args)
     runs = [measured_run(path) for path in args.measured]
-    results: list[Calibration] = []
     with dask_client(args.scheduler, args.workers) as client:
-        for run in runs:
-            measured = analyse(run.name, run.motion_time_s, run.motion, settings)
-            result = calibrate(run, document, args.params, settings, cluster_map(client, run, measured, settings, args),
-                               args.drag, args.heading, max_iterations=args.max_iterations)
-            results.append(result)
-            sys.stdout.write(f"{run.name} (Hs {run.hs_m:.2f} m, Hs/D {run.hs_m / diameter:.3f}): "
-                             f"{result.model_runs} model runs, {result.wall_s:.0f} s\n"
-                             f"  fitted: {', '.join(f'{k} {v:.3f}' for k, v in result.parameters.items())}\n"
-                             f"  errors before: {error_table(result.errors_before)} (RMS {rms(result.errors_before):.1f} %)\n"
-                             f"  errors after:  {error_table(result.errors_after)} (RMS {rms(result.errors_after):.1f} %)\n")
+        results = calibrate_all(client, runs, document, args.params, settings, args.drag, args.heading,
+                                args.max_iterations)
+    for run, result in zip(runs, results):
+        sys.stdout.write(f"{run.name} (Hs {run.hs_m:.2f} m, Hs/D {run.hs_m / diameter:.3f}): "
+                         f"{result.model_runs} model runs, {result.wall_s:.0f} s\n"
+                         f"  fitted: {', '.join(f'{k} {v:.3f}' for k, v in result.parameters.items())}\n"
+                         f"  errors before: {error_table(result.errors_before)} (RMS {rms(result.errors_before):.1f} %)\n"
+                         f"  errors after:  {error_table(result.errors_after)} (RMS {rms(result.errors_after):.1f} %)\n")
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     payload = {"platform": args.platform, "drag_model": args.drag, "diameter_m": diameter,

@@ -22,14 +22,16 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
         yield client
 
 
-def map_with_progress(client, function: Callable, items: Sequence, description: str, **shared) -> list:
+def map_with_progress(client, function: Callable, items: Sequence, description: str, position: int = 0,
+                      **shared) -> list:
     """``function(item, **shared)`` for every item on the cluster, in order, with a progress
-    bar; ``shared`` values (e.g. a measured record) are sent to the workers once."""
+    bar (at line ``position``: several maps may run at once); ``shared`` values (e.g. a
+    measured record) are sent to the workers with each map."""
     from dask.distributed import as_completed
     from tqdm import tqdm
     shared = {k: client.scatter(v, broadcast=True, hash=False) for k, v in shared.items()}
     futures = client.map(function, list(items), pure=False, **shared)
-    with tqdm(total=len(futures), desc=description, unit="run", leave=False) as bar:
+    with tqdm(total=len(futures), desc=description, unit="run", leave=False, position=position) as bar:
         for _ in as_completed(futures):
             bar.update()
     return client.gather(futures)

@@ -364,7 +364,7 @@ class SimulatorNode(Node):
         finally:
             wall = time.monotonic() - start_wall
             report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
-                     f"simulated in {wall:.1f} s of wall time, {self.published} messages published"
+                     f"simulated in {wall:.2f} s of wall time, {self.published} messages published"
             if self.lateness_s:
                 late = np.array(self.lateness_s) * 1e3
                 report += (f"; pacing lateness p50 {np.percentile(late, 50):.3f} ms, p99 "

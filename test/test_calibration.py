@@ -74,11 +74,13 @@ def test_fowt_sim_calibrate_on_a_local_dask_cluster_then_regress_and_predict(mea
     fitted = calibration["runs"][0]["parameters"][LF_COLUMNS]
     assert abs(fitted / 0.8 - 1) < 0.03 and "errors after" in result.stdout
     regression = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "calibrate", "--regress",
-                                 str(out / "calibration.json"), "--predict-hs", "5.0", "-o", str(out)],
+                                 str(out / "calibration.json"), "--predict", str(measured), "-o", str(out)],
                                 cwd=REPO, capture_output=True, text=True, timeout=120)
     assert regression.returncode == 0, regression.stderr
     predicted = _read_yaml(out / "platform_predicted.yaml")
     assert abs(get_parameter(predicted, LF_COLUMNS) - fitted) < 1e-9  # one run: a constant
+    blind = json.loads((out / "blind.json").read_text())["errors"]  # the run again, blind, with the predicted Cd
+    assert abs(blind["predicted Cds"]["surge.low_frequency"]) < 1.0 < abs(blind["start Cds"]["surge.low_frequency"])
 
 
 def test_the_regression_over_hs_over_d_and_its_prediction():

@@ -80,7 +80,7 @@ class BagWriter:
         self._config_yaml = yaml.safe_dump(config, sort_keys=False) if config is not None else None
         self._chunk_size = chunk_size_bytes
         self._chunk_interval_s = chunk_interval_s
-        self._compressor = zstandard.ZstdCompressor(level=3)
+        self._compressor = zstandard.ZstdCompressor(level=1)
         self._lock = threading.Lock()
         self._schemas: dict[str, Schema] = {}
         self._channels: dict[str, Channel] = {}
