@@ -52,6 +52,8 @@ setup(
         'matplotlib',
         'mcap>=1.2',
         'zstandard',
+        'dask[distributed]',  # calibration runs on a local or remote Dask cluster
+        'tqdm',
     ],
     extras_require={
         'ros': ROS_WHEELS,
