@@ -163,14 +163,20 @@ def test_bag_wave_source_gives_the_offline_models_motion_and_records_the_same_sa
     assert offline.motion[:, 0].std() > 0.1  # the waves moved it
 
 
-@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
-def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
-    bag = tmp_path / "run"
-    process = start("node", real_time_factor=5.0, record=str(bag))
+def recording_node(bag: Path, real_time_factor: float, run_s: float) -> subprocess.Popen:
+    """A node recording to ``bag``, running for about ``run_s`` wall seconds after its bag appeared."""
+    process = start("node", real_time_factor=real_time_factor, record=str(bag))
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline and not (bag / "metadata.yaml").exists():
         time.sleep(0.2)
-    time.sleep(4.0)
+    time.sleep(run_s)
+    return process
+
+
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
+def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
+    bag = tmp_path / "run"
+    process = recording_node(bag, real_time_factor=5.0, run_s=4.0)
     process.send_signal(stop)
     log = finish(process, timeout_s=30)
     assert process.returncode == 0, log
@@ -182,11 +188,7 @@ def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
 
 def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
     bag = tmp_path / "run"
-    process = start("node", real_time_factor=10.0, record=str(bag))
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and not (bag / "metadata.yaml").exists():
-        time.sleep(0.2)
-    time.sleep(5.0)
+    process = recording_node(bag, real_time_factor=10.0, run_s=5.0)
     process.kill()
     finish(process)
     with pytest.raises(BagError, match="truncated.*fowt-sim recover"):
