@@ -3,7 +3,9 @@
 State y = [x, y, z, roll, pitch, yaw, v_x, v_y, v_z, w_x, w_y, w_z] (world axes, reference
 point), followed by the drag filter states, ordered (filter state, strip, direction); none
 for the constant-Cd model. The right-hand side sums the load components of ``LOAD_COMPONENTS`` and
-solves (M + A(q)) [a; alpha] = F with the strip added mass A on the left-hand side.
+solves (M + A(q) + M_x) [a; alpha] = F with the strip added mass A and the extension's mass M_x
+on the left-hand side. The ``extension`` component (extension.py) holds loads beyond the
+Morison model that the gap diagnosis switches on (zero otherwise).
 
 ``integrate`` advances any number of steps in compiled code; a node stepping one dt at a
 time and a batch run call the same function, so both give the same numbers, bit for bit.
@@ -20,7 +22,7 @@ from .morison import end_plate_loads, relative_velocities, strip_loads
 from .mooring import mooring_wrench
 from .rigid_body import cross, euler_rates, mass_matrix_and_bias, rotate_inertia, rotation_matrix, solve_spd
 
-LOAD_COMPONENTS = ("drag", "inertia", "added_mass", "hydrostatic", "mooring", "gravity", "external")
+LOAD_COMPONENTS = ("drag", "inertia", "added_mass", "hydrostatic", "mooring", "gravity", "external", "extension")
 N_LOADS = len(LOAD_COMPONENTS)
 N_BODY_STATES = 12
 
@@ -68,6 +70,13 @@ class KernelData(NamedTuple):
     external_world: np.ndarray  # (6,) world axes, about the reference point
     external_body: np.ndarray  # (6,) body axes, about external_point
     external_point: np.ndarray  # (3,) body frame
+    extension_force_table: np.ndarray  # (n_samples, 1, 6) world wrench at the reference point, periodic
+    extension_force_step_s: float
+    extension_linear_damping: np.ndarray  # (6, 6) on the reference point's world-axes velocity
+    extension_quadratic_damping: np.ndarray  # (6,) per DOF: -B2 |v| v
+    extension_stiffness: np.ndarray  # (6, 6) on the 6-DOF offset
+    extension_cubic_stiffness: np.ndarray  # (6,) per DOF: -K3 q^3
+    extension_mass: np.ndarray  # (6, 6) added to the mass matrix (world axes, reference point)
 
 
 @njit(cache=True)
@@ -134,11 +143,22 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray,
     loads[6, 0:3] = d.external_world[0:3] + force_body
     loads[6, 3:6] = (d.external_world[3:6] + rotation @ d.external_body[3:6]
                      + cross(rotation @ d.external_point, force_body))
+    loads[7] = extension_wrench(t, y, d)
     added_mass = np.empty((6, 6))
     for r in range(0, 6, 3):
         for c in range(0, 6, 3):
             added_mass[r:r + 3, c:c + 3] = rotate_inertia(rotation, added_mass_body[r:r + 3, c:c + 3])
     return added_mass
+
+
+@njit(cache=True)
+def extension_wrench(t: float, y: np.ndarray, d: KernelData) -> np.ndarray:
+    """The extension's load at time t and state y, without its mass term."""
+    q, v = y[0:6], y[6:12]
+    wrench = interpolate_table(d.extension_force_table, d.extension_force_step_s, t)[0]
+    wrench -= d.extension_linear_damping @ v + d.extension_stiffness @ q
+    wrench -= d.extension_quadratic_damping * np.abs(v) * v + d.extension_cubic_stiffness * q ** 3
+    return wrench
 
 
 @njit(cache=True)
@@ -151,8 +171,9 @@ def derivative(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, out: n
     total = -bias
     for c in range(N_LOADS):
         total += loads[c]
-    acceleration = solve_spd(mass6 + added_mass, total)
+    acceleration = solve_spd(mass6 + added_mass + d.extension_mass, total)
     loads[2] -= added_mass @ acceleration
+    loads[7] -= d.extension_mass @ acceleration
     out[0:3] = y[6:9]
     out[3:6] = euler_rates(y[3], y[4], y[5], y[9:12])
     out[6:12] = acceleration
@@ -167,6 +188,7 @@ def prescribed_motion_loads(times: np.ndarray, states: np.ndarray, accelerations
     for n in range(times.size):
         added_mass = applied_loads(times[n], states[n], d, out_loads[n], no_filter_states)
         out_loads[n, 2] -= added_mass @ accelerations[n]
+        out_loads[n, 7] -= d.extension_mass @ accelerations[n]
 
 
 @njit(cache=True)

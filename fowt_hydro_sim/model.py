@@ -17,6 +17,7 @@ from . import dynamics
 from .config import DRAG_MODELS, ConfigError, Platform
 from .drag_filters import StateSpace, band_velocities, bank_state_space, nonzero_entries, state_response
 from .dynamics import LOAD_COMPONENTS, N_BODY_STATES, N_LOADS, KernelData
+from .extension import Extension
 from .hydrostatics import Hydrostatics, hydrostatics
 from .kinematics import KinematicsTable, complex_amplitudes, table_step
 from .morison import added_mass_matrices, relative_velocities
@@ -60,11 +61,15 @@ class PlatformModel:
     ``waves`` None is still water. Kinematics are taken at the undisplaced strip points
     (HydroDyn's WaveDisp = 0) from a table over the waves' repeat period. ``drag_model``
     ``constant`` uses each direction's constant Cd; ``filtered`` splits the transverse
-    relative velocity into the platform's drag bands (drag_filters.py).
+    relative velocity into the platform's drag bands (drag_filters.py). ``extension`` adds
+    loads beyond the Morison model (extension.py; the gap diagnosis's effects).
+    ``kinematics``: the table of these waves at this platform's points, built before (replays
+    of one run share it).
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
-                 drag_model: str = "constant", wave_table_dt_s: float | None = None):
+                 drag_model: str = "constant", wave_table_dt_s: float | None = None,
+                 extension: Extension | None = None, kinematics: KinematicsTable | None = None):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
         if drag_model == "filtered" and not platform.drag_bands:
@@ -84,11 +89,15 @@ class PlatformModel:
             step, self._elevation = 1.0, np.zeros((4, 1, 1))
         else:
             step = wave_table_dt_s or table_step(waves)
-            built = KinematicsTable.build(waves, self.geometry.points_m, step, env.water_depth_m,
-                                          env.gravity_m_s2, env.water_density_kg_m3)
-            table = built.values
+            if kinematics is None:
+                kinematics = KinematicsTable.build(waves, self.geometry.points_m, step, env.water_depth_m,
+                                                   env.gravity_m_s2, env.water_density_kg_m3)
+            elif kinematics.step_s != step or not np.array_equal(kinematics.points_m, self.geometry.points_m):
+                raise ValueError("kinematics table: built for other points or another step")
+            table = kinematics.values
             self._elevation = waves.elevation_series(0.0, 0.0, step, env.water_depth_m, env.gravity_m_s2)[:, None, None]
         self.wave_table_step_s = step
+        self.extension = extension or Extension()
         self._data = self._kernel_data(table, step)
         self.reset()
 
@@ -120,7 +129,8 @@ class PlatformModel:
             anchors=np.array([line.anchor_m for line in p.mooring.lines]),
             line_stiffness=p.mooring.stiffness_n_m, line_pretension=p.mooring.pretension_n,
             line_length=p.mooring.unstretched_length_m,
-            external_world=np.zeros(6), external_body=np.zeros(6), external_point=np.zeros(3))
+            external_world=np.zeros(6), external_body=np.zeros(6), external_point=np.zeros(3),
+            **self.extension.kernel_fields())
 
     @property
     def n_strips(self) -> int:

@@ -221,6 +221,7 @@ class SimulatorNode(Node):
                      for name, (topic, kind) in topics.OUTPUTS.items()}
         self._output_names = list(topics.OUTPUTS)  # the order of cdr.outputs
         self._total_rows = [LOAD_COMPONENTS.index(c) for c in topics.TOTAL_OF]
+        self._load_rows = [LOAD_COMPONENTS.index(c) for c in topics.LOADS]  # one topic each
         inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
         # raw: the bytes as sent are recorded (rclpy's serialisation leaves padding bytes unset)
         self.create_subscription(WrenchStamped, topics.EXTERNAL_WRENCH, self._on_wrench, inputs, raw=True)
@@ -469,7 +470,7 @@ class SimulatorNode(Node):
                  loads: np.ndarray, elevation_m: np.ndarray) -> None:
         """Every output of each sample (rows), as pre-serialised CDR, published and recorded."""
         total = loads[:, self._total_rows].sum(axis=1)
-        samples = cdr.outputs(time_s, motion, velocity, acceleration, loads, total, elevation_m,
+        samples = cdr.outputs(time_s, motion, velocity, acceleration, loads[:, self._load_rows], total, elevation_m,
                               self.settings.world_frame_id, self.settings.platform_frame_id)
         send, names = self._send, self._output_names
         for messages in samples:

@@ -167,7 +167,7 @@ def test_a_batch_of_outputs_is_each_messages_own_serialisation():
     from fowt_hydro_sim.dynamics import LOAD_COMPONENTS
     from msg_adapters import cdr, topics
 
-    assert topics.LOADS == LOAD_COMPONENTS and set(topics.TOTAL_OF) <= set(LOAD_COMPONENTS)
+    assert topics.LOADS + ("extension",) == LOAD_COMPONENTS and set(topics.TOTAL_OF) <= set(LOAD_COMPONENTS)
     rng = np.random.default_rng(3)
     n = 5
     time_s = np.sort(rng.uniform(0, 1e4, n))
