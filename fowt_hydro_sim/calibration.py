@@ -2,7 +2,7 @@
 blind prediction (shared/spec/load_cases.md).
 
 Each measured run (a bag with /waves/elevation and /platform/pose) is replayed through
-the model with its own elevation record (FFT decomposition, ``waves.from_elevation_record``),
+the model with its own elevation record (replay.py),
 so model and measurement see the same waves. The Cds named by parameter paths are fitted
 to the band STDs by regularised least squares: residuals are the band STD errors per
 DOF and band, plus a weak pull of log Cd toward its starting value so that Cds the
@@ -21,54 +21,21 @@ import json
 import logging
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
 import scipy.optimize
 
 from .analysis import AnalysisSettings, RunAnalysis, analyse
-from .config import ConfigError, platform_from_dict
-from .model import PlatformModel
-from .waves import from_elevation_record
+from .config import ConfigError
+from .replay import MeasuredRun, Variant, measured_run
+from .replay import replay as replay_variant
 
 log = logging.getLogger(__name__)
 
-OUTPUT_INTERVAL_S = 0.25  # motion samples of a replayed run
-WAVE_F_MAX_HZ = 0.5  # elevation components kept
 PRIOR_WEIGHT = 0.02  # residual per unit of log(Cd / start): weak
 FD_STEP = 0.05  # forward-difference step in log Cd
-
-
-@dataclass(frozen=True)
-class MeasuredRun:
-    """What a measured bag holds: the elevation record and the platform's 6-DOF motion."""
-
-    name: str
-    elevation_time_s: np.ndarray
-    elevation_m: np.ndarray
-    point_xy_m: tuple[float, float]
-    motion_time_s: np.ndarray
-    motion: np.ndarray
-
-    @property
-    def hs_m(self) -> float:
-        """Significant wave height of the record, 4 x its elevation STD."""
-        return 4.0 * float(np.std(self.elevation_m))
-
-
-def measured_run(path) -> MeasuredRun:
-    """Read a measured run from a bag (contract: /waves/elevation and /platform/pose)."""
-    from pathlib import Path
-
-    from .rosbag.reader import Bag
-    bag = Bag(path)
-    elevation, motion = bag.elevation(), bag.motion()
-    step = float(np.median(np.diff(elevation.time_s)))
-    grid = np.arange(elevation.time_s[0], elevation.time_s[-1] + 0.5 * step, step)
-    eta = np.interp(grid, elevation.time_s, elevation.values[:, 2])
-    return MeasuredRun(Path(path).name, grid, eta, (float(elevation.values[0, 0]), float(elevation.values[0, 1])),
-                       motion.time_s, motion.values)
 
 
 # ---------------------------------------------------------------------- parameters
@@ -119,15 +86,7 @@ def replay(document: dict, run: MeasuredRun, drag_model: str, heading_deg: float
            dt_s: float = 0.05) -> tuple[np.ndarray, np.ndarray]:
     """Time and 6-DOF motion of the model with this platform document, driven by the run's
     elevation record (time 0 = the record's first sample)."""
-    platform = platform_from_dict(document, "calibration")
-    env = platform.environment
-    waves = from_elevation_record(run.elevation_time_s - run.elevation_time_s[0], run.elevation_m,
-                                  *run.point_xy_m, heading_deg, env.water_depth_m, env.gravity_m_s2,
-                                  f_max_hz=WAVE_F_MAX_HZ)
-    model = PlatformModel(platform, waves, dt_s=dt_s, drag_model=drag_model)
-    duration = float(run.motion_time_s[-1] - run.elevation_time_s[0])
-    result = model.run(duration, output_interval_s=OUTPUT_INTERVAL_S)
-    return result.time_s + run.elevation_time_s[0], result.motion
+    return replay_variant(Variant(document, drag_model), replace(run, heading_deg=heading_deg), dt_s)
 
 
 def errors(model: RunAnalysis, measured: RunAnalysis, settings: AnalysisSettings) -> np.ndarray:

@@ -26,12 +26,19 @@ def map_with_progress(client, function: Callable, items: Sequence, description: 
                       **shared) -> list:
     """``function(item, **shared)`` for every item on the cluster, in order, with a progress
     bar (at line ``position``: several maps may run at once); ``shared`` values (e.g. a
-    measured record) are sent to the workers with each map."""
-    from dask.distributed import as_completed
+    measured record) are sent to the workers with each map, unless already scattered
+    (``scatter``)."""
+    from dask.distributed import Future, as_completed
     from tqdm import tqdm
-    shared = {k: client.scatter(v, broadcast=True, hash=False) for k, v in shared.items()}
+    shared = {k: v if isinstance(v, Future) else scatter(client, v) for k, v in shared.items()}
     futures = client.map(function, list(items), pure=False, **shared)
     with tqdm(total=len(futures), desc=description, unit="run", leave=False, position=position) as bar:
         for _ in as_completed(futures):
             bar.update()
     return client.gather(futures)
+
+
+def scatter(client, value):
+    """``value`` on every worker, once, as one object (a future to pass to
+    ``map_with_progress``; scattering a dict or list itself would scatter its items)."""
+    return client.scatter([value], broadcast=True, hash=False)[0]
