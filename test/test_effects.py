@@ -1,0 +1,216 @@
+"""The model's extension terms and the diagnosis's effects against closed forms: static
+offsets K^-1 F, the log decrement of added damping, the period with added mass, a cubic
+spring's equilibrium, Newman's slow drift of a bichromatic sea, Borgman's equivalent
+damping; and the gap metrics against known scalings, shifts and noise."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import scipy.integrate
+import scipy.optimize
+import scipy.signal
+
+from fowt_hydro_sim.config import _read_yaml, load_platform, platform_from_dict, platform_path
+from fowt_hydro_sim.effects import CATALOGUE, base, frequency_drag, kc_drag, quadratic_damping, slow_drift
+from fowt_hydro_sim.extension import Extension
+from fowt_hydro_sim.gap import GapSettings, block_lag_s, gap
+from fowt_hydro_sim.model import PlatformModel
+from fowt_hydro_sim.replay import MeasuredRun, Variant
+
+HEAVE = 2
+
+
+@pytest.fixture(scope="module")
+def platform():
+    return load_platform("windmoor12")
+
+
+@pytest.fixture(scope="module")
+def document():
+    return _read_yaml(platform_path("windmoor12"))
+
+
+def heave_decay(platform, extension: Extension, offset_m: float = 0.05, duration_s: float = 200.0):
+    model = PlatformModel(platform, None, dt_s=0.05, extension=extension)
+    model.reset(motion=np.array([0, 0, offset_m, 0, 0, 0]))
+    result = model.run(duration_s, output_interval_s=0.05)
+    return result.time_s, result.motion[:, HEAVE] - result.motion[-400:, HEAVE].mean()
+
+
+def peaks(t: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    i, _ = scipy.signal.find_peaks(x)
+    return t[i], x[i]
+
+
+def test_constant_force_and_stiffness_give_the_static_offset(platform):
+    """A constant wrench F (with damping to settle) holds the platform at K^-1 F, K the
+    model's restoring matrix plus the extension's stiffness."""
+    model = PlatformModel(platform)
+    k = model.restoring_matrix()
+    extra_k = np.diag([2e4, 0, 1e6, 0, 3e8, 0])
+    force = np.array([3e5, 0.0, 2e5, 0.0, 4e6, 0.0])
+    damping = np.diag(2 * 0.5 * np.sqrt(np.diag(k + extra_k) * np.diag(model.mass_matrix())))
+    extension = Extension(force_n=np.tile(force, (4, 1)), linear_damping=damping, stiffness=extra_k)
+    settled = PlatformModel(platform, None, dt_s=0.1, extension=extension).run(1500.0, 1.0)
+    expected = np.linalg.solve(k + extra_k, force)
+    assert settled.motion[-1, [0, 2, 4]] == pytest.approx(expected[[0, 2, 4]], rel=0.01)
+    assert settled.load("extension")[-1] == pytest.approx(force - extra_k @ settled.motion[-1], rel=1e-6, abs=1.0)
+
+
+def test_linear_damping_adds_its_log_decrement(platform):
+    """Heave free decay from 5 cm (drag negligible): a damping ratio of 0.04 added to the
+    heave DOF gives successive peaks in the ratio exp(2 pi zeta / sqrt(1 - zeta^2))."""
+    model = PlatformModel(platform)
+    m, k = model.mass_matrix()[HEAVE, HEAVE], model.restoring_matrix()[HEAVE, HEAVE]
+    zeta = 0.04
+    b = np.zeros((6, 6))
+    b[HEAVE, HEAVE] = 2 * zeta * math.sqrt(k * m)
+    decrements = []
+    for extension in (Extension(), Extension(linear_damping=b)):
+        t, x = heave_decay(platform, extension)
+        _, p = peaks(t, x)
+        decrements.append(math.log(p[0] / p[4]) / 4)
+    added = decrements[1] - decrements[0]
+    assert added == pytest.approx(2 * math.pi * zeta / math.sqrt(1 - zeta ** 2), rel=0.05)
+
+
+def test_added_mass_lengthens_the_period(platform):
+    """Doubling the heave mass multiplies the heave period by sqrt(2)."""
+    model = PlatformModel(platform)
+    m = model.mass_matrix()[HEAVE, HEAVE]
+    mass = np.zeros((6, 6))
+    mass[HEAVE, HEAVE] = m
+    periods = []
+    for extension in (Extension(), Extension(mass=mass)):
+        t, x = heave_decay(platform, extension, duration_s=300.0)
+        tp, _ = peaks(t, x)
+        periods.append(float(np.mean(np.diff(tp[:6]))))
+    assert periods[1] / periods[0] == pytest.approx(math.sqrt(2.0), rel=0.01)
+
+
+def test_cubic_stiffness_equilibrium(platform):
+    """Under a constant heave force, k x + k3 x^3 = F."""
+    model = PlatformModel(platform)
+    k = model.restoring_matrix()[HEAVE, HEAVE]
+    k3 = np.zeros(6)
+    k3[HEAVE] = 0.5 * k  # N/m^3: 50 % stiffer at 1 m
+    force = np.zeros((4, 6))
+    force[:, HEAVE] = 1.5 * k
+    damping = np.zeros((6, 6))
+    damping[HEAVE, HEAVE] = 2 * 0.7 * math.sqrt(k * model.mass_matrix()[HEAVE, HEAVE])
+    result = PlatformModel(platform, None, dt_s=0.1,
+                           extension=Extension(force_n=force, cubic_stiffness=k3, linear_damping=damping)).run(300.0, 1.0)
+    x = scipy.optimize.brentq(lambda x: k * x + k3[HEAVE] * x ** 3 - 1.5 * k, 0, 2)
+    assert result.motion[-1, HEAVE] == pytest.approx(x, rel=0.01)
+
+
+def test_slow_drift_of_a_bichromatic_sea():
+    """Newman with a constant coefficient C: eta = a1 cos w1 t + a2 cos w2 t gives
+    F = C ((a1^2 + a2^2) / 2 + a1 a2 cos((w1 - w2) t)), the sum frequencies filtered out."""
+    step, n = 0.1, 12000
+    t = np.arange(n) * step
+    a1, a2, f1, f2 = 1.5, 1.0, 0.1, 0.09  # 0.01 Hz apart: a surge-resonant difference frequency
+    eta = a1 * np.cos(2 * np.pi * f1 * t) + a2 * np.cos(2 * np.pi * f2 * t + 0.4)
+    force = slow_drift.drift_force(eta, step, 2e5, heading_deg=30.0)
+    expected = 2e5 * ((a1 ** 2 + a2 ** 2) / 2 + a1 * a2 * np.cos(2 * np.pi * (f1 - f2) * t - 0.4))
+    assert force[:, 0] == pytest.approx(expected * math.cos(math.radians(30)), abs=1e-6 * expected.max())
+    assert force[:, 1] == pytest.approx(expected * math.sin(math.radians(30)), abs=1e-6 * expected.max())
+
+
+def test_quadratic_damping_dissipates_as_its_equivalent_linear_damping():
+    """Borgman: over a cycle of amplitude a_ref at the natural frequency, B2 |v| v dissipates
+    the energy of the linear damping ratio the parameter names."""
+    mass, stiffness = np.full(6, 2e7), np.full(6, 1.5e6)
+    b2 = quadratic_damping.quadratic_coefficients(mass, stiffness, {0: 0.1, 4: 0.2})
+    for dof, ratio in ((0, 0.1), (4, 0.2)):
+        omega, a = math.sqrt(stiffness[dof] / mass[dof]), quadratic_damping.REFERENCE_AMPLITUDE[dof]
+        t = np.linspace(0, 2 * math.pi / omega, 20001)
+        v = -a * omega * np.sin(omega * t)
+        quadratic = scipy.integrate.trapezoid(b2[dof] * np.abs(v) * v * v, t)
+        linear = scipy.integrate.trapezoid(ratio * 2 * math.sqrt(stiffness[dof] * mass[dof]) * v * v, t)
+        assert quadratic == pytest.approx(linear, rel=1e-4)
+
+
+def test_band_split_and_coefficient_scaling(document):
+    split = frequency_drag.band_split(document, 0.25)
+    zone = split["members"][0]["zones"][0]
+    assert zone["cd"] == {"constant": 0.8, "low_frequency": 0.2, "wave": 0.8}
+    assert split["members"][3]["zones"][0]["cd_vertical"] == 3.0  # one Cd at every frequency: untouched
+    assert document["members"][0]["zones"][0]["cd"]["low_frequency"] == 0.4  # the original is left alone
+    scaled = base.scale_fields(document, "ca", 1.2)
+    assert scaled["members"][0]["end_a_plate"]["ca"] == pytest.approx(1.2)
+    assert scaled["members"][3]["zones"][0]["ca_vertical"] == pytest.approx(1.2)
+    assert scaled["members"][0]["zones"][0]["cd"]["constant"] == 0.8
+    t = np.arange(0.0, 100.0, 0.1)
+    run = MeasuredRun("r", t, 1.5 * np.sin(2 * np.pi * 0.1 * t), (0.0, 0.0), t, np.zeros((t.size, 6)))
+    assert run.hs_m == pytest.approx(4 * 1.5 / math.sqrt(2))
+    kc = kc_drag.keulegan_carpenter(run.hs_m, document)
+    assert kc == pytest.approx(math.pi * run.hs_m / 15.0)
+    varied = CATALOGUE["kc_dependent_drag"].apply(Variant(document), run, {"kc_exponent": 0.5})
+    assert varied.document["members"][0]["zones"][0]["cd"]["constant"] == pytest.approx(0.8 * math.sqrt(kc))
+
+
+def test_every_effect_module_is_registered_and_off_means_off(document):
+    """Each module of effects/ has one catalogue entry; at its ``off`` values an effect
+    leaves the variant as the plain model (frequency-dependent drag: the filtered model
+    with every band at the constant Cd)."""
+    folder = Path(base.__file__).parent
+    modules = {p.stem for p in folder.glob("*.py")} - {"__init__", "base"}
+    assert len(modules) == len(CATALOGUE) >= 7
+    t = np.arange(0.0, 100.0, 0.1)
+    run = MeasuredRun("r", t, np.sin(t), (0.0, 0.0), t, np.zeros((t.size, 6)))
+    for effect in CATALOGUE.values():
+        varied = effect.apply(Variant(document), run, effect.values("off"))
+        extension = varied.extension
+        assert not extension.has_force and not np.any(extension.linear_damping) and not np.any(extension.mass)
+        assert not np.any(extension.quadratic_damping) and not np.any(extension.cubic_stiffness)
+        assert varied.elevation_shift_s == 0.0
+        if effect.name != "frequency_dependent_drag":
+            assert varied.drag_model == "constant"
+            assert platform_from_dict(varied.document) == platform_from_dict(document), effect.name
+
+
+# ---------------------------------------------------------------------- gap metrics
+def record(seed: int, duration_s: float = 1800.0, step: float = 0.25) -> tuple[np.ndarray, np.ndarray]:
+    """A 6-DOF motion with low-frequency and wave-frequency content (random phases)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0, duration_s, step)
+    motion = np.zeros((t.size, 6))
+    for dof, (lf, wf) in enumerate([(1.0, 0.5), (0.1, 0.1), (0.05, 0.4), (0.001, 0.001), (0.01, 0.005), (0.001, 0.001)]):
+        for f, a in [(f, lf) for f in np.arange(0.008, 0.045, 0.0011)] + [(f, wf) for f in np.arange(0.06, 0.2, 0.0023)]:
+            motion[:, dof] += a * 0.3 * np.cos(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
+    return t, motion
+
+
+def test_gap_of_a_run_against_itself_scaled_shifted_and_noisy():
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(1)
+    cells = settings.cells()
+    same = gap("same", (t, x), (t, x), settings)
+    assert np.allclose(same.value, 0.0, atol=1e-9) and not same.flagged.any()
+    # the wave band of surge 10 % larger in the model: only that cell moves, by 10 %
+    from fowt_hydro_sim.gap import band_passed
+    y = x.copy()
+    y[:, 0] += 0.1 * band_passed(x[:, 0], settings.bands_hz["wave"])
+    scaled = gap("scaled", (t, x), (t, y), settings)
+    i = cells.index(("surge", "std.wave"))
+    assert scaled.value[i] == pytest.approx(0.10, abs=0.002) and scaled.flagged[i]
+    assert np.flatnonzero(scaled.flagged).tolist() == [i]
+    # the model 1.3 s late: the lag of every DOF
+    late = gap("late", (t, x), (t + 1.3, x), settings)
+    for dof in settings.dofs:
+        assert late.value[cells.index((dof, "lag"))] == pytest.approx(1.3, abs=0.05)
+    # independent 1 % sensor noise on both: nothing flagged
+    rng = np.random.default_rng(5)
+    noisy = [x + rng.normal(0, 0.01, x.shape) * x.std(axis=0) for _ in range(2)]
+    assert not gap("noise", (t, noisy[0]), (t, noisy[1]), settings).flagged.any()
+
+
+def test_block_lag_is_the_cross_correlation_peak():
+    t = np.arange(0, 200, 0.25)
+    x = np.sin(2 * np.pi * 0.1 * t) + 0.5 * np.sin(2 * np.pi * 0.13 * t + 1)
+    late = np.sin(2 * np.pi * 0.1 * (t - 0.8)) + 0.5 * np.sin(2 * np.pi * 0.13 * (t - 0.8) + 1)
+    assert block_lag_s(late, x) == pytest.approx(0.8, abs=0.03)
