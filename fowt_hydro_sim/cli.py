@@ -18,6 +18,7 @@ import yaml
 
 from . import __version__
 from .calibration_cli import add_calibrate
+from .diagnosis_cli import add_diagnose
 from .config import DRAG_MODELS, ConfigError, SeaState, load_case, load_platform, load_run_file
 from .load_case_study import STUDY_CASES, run_study
 from .model import DOF_NAMES, PlatformModel, RunResult
@@ -381,6 +382,7 @@ def main(argv: list[str] | None = None) -> int:
     _add_bag_tools(sub)
     _add_analyze(sub)
     add_calibrate(sub)
+    add_diagnose(sub)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.DEBUG if args.verbose else logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     try:

@@ -3,6 +3,7 @@ default, or an existing cluster by its scheduler address, with no code change; a
 bar on stderr."""
 from __future__ import annotations
 
+import logging
 import os
 from contextlib import contextmanager
 from typing import Callable, Iterator, Sequence
@@ -13,6 +14,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
     """A ``dask.distributed.Client``: of the cluster at ``scheduler``, else of a local cluster
     of ``workers`` single-threaded processes (default: one per core) on 127.0.0.1."""
     from dask.distributed import Client, LocalCluster
+    logging.getLogger("distributed").setLevel(logging.WARNING)  # not every worker's start and stop
     if scheduler:
         with Client(scheduler) as client:
             yield client
