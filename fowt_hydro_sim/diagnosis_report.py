@@ -140,9 +140,9 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
                          f"{_value_text(metric, g.tolerance[i]).lstrip('+')} |")
     if not d.flagged_cells(d.baseline):
         lines.append("| (none) | | | | | |")
-    lines += ["", f"Wave-response coherence, low-frequency {d.settings.dofs[0]}: the measured runs' is "
-              f"{d.coherence_deficit:+.2f} from the model's (negative: part of the measured response is not "
-              "explained by the waves linearly).", ""]
+    lines += ["", f"Wave-response coherence, low-frequency {d.settings.dofs[0]}: the model's exceeds the measured "
+              f"runs' by {d.coherence_deficit:+.2f} on average (clearly positive: part of the measured response is "
+              "not explained linearly by the waves).", ""]
     if d.candidates:
         lines += ["## Which effect", "",
                   f"Each candidate fitted to all tuning runs at once; score = BIC (lower is better; the plain "
@@ -163,7 +163,14 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
         if d.blind_after:
             bb, ba = _rms_flagged(d.blind_before, d.blind_after)
             lines.append(f"| blind (not refitted) | {100 * d.blind_closure:.0f} % | {bb:.2f} | {ba:.2f} |")
-        lines += ["", "RMS in units of each cell's tolerance.", ""]
+        lines += ["", "RMS in units of each cell's tolerance. Cell by cell (flagged before):", "",
+                  "| run | DOF | metric | gap before | after |", "|---|---|---|---|---|"]
+        for before, after in zip(d.baseline, chosen.gaps + d.blind_after):
+            for i in np.flatnonzero(before.flagged):
+                dof, metric = cells[i]
+                lines.append(f"| {before.run} | {dof} | {metric} | {_value_text(metric, before.value[i])} | "
+                             f"{_value_text(metric, after.value[i])} |")
+        lines.append("")
     lines += ["## Figures", ""] + [f"![{name}]({name})" for name in figures] + [""]
     return "\n".join(lines)
 

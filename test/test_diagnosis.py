@@ -62,6 +62,7 @@ def test_diagnose_names_slow_drift_and_closes_the_blind_gap(drift_bags, tmp_path
     assert {c["effect"] for c in data["candidates"]} == set(CANDIDATES)
     report = (out / "report.md").read_text()
     assert "**Verdict: explained**: **slow_drift**" in report and "blind (not refitted)" in report
+    assert "| lc6.4 | surge | offset |" in report.split("Cell by cell")[1]  # the blind gap, before and after
     for figure in ["gap_matrix.png", "closure.png", "spectra_lc5.2.png", "spectra_lc5.3.png"]:
         assert (out / figure).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", figure
         assert f"]({figure})" in report
