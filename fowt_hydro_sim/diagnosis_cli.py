@@ -120,7 +120,7 @@ def add_diagnose(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=diagnose_command)
     b = sub.add_parser("diagnose-benchmark", help="score the diagnosis on runs whose effect is withheld",
                        description="Make 'measured' runs with one effect switched on (each at two strengths, five "
-                                   "sea states, 1 %% sensor noise, small property errors), plus null and "
+                                   "sea states, 1 % sensor noise, small property errors), plus null and "
                                    "out-of-catalogue scenarios; diagnose each with the plain model and score: top-1 "
                                    "accuracy, false alarms, unexplained, blind closure.")
     b.add_argument("--inject", nargs="+", help="effects to inject (default: every catalogue effect)")
