@@ -32,6 +32,7 @@ GRID_STEP_S = 0.25
 MAX_LAG_S = 10.0
 TOLERANCES = {"std": 0.05, "frequency": 0.03, "offset": 0.2, "lag": 0.25}  # materiality, per metric kind
 COHERENCE_SEGMENT_S = 300.0
+MIN_BLOCK_S = 180.0  # a block spans nearly two surge periods: shorter blocks are not independent
 NEGLIGIBLE_BAND = 0.15  # share of the DOF's STD below which a band's cells are not judged
 
 
@@ -40,7 +41,7 @@ class GapSettings:
     transient_s: float = 300.0  # discarded at the start of each run
     dofs: tuple[str, ...] = ("surge", "heave", "pitch")
     bands_hz: dict[str, tuple[float, float]] = field(default_factory=lambda: dict(BANDS_HZ))
-    blocks: int = 8
+    blocks: int = 8  # at most; fewer for records too short for blocks of MIN_BLOCK_S
     confidence: float = 0.90
     tolerances: dict[str, float] = field(default_factory=lambda: dict(TOLERANCES))
 
@@ -145,7 +146,8 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         settings: GapSettings) -> Gap:
     """The gap cells of a model run (time, motion (n, 6)) against a measured run."""
     x_measured, x_model = common_grid(measured, model, settings.transient_s)
-    blocks = np.array_split(np.arange(len(x_measured)), settings.blocks)
+    n_blocks = max(3, min(settings.blocks, int(len(x_measured) * GRID_STEP_S // MIN_BLOCK_S)))
+    blocks = np.array_split(np.arange(len(x_measured)), n_blocks)
     rows, judged = [], []
     for dof in settings.dofs:
         j = DOF_NAMES.index(dof)
