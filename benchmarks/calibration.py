@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 
 from fowt_hydro_sim.analysis import AnalysisSettings, analyse
-from fowt_hydro_sim.calibration import (MeasuredRun, errors, get_parameter, measured_run, predict, regress, replay, rms,
-                                        with_parameters)
+from fowt_hydro_sim.calibration import errors, get_parameter, predict, regress, replay, rms, with_parameters
+from fowt_hydro_sim.replay import MeasuredRun, measured_run
 from fowt_hydro_sim.calibration_cli import calibrate_all
 from fowt_hydro_sim.cluster import dask_client
 from fowt_hydro_sim.config import SeaState, _read_yaml, load_case, platform_path

@@ -29,7 +29,7 @@ import scipy.optimize
 
 from .analysis import AnalysisSettings, RunAnalysis, analyse
 from .config import ConfigError
-from .replay import MeasuredRun, Variant, measured_run
+from .replay import MeasuredRun, Variant
 from .replay import replay as replay_variant
 
 log = logging.getLogger(__name__)

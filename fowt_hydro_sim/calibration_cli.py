@@ -12,9 +12,10 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from .calibration import (Calibration, MeasuredRun, replay_errors, calibrate, error_table, get_parameter,
-                          measured_run, predict, regress, rms, with_parameters)
+from .calibration import (Calibration, replay_errors, calibrate, error_table, get_parameter, predict, regress,
+                          rms, with_parameters)
 from .config import DRAG_MODELS, ConfigError, _read_yaml, load_platform, platform_path
+from .replay import MeasuredRun, measured_run
 
 log = logging.getLogger("fowt_hydro_sim")
 RESULT_FILE = "calibration.json"
@@ -113,7 +114,6 @@ def regression(args: argparse.Namespace) -> int:
     lines.append(f"platform with the predicted Cds: {platform_file}")
     if blind is not None:
         from .analysis import AnalysisSettings, analyse
-        from .calibration import errors
         settings = AnalysisSettings(transient_s=data["transient_s"], dofs=tuple(data["dofs"]))
         measured = analyse(blind.name, blind.motion_time_s, blind.motion, settings)
         names = [f"{d}.{b}" for d in settings.dofs for b in settings.bands(d)]

@@ -12,7 +12,6 @@ is run with the plain model, and scored:
 """
 from __future__ import annotations
 
-import logging
 import statistics
 from dataclasses import dataclass, field, replace
 
@@ -27,8 +26,6 @@ from .gap import GapSettings, gap
 from .model import PlatformModel
 from .replay import OUTPUT_INTERVAL_S, MeasuredRun, Variant
 from .waves import synthesize
-
-log = logging.getLogger(__name__)
 
 TUNING_CASES = ("lc5.1", "lc5.2", "lc5.3")
 BLIND_CASES = ("lc6.1", "lc6.4")

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from fowt_hydro_sim.analysis import AnalysisSettings
-from fowt_hydro_sim.calibration import (MeasuredRun, calibrate, get_parameter, measured_run, predict, regress, replay,
-                                        with_parameters)
+from fowt_hydro_sim.calibration import calibrate, get_parameter, predict, regress, replay, with_parameters
 from fowt_hydro_sim.config import ConfigError, _read_yaml, platform_path
+from fowt_hydro_sim.replay import MeasuredRun, measured_run
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.synthetic import write_measured_bag
 from ros_helpers import REPO
