@@ -153,16 +153,15 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         j = DOF_NAMES.index(dof)
         m, s = x_measured[:, j], x_model[:, j]
         scale = float(m.std()) or 1.0
-        band_judged = [band_passed(m, band).std() >= NEGLIGIBLE_BAND * scale for band in settings.bands_hz.values()]
+        passed = {name: (band_passed(m, band), band_passed(s, band)) for name, band in settings.bands_hz.items()}
+        band_judged = [mb.std() >= NEGLIGIBLE_BAND * scale for mb, _ in passed.values()]
         judged += band_judged * 2 + [True, True]
-        for band in settings.bands_hz.values():  # std.BAND
-            mb, sb = band_passed(m, band), band_passed(s, band)
+        for mb, sb in passed.values():  # std.BAND
             per_block = np.array([0.5 * math.log(sb[b].var() / mb[b].var()) for b in blocks])
             _, half = _interval(per_block, settings.confidence)
             overall = 0.5 * math.log(sb.var() / mb.var())
             rows.append((math.expm1(overall), math.expm1(overall - half), math.expm1(overall + half)))
-        for band in settings.bands_hz.values():  # frequency.BAND
-            mb, sb = band_passed(m, band), band_passed(s, band)
+        for mb, sb in passed.values():  # frequency.BAND
             per_block = np.array([math.log(mean_frequency(sb[b]) / mean_frequency(mb[b])) for b in blocks])
             _, half = _interval(per_block, settings.confidence)
             overall = math.log(mean_frequency(sb) / mean_frequency(mb))
@@ -170,8 +169,7 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         per_block = np.array([(s[b].mean() - m[b].mean()) / scale for b in blocks])  # offset
         centre, half = _interval(per_block, settings.confidence)
         rows.append((centre, centre - half, centre + half))
-        wave = settings.bands_hz.get("wave", max(settings.bands_hz.values()))
-        mb, sb = band_passed(m, wave), band_passed(s, wave)
+        mb, sb = passed["wave"] if "wave" in passed else passed[max(settings.bands_hz, key=settings.bands_hz.get)]
         per_block = np.array([block_lag_s(sb[b], mb[b]) for b in blocks])  # lag
         centre, half = _interval(per_block, settings.confidence)
         rows.append((centre, centre - half, centre + half))
