@@ -36,7 +36,7 @@ setup(
     maintainer_email='fowt-dev@example.com',
     python_requires='>=3.10',
     packages=PACKAGES,
-    package_data={package_name: ['data/*.yaml', 'data/**/*']},
+    package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'rosbag/msg/**/*']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),

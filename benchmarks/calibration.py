@@ -21,14 +21,14 @@ from pathlib import Path
 
 import numpy as np
 
-from fowt_hydro_sim.analysis import AnalysisSettings, analyse
-from fowt_hydro_sim.calibration import errors, get_parameter, predict, regress, replay, rms, with_parameters
-from fowt_hydro_sim.replay import MeasuredRun, measured_run
-from fowt_hydro_sim.calibration_cli import calibrate_all
-from fowt_hydro_sim.cluster import dask_client
-from fowt_hydro_sim.config import SeaState, _read_yaml, load_case, platform_path
-from fowt_hydro_sim.synthetic import write_measured_bag
-from fowt_hydro_sim.waves import synthesize
+from fowt_hydro_sim.physics.config import Platform, SeaState, load_case, load_platform
+from fowt_hydro_sim.physics.platform_edits import coefficient, with_coefficients
+from fowt_hydro_sim.physics.waves.components import synthesize
+from fowt_hydro_sim.rosbag.measured import write_measured_bag
+from fowt_hydro_sim.studies.analysis import AnalysisSettings, analyse
+from fowt_hydro_sim.studies.calibration import calibrate_all, errors, predict, regress, replay, rms
+from fowt_hydro_sim.studies.cluster import dask_client
+from fowt_hydro_sim.studies.replay import MeasuredRun, measured_run
 
 SURGE_CDS = [f"column*.{zone}.cd.{band}" for zone in ("submerged", "splash") for band in ("low_frequency", "wave")] \
     + [f"pontoon*.submerged.cd_horizontal.{band}" for band in ("low_frequency", "wave")]
@@ -42,13 +42,13 @@ def true_cds(start: dict[str, float], hs_over_d: float) -> dict[str, float]:
             for p, v in start.items()}
 
 
-def make_measured(folder: Path, document: dict, case: str, duration_s: float, noise: float, seed: int) -> Path:
+def make_measured(folder: Path, platform: Platform, case: str, duration_s: float, noise: float, seed: int) -> Path:
     spec = load_case(case).sea_state
     sea = SeaState(spec.hs_m, spec.tp_s, spec.gamma, seed=seed)
     t = np.arange(0.0, duration_s + 1e-9, 0.1)
     eta = synthesize(sea, duration_s).elevation_series(0.0, 0.0, 0.1, 150.0, 9.80665)
     eta = np.resize(eta, t.size)
-    truth = with_parameters(document, true_cds({p: get_parameter(document, p) for p in SURGE_CDS}, spec.hs_m / D_M))
+    truth = with_coefficients(platform, true_cds({p: coefficient(platform, p) for p in SURGE_CDS}, spec.hs_m / D_M))
     time_s, motion = replay(truth, MeasuredRun(case, t, eta, (0.0, 0.0), t, np.zeros((t.size, 6))), "filtered")
     rng = np.random.default_rng(seed)
     motion = motion + noise * motion.std(axis=0) * rng.normal(size=motion.shape)
@@ -62,17 +62,17 @@ def main() -> None:
     parser.add_argument("--noise", type=float, default=0.01, help="sensor noise, fraction of each DOF's STD")
     parser.add_argument("--scheduler", help="an existing Dask scheduler")
     args = parser.parse_args()
-    document = _read_yaml(platform_path("windmoor12"))
-    start = {p: get_parameter(document, p) for p in SURGE_CDS}
+    platform = load_platform("windmoor12")
+    start = {p: coefficient(platform, p) for p in SURGE_CDS}
     settings = AnalysisSettings(transient_s=600.0, dofs=("surge", "heave", "pitch"))
     with tempfile.TemporaryDirectory() as folder:
         made = time.perf_counter()
-        bags = {case: make_measured(Path(folder), document, case, args.duration, args.noise, seed)
+        bags = {case: make_measured(Path(folder), platform, case, args.duration, args.noise, seed)
                 for seed, case in enumerate((*TUNING, BLIND), start=1)}
         print(f"measured runs made: {len(bags)} x {args.duration:g} s in {time.perf_counter() - made:.0f} s")
         began = time.perf_counter()
         with dask_client(args.scheduler, args.workers) as client:
-            calibrated = calibrate_all(client, [measured_run(bags[case]) for case in TUNING], document, SURGE_CDS,
+            calibrated = calibrate_all(client, [measured_run(bags[case]) for case in TUNING], platform, SURGE_CDS,
                                        settings)
         results = dict(zip(TUNING, calibrated))
         wall = time.perf_counter() - began
@@ -94,8 +94,8 @@ def main() -> None:
         run = measured_run(bags[BLIND])
         measured = analyse(BLIND, run.motion_time_s, run.motion, settings)
         names = [f"{d}.{b}" for d in settings.dofs for b in settings.bands(d)]
-        for label, doc in (("start Cds", document), ("predicted Cds", with_parameters(document, predicted))):
-            time_s, motion = replay(doc, run, "filtered")
+        for label, candidate in (("start Cds", platform), ("predicted Cds", with_coefficients(platform, predicted))):
+            time_s, motion = replay(candidate, run, "filtered")
             e = 100 * errors(analyse("model", time_s, motion, settings), measured, settings)
             print(f"  blind {BLIND}, {label}: " + ", ".join(f"{n} {v:+.1f} %" for n, v in zip(names, e))
                   + f" (RMS {np.sqrt(np.mean(e ** 2)):.1f} %, {np.mean(np.abs(e) <= 15):.0%} within 15 %)")

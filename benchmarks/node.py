@@ -16,16 +16,11 @@ import os
 import re
 import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "test"))
+from fowt_hydro_sim.ros.node import MESSAGE_CLASSES, OUTPUTS
+from fowt_hydro_sim.testing.ros import Listener, finish, node_speed, start
 
-from fowt_hydro_sim.node import MESSAGE_CLASSES  # noqa: E402
-from msg_adapters import topics  # noqa: E402
-from recording import speed  # noqa: E402
-from ros_helpers import Listener, finish, start  # noqa: E402
-
-TOPICS = {topic: MESSAGE_CLASSES[kind] for topic, kind in topics.OUTPUTS.values()}
+TOPICS = {topic: MESSAGE_CLASSES[kind] for topic, kind in OUTPUTS.values()}
 
 
 def main() -> None:
@@ -37,7 +32,7 @@ def main() -> None:
     if os.environ.get("ROS_AUTOMATIC_DISCOVERY_RANGE") != "LOCALHOST":
         sys.exit("set ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST (and a ROS_DOMAIN_ID of your own) first")
 
-    alone = [speed(args.duration, args.drag, None) for _ in range(3)]
+    alone = [node_speed(args.duration, args.drag, None) for _ in range(3)]
     print(f"accelerated, {len(TOPICS)} topics at 20 Hz simulated, drag {args.drag}, {args.duration:g} s:")
     print(f"  nobody subscribed: {max(alone):.0f} simulated s per wall s (best of 3: "
           f"{', '.join(f'{a:.0f}' for a in alone)}; target >= 500)")

@@ -14,9 +14,9 @@ import argparse
 import resource
 import time
 
-from fowt_hydro_sim.config import DRAG_MODELS, load_case, load_platform
-from fowt_hydro_sim.model import PlatformModel
-from fowt_hydro_sim.waves import repeat_period, synthesize
+from fowt_hydro_sim.physics.config import DRAG_MODELS, load_case, load_platform
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 
 
 def main() -> None:

@@ -10,28 +10,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
 import sys
 import tempfile
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "test"))
-
-from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
-from ros_helpers import finish, start  # noqa: E402
-
-
-def speed(duration_s: float, drag: str, record: Path | None) -> float:
-    """Simulated seconds per wall second of one node run."""
-    params = {"real_time_factor": 0.0, "duration_s": duration_s, "drag_model": drag}
-    if record is not None:
-        params.update(record=str(record), record_overwrite=True)
-    output = finish(start("node", **params), 3600.0)
-    done = re.search(r"([\d.]+) s simulated in ([\d.]+) s of wall time", output)
-    if not done:
-        sys.exit(output)
-    sim, wall = map(float, done.groups())
-    return sim / wall
+from fowt_hydro_sim.rosbag.reader import Bag
+from fowt_hydro_sim.testing.ros import node_speed
 
 
 def main() -> None:
@@ -44,7 +28,7 @@ def main() -> None:
         sys.exit("set ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST (and a ROS_DOMAIN_ID of your own) first")
     with tempfile.TemporaryDirectory() as folder:
         bag = Path(folder) / "run"
-        runs = [(speed(args.duration, args.drag, None), speed(args.duration, args.drag, bag))
+        runs = [(node_speed(args.duration, args.drag, None), node_speed(args.duration, args.drag, bag))
                 for _ in range(args.repeats)]  # interleaved, so drifts in machine load hit both
         plain, recorded = (max(r[i] for r in runs) for i in (0, 1))
         size = sum(f.stat().st_size for f in bag.iterdir())

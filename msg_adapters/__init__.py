@@ -1,4 +1,4 @@
-"""Conversions between the model's arrays (see fowt_hydro_sim.rigid_body) and ROS 2 messages.
+"""Conversions between the model's arrays (see fowt_hydro_sim.frames) and ROS 2 messages.
 
 The message-building adapters need the ROS message packages and are imported on first
 use; ``cdr`` (bytes to and from arrays) and ``topics`` (the contract) need no ROS, so the

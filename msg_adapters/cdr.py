@@ -14,7 +14,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from fowt_hydro_sim.rigid_body import quaternion_from_euler, to_body_axes
+from fowt_hydro_sim.frames import quaternion_from_euler, to_body_axes
 from msg_adapters.sim_time import stamp_parts
 
 ENCAPSULATION = b"\x00\x01\x00\x00"  # CDR, little endian
@@ -58,9 +58,9 @@ def _pose_rows(motion: np.ndarray) -> list[list[float]]:
 
 def _body_twist_rows(motion: np.ndarray, velocity: np.ndarray) -> list[list[float]]:
     """World-axes velocities (n, 6) in the body axes (as Odometry's twist)."""
-    angles = np.ascontiguousarray(motion[:, 3:])
-    return np.hstack([to_body_axes(angles, np.ascontiguousarray(velocity[:, :3])),
-                      to_body_axes(angles, np.ascontiguousarray(velocity[:, 3:]))]).tolist()
+    angles = motion[:, 3:]
+    return np.hstack([to_body_axes(angles, velocity[:, :3]),
+                      to_body_axes(angles, velocity[:, 3:])]).tolist()
 
 
 def _odometry(stamp: bytes, frame_id: str, child_frame_id: str, pose_row: list, twist_row: list) -> bytes:
@@ -102,8 +102,8 @@ def odometry(time_s: float, motion, velocity, frame_id: str = "world", child_fra
 def outputs(time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
             loads: np.ndarray, total: np.ndarray, elevation_m: np.ndarray, frame_id: str,
             child_frame_id: str) -> list[list[bytes]]:
-    """The node's outputs for each row of a batch, in ``topics.OUTPUTS`` order (clock, odom,
-    pose, twist, accel, total, each load of ``loads`` (n, 7, 6), elevation_used); the
+    """The node's outputs for each row of a batch, in ``topics.outputs`` order (clock, odom,
+    pose, twist, accel, total, each load of ``loads`` (n, k, 6), elevation_used); the
     numerics are vectorised over the batch, leaving one ``struct`` pack per message."""
     poses, twists = _pose_rows(motion), _body_twist_rows(motion, velocity)
     rows = zip(time_s.tolist(), poses, twists, velocity.tolist(), acceleration.tolist(), total.tolist(),

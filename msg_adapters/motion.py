@@ -10,7 +10,7 @@ import numpy as np
 from geometry_msgs.msg import AccelStamped, Point, Pose, PoseStamped, Quaternion, TwistStamped
 from nav_msgs.msg import Odometry
 
-from fowt_hydro_sim.rigid_body import euler_from_quaternion, quaternion_from_euler, rotation_matrix
+from fowt_hydro_sim.frames import euler_from_quaternion, quaternion_from_euler, rotation_matrix, to_body_axes
 from msg_adapters._common import components, header, vector, vector3
 from msg_adapters.stamps import seconds
 
@@ -69,11 +69,11 @@ def odometry_msg(time_s: float, motion, velocity, frame_id: str = "world",
     """Odometry: pose in `frame_id`, twist in the platform axes (R^T v, R^T w); zero covariances."""
     motion = vector(motion, 6, "motion")
     velocity = vector(velocity, 6, "velocity")
-    to_body = rotation_matrix(motion[3], motion[4], motion[5]).T
+    body = to_body_axes(np.tile(motion[3:], (2, 1)), velocity.reshape(2, 3))  # the batch's formula (cdr)
     msg = Odometry(header=header(time_s, frame_id), child_frame_id=child_frame_id)
     msg.pose.pose = _pose(motion)
-    msg.twist.twist.linear = vector3(to_body @ velocity[:3])
-    msg.twist.twist.angular = vector3(to_body @ velocity[3:])
+    msg.twist.twist.linear = vector3(body[0])
+    msg.twist.twist.angular = vector3(body[1])
     return msg
 
 

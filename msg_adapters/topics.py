@@ -1,4 +1,9 @@
-"""The topic contract (shared/spec/ros_interface.md): names and message types, as data."""
+"""The topic contract (docs/ros_interface.md): names and message types, as data.
+
+The load topics follow the model's load components: ``/platform/loads/NAME`` for each
+published component (the registry is ``fowt_hydro_sim.physics.loads``; callers pass its
+names in, so that this package needs no physics) plus ``/platform/loads/total``.
+"""
 from __future__ import annotations
 
 CLOCK = "rosgraph_msgs/msg/Clock"
@@ -12,21 +17,37 @@ WRENCH_STAMPED = "geometry_msgs/msg/WrenchStamped"
 ELEVATION = "/waves/elevation"
 EXTERNAL_WRENCH = "/platform/external_wrench"
 POSE = "/platform/pose"
+LOADS_PREFIX = "/platform/loads/"
+TOTAL = "total"  # /platform/loads/total: the sum of the components the registry marks as summed
 INPUTS = {ELEVATION: POINT_STAMPED, EXTERNAL_WRENCH: WRENCH_STAMPED}
-TOTAL_OF = ("drag", "inertia", "hydrostatic", "mooring", "external")  # summed into /platform/loads/total
-LOADS = ("drag", "inertia", "added_mass", "hydrostatic", "mooring", "gravity", "external")  # one topic each
-# the node's outputs by short name: (topic, type)
-OUTPUTS = {
+MOTION = {  # the node's outputs before the loads, by short name: (topic, type)
     "clock": ("/clock", CLOCK),
     "odom": ("/platform/odom", ODOMETRY),
     "pose": (POSE, POSE_STAMPED),
     "twist": ("/platform/twist", TWIST_STAMPED),
     "accel": ("/platform/accel", ACCEL_STAMPED),
-    "total": ("/platform/loads/total", WRENCH_STAMPED),
-    **{name: (f"/platform/loads/{name}", WRENCH_STAMPED) for name in LOADS},
-    "elevation_used": ("/waves/elevation_used", POINT_STAMPED),
 }
-TYPES = {**INPUTS, **dict(OUTPUTS.values())}  # every contract topic's type
+ELEVATION_USED = ("/waves/elevation_used", POINT_STAMPED)
+
+
+def load_topic(name: str) -> str:
+    return LOADS_PREFIX + name
+
+
+def outputs(load_names: tuple[str, ...]) -> dict[str, tuple[str, str]]:
+    """The node's outputs by short name, (topic, type), in publishing order: motion, the
+    total, one topic per load component named, the elevation used."""
+    return {**MOTION, TOTAL: (load_topic(TOTAL), WRENCH_STAMPED),
+            **{name: (load_topic(name), WRENCH_STAMPED) for name in load_names},
+            "elevation_used": ELEVATION_USED}
+
+
+def type_of(topic: str) -> str | None:
+    """The contract's type of a topic (any ``/platform/loads/NAME`` is a wrench), or None."""
+    if topic.startswith(LOADS_PREFIX):
+        return WRENCH_STAMPED
+    known = {**INPUTS, **dict(MOTION.values()), ELEVATION_USED[0]: ELEVATION_USED[1]}
+    return known.get(topic)
 
 
 def type_name(message_class: type) -> str:

@@ -10,12 +10,12 @@ import sys
 import numpy as np
 import pytest
 
-from fowt_hydro_sim.analysis import AnalysisSettings, analyse, compare, pass_rate
+from fowt_hydro_sim.physics.waves.spectra import jonswap
 from fowt_hydro_sim.rosbag.writer import BagWriter
-from fowt_hydro_sim.spectra import jonswap
+from fowt_hydro_sim.studies.analysis import AnalysisSettings, analyse, compare, pass_rate
+from fowt_hydro_sim.testing import REPO
 from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds
-from ros_helpers import REPO
 
 DT_S = 0.5
 BANDS = {"low_frequency": (0.005, 0.05), "wave": (0.05, 0.25)}

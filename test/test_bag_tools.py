@@ -36,9 +36,10 @@ from rosgraph_msgs.msg import Clock  # noqa: E402
 
 from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
 from fowt_hydro_sim.rosbag.writer import BagWriter  # noqa: E402
+from fowt_hydro_sim.testing import REPO  # noqa: E402
+from fowt_hydro_sim.testing.ros import Listener, finish  # noqa: E402
 from msg_adapters import cdr  # noqa: E402
 from msg_adapters.sim_time import nanoseconds  # noqa: E402
-from ros_helpers import REPO, Listener, finish  # noqa: E402
 
 PREFIX = f"/bag_tools_{os.getpid()}"
 ELEVATION = f"{PREFIX}/waves/elevation"

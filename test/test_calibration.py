@@ -10,54 +10,55 @@ import sys
 import numpy as np
 import pytest
 
-from fowt_hydro_sim.analysis import AnalysisSettings
-from fowt_hydro_sim.calibration import calibrate, get_parameter, predict, regress, replay, with_parameters
-from fowt_hydro_sim.config import ConfigError, _read_yaml, platform_path
-from fowt_hydro_sim.replay import MeasuredRun, measured_run
+from fowt_hydro_sim.physics.config import ConfigError, Platform, load_platform
+from fowt_hydro_sim.physics.platform_edits import coefficient, with_coefficients
+from fowt_hydro_sim.rosbag.measured import write_measured_bag
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.synthetic import write_measured_bag
-from ros_helpers import REPO
+from fowt_hydro_sim.studies.analysis import AnalysisSettings
+from fowt_hydro_sim.studies.calibration import calibrate, predict, regress, replay
+from fowt_hydro_sim.studies.replay import MeasuredRun, measured_run
+from fowt_hydro_sim.testing import REPO
 
 LF_COLUMNS = "column*.submerged.cd.low_frequency"
 RECORD_S = 1500.0
 
 
 @pytest.fixture(scope="module")
-def document() -> dict:
-    return _read_yaml(platform_path("windmoor12"))
+def platform() -> Platform:
+    return load_platform("windmoor12")
 
 
-def test_parameter_paths_read_and_set_every_matching_member(document):
-    assert get_parameter(document, LF_COLUMNS) == 0.4
-    changed = with_parameters(document, {LF_COLUMNS: 0.9, "pontoon*.submerged.cd_vertical": 4.0,
-                                         "column1.end_a_plate.cd": 5.0})
-    assert get_parameter(document, LF_COLUMNS) == 0.4  # the original is untouched
-    columns = [m for m in changed["members"] if m["name"].startswith("column")]
-    assert [m["zones"][0]["cd"]["low_frequency"] for m in columns] == [0.9] * 3
-    assert [m["zones"][0]["cd"]["wave"] for m in columns] == [1.0] * 3
-    assert [m["end_a_plate"]["cd"] for m in columns] == [5.0, 4.8, 4.8]
-    assert get_parameter(changed, "pontoon23.submerged.cd_vertical") == 4.0
+def test_parameter_paths_read_and_set_every_matching_member(platform):
+    assert coefficient(platform, LF_COLUMNS) == 0.4
+    changed = with_coefficients(platform, {LF_COLUMNS: 0.9, "pontoon*.submerged.cd_vertical": 4.0,
+                                           "column1.end_a_plate.cd": 5.0})
+    assert coefficient(platform, LF_COLUMNS) == 0.4  # the original is untouched
+    columns = [m for m in changed.members if m.name.startswith("column")]
+    assert [m.zones[0].cd[0].bands[0] for m in columns] == [0.9] * 3  # low_frequency
+    assert [m.zones[0].cd[0].bands[1] for m in columns] == [1.0] * 3  # wave
+    assert [m.end_a_plate.cd for m in columns] == [5.0, 4.8, 4.8]
+    assert coefficient(changed, "pontoon23.submerged.cd_vertical") == 4.0
     for bad, message in [("column*.submerged.cd.swell", "no band 'swell'"), ("tower*.submerged.cd", "no member"),
                          ("column1.cd", "expected MEMBERS"), ("column1.splash.cm", "has no splash.cm")]:
         with pytest.raises(ConfigError, match=message):
-            get_parameter(document, bad)
+            coefficient(platform, bad)
 
 
 @pytest.fixture(scope="module")
-def measured(tmp_path_factory, document):
+def measured(tmp_path_factory, platform):
     """A measured run made by the model with the columns' low-frequency Cd at 0.8 (0.4 in
     the platform file), LC5.3 waves from the sample bag."""
     waves = Bag(REPO / "bags" / "lc5.3").elevation()
     keep = waves.time_s <= RECORD_S
-    truth = with_parameters(document, {LF_COLUMNS: 0.8})
+    truth = with_coefficients(platform, {LF_COLUMNS: 0.8})
     t, eta = waves.time_s[keep], waves.values[keep, 2]
     time_s, motion = replay(truth, MeasuredRun("lc53", t, eta, (0.0, 0.0), t, np.zeros((t.size, 6))), "filtered")
     return write_measured_bag(tmp_path_factory.mktemp("measured") / "lc53", t, eta, (0.0, 0.0), time_s, motion)
 
 
-def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, document):
+def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, platform):
     settings = AnalysisSettings(transient_s=300.0, dofs=("surge", "pitch"))
-    result = calibrate(measured_run(measured), document, [LF_COLUMNS], settings)
+    result = calibrate(measured_run(measured), platform, [LF_COLUMNS], settings)
     assert abs(result.parameters[LF_COLUMNS] / 0.8 - 1) < 0.03, result
     assert abs(result.errors_before["surge.low_frequency"]) > 10  # 0.4 instead of 0.8: a real gap
     assert max(abs(e) for e in result.errors_after.values()) < 1.0
@@ -77,8 +78,8 @@ def test_fowt_sim_calibrate_on_a_local_dask_cluster_then_regress_and_predict(mea
                                  str(out / "calibration.json"), "--predict", str(measured), "-o", str(out)],
                                 cwd=REPO, capture_output=True, text=True, timeout=120)
     assert regression.returncode == 0, regression.stderr
-    predicted = _read_yaml(out / "platform_predicted.yaml")
-    assert abs(get_parameter(predicted, LF_COLUMNS) - fitted) < 1e-9  # one run: a constant
+    predicted = load_platform(out / "platform_predicted.yaml")
+    assert abs(coefficient(predicted, LF_COLUMNS) - fitted) < 1e-9  # one run: a constant
     blind = json.loads((out / "blind.json").read_text())["errors"]  # the run again, blind, with the predicted Cd
     assert abs(blind["predicted Cds"]["surge.low_frequency"]) < 1.0 < abs(blind["start Cds"]["surge.low_frequency"])
 

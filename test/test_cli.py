@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fowt_hydro_sim.output import read_run
+from fowt_hydro_sim.studies.simulate import read_run
 
 
 def fowt_sim(*args: str) -> subprocess.CompletedProcess:
@@ -75,7 +75,7 @@ def test_filtered_simulate_and_the_load_case_study_agree(tmp_path: Path):
     """``simulate --drag filtered`` and ``load-cases`` on the same sea (seed, duration,
     start-up) report the same band STDs; the study writes its CSV, Markdown table and a PNG
     per load case, and the band STDs in the summary are those of the written time series."""
-    from fowt_hydro_sim.spectral import band_stds
+    from fowt_hydro_sim.studies.psd import band_stds
 
     sim = tmp_path / "sim"
     done = fowt_sim("simulate", "--load-case", "lc5.0", "--drag", "filtered", "--duration", "700",

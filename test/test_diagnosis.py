@@ -12,12 +12,12 @@ import sys
 import numpy as np
 import pytest
 
-from fowt_hydro_sim.config import _read_yaml, platform_path
-from fowt_hydro_sim.diagnosis import diagnose, in_process
-from fowt_hydro_sim.diagnosis_benchmark import Scenario, truth_run
-from fowt_hydro_sim.gap import GapSettings
-from fowt_hydro_sim.synthetic import write_measured_bag
-from ros_helpers import REPO
+from fowt_hydro_sim.physics.config import Platform, load_platform
+from fowt_hydro_sim.rosbag.measured import write_measured_bag
+from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
+from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, in_process
+from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
+from fowt_hydro_sim.testing import REPO
 
 RECORD_S = 1800.0  # the benchmark's length: shorter records flag real but small property errors
 DRIFT_N_M2 = 3.0e5
@@ -25,8 +25,8 @@ CANDIDATES = ["slow_drift", "linear_damping", "wave_measurement_delay"]
 
 
 @pytest.fixture(scope="module")
-def document() -> dict:
-    return _read_yaml(platform_path("windmoor12"))
+def platform() -> Platform:
+    return load_platform("windmoor12")
 
 
 def fowt_sim(*args: str, timeout: float = 600) -> subprocess.CompletedProcess:
@@ -35,14 +35,14 @@ def fowt_sim(*args: str, timeout: float = 600) -> subprocess.CompletedProcess:
 
 
 @pytest.fixture(scope="module")
-def drift_bags(tmp_path_factory, document):
+def drift_bags(tmp_path_factory, platform):
     """Tuning (LC5.2, LC5.3) and blind (LC6.4) bags of the model with slow drift, sensor
     noise and small property errors."""
     folder = tmp_path_factory.mktemp("drift")
     scenario = Scenario("drift", "injected", "slow_drift", {"drift_coefficient_n_m2": DRIFT_N_M2}, 7)
     bags = {}
     for case in ("lc5.2", "lc5.3", "lc6.4"):
-        run = truth_run(scenario, case, document, RECORD_S)
+        run = truth_run(scenario, case, platform, RECORD_S)
         bags[case] = write_measured_bag(folder / case, run.elevation_time_s, run.elevation_m, run.point_xy_m,
                                         run.motion_time_s, run.motion)
     return bags
@@ -71,12 +71,12 @@ def test_diagnose_names_slow_drift_and_closes_the_blind_gap(drift_bags, tmp_path
     assert "verdict: explained: slow_drift" in result.stdout
 
 
-def test_a_run_without_an_unmodelled_effect_raises_no_alarm(document):
+def test_a_run_without_an_unmodelled_effect_raises_no_alarm(platform):
     """Noise and small property errors only: no cell is flagged, nothing is fitted."""
     null = Scenario("null", "null", None, {}, 11)
-    runs = [truth_run(null, case, document, RECORD_S) for case in ("lc5.2", "lc5.3")]
+    runs = [truth_run(null, case, platform, RECORD_S) for case in ("lc5.2", "lc5.3")]
     settings = GapSettings()
-    diagnosis = diagnose(runs, [], in_process(runs, document, settings), settings)
+    diagnosis = diagnose(runs, [], in_process(runs, platform, settings), settings)
     assert diagnosis.verdict == "no significant gap" and not diagnosis.candidates
     assert len(diagnosis.baseline) == 2 and diagnosis.model_runs == 2
 

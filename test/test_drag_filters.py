@@ -18,16 +18,30 @@ import numpy as np
 import pytest
 import scipy.signal
 
-from fowt_hydro_sim.config import ConfigError, DragBand, DragCoefficients, MassProperties, Platform, SeaState, Zone
-from fowt_hydro_sim.drag_filters import band_zpk, bank_state_space, effective_drag_coefficient, frequency_response
-from fowt_hydro_sim.dynamics import LOAD_COMPONENTS
-from fowt_hydro_sim.model import PlatformModel
-from fowt_hydro_sim.rigid_body import rotation_matrix
-from fowt_hydro_sim.spectral import band_stds
-from fowt_hydro_sim.waves import WaveComponents, synthesize
-from physics_helpers import scaled_cd, windmoor12, with_cds
+from fowt_hydro_sim.frames import rotation_matrix
+from fowt_hydro_sim.physics.config import (
+    ConfigError,
+    DragBand,
+    DragCoefficients,
+    MassProperties,
+    Platform,
+    SeaState,
+    Zone,
+    load_platform,
+)
+from fowt_hydro_sim.physics.drag_filters import (
+    band_zpk,
+    bank_state_space,
+    effective_drag_coefficient,
+    frequency_response,
+)
+from fowt_hydro_sim.physics.loads import ROW
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.platform_edits import scaled_cd, with_cds
+from fowt_hydro_sim.physics.waves.components import WaveComponents, synthesize
+from fowt_hydro_sim.studies.psd import band_stds
 
-DRAG = LOAD_COMPONENTS.index("drag")
+DRAG = ROW["drag"]
 PAPER_BANDS = (DragBand("low_frequency", "lowpass", 5, cutoff_hz=0.05), DragBand("wave", "highpass", 1, cutoff_hz=0.05))
 TEST_BANDS = PAPER_BANDS + (DragBand("resonance", "bandpass", 1, centre_hz=0.02, q=0.7),
                             DragBand("lp2", "lowpass", 2, cutoff_hz=0.1),
@@ -51,7 +65,7 @@ def paper_bandpass(band: DragBand, frequency_hz: np.ndarray) -> np.ndarray:
 
 def fixed_column(bands: tuple[DragBand, ...], cd: DragCoefficients) -> Platform:
     """A 2 m vertical column from z = -20 to -10 m (no end plate) on an immovable body."""
-    p = windmoor12()
+    p = load_platform("windmoor12")
     zone = Zone("all", math.inf, (1.0, 1.0), (cd, cd))
     column = dataclasses.replace(p.members[0], end_a_m=(0.0, 0.0, -20.0), end_b_m=(0.0, 0.0, -10.0), width_m=2.0,
                                  height_m=2.0, zones=(zone,), end_a_plate=None, strip_length_m=1.0)
@@ -132,7 +146,7 @@ def test_effective_drag_coefficient_of_the_papers_bank(frequency_hz: float):
 def test_one_all_pass_band_equals_the_constant_model_exactly():
     """windmoor12 in LC5.3 for 300 s: the filtered model with one all-pass band whose Cd is each
     direction's constant Cd gives the constant model's numbers, bit for bit."""
-    p = windmoor12()
+    p = load_platform("windmoor12")
 
     def all_pass(cd: DragCoefficients) -> DragCoefficients:
         return DragCoefficients(cd.constant, (cd.constant,))
@@ -158,7 +172,7 @@ def test_rotated_platform_and_flow_give_the_same_band_forces():
     the motion over the 100 s compared."""
     angle = math.radians(37.0)
     rz = _rz(angle)
-    p = dataclasses.replace(windmoor12(), mass=HEAVY)
+    p = dataclasses.replace(load_platform("windmoor12"), mass=HEAVY)
 
     def turn(v):
         return tuple(rz @ np.array(v))
@@ -188,7 +202,7 @@ def test_spinning_body_filters_in_the_member_frame():
     frame the relative velocity is steady, so the low-pass band passes it whole and the
     high-pass band nothing, and the drag equals a constant model with the low-frequency Cds.
     (A world-frame filter would see a 0.05 Hz rotation and lose about half of it.)"""
-    p = windmoor12()
+    p = load_platform("windmoor12")
 
     def low_frequency_only(cd: DragCoefficients) -> DragCoefficients:
         return cd if cd.bands is None else DragCoefficients(cd.bands[0])
@@ -206,7 +220,7 @@ def test_spinning_body_filters_in_the_member_frame():
 
 
 def test_filtered_model_needs_drag_bands_and_the_time_loop():
-    p = windmoor12()
+    p = load_platform("windmoor12")
     with pytest.raises(ConfigError, match="has no drag_bands"):
         PlatformModel(dataclasses.replace(p, drag_bands=()), None, drag_model="filtered")
     with pytest.raises(ConfigError, match="must be one of constant, filtered"):
@@ -231,7 +245,7 @@ def test_band_cds_act_on_their_bands_in_lc53():
       the wave band's share of the wave-frequency response, not as 'leaves the resonance
       unchanged'. The test bounds that cross effect below the low-frequency Cd's own effect.
     """
-    p = windmoor12()
+    p = load_platform("windmoor12")
 
     waves = synthesize(SeaState(11.0, 12.0, 4.9, seed=1), 3900.0)
     stds = {}

@@ -13,12 +13,13 @@ import scipy.integrate
 import scipy.optimize
 import scipy.signal
 
-from fowt_hydro_sim.config import _read_yaml, load_platform, platform_from_dict, platform_path
-from fowt_hydro_sim.effects import CATALOGUE, base, frequency_drag, kc_drag, quadratic_damping, slow_drift
-from fowt_hydro_sim.extension import Extension
-from fowt_hydro_sim.gap import GapSettings, block_lag_s, gap
-from fowt_hydro_sim.model import PlatformModel
-from fowt_hydro_sim.replay import MeasuredRun, Variant
+from fowt_hydro_sim.physics.config import load_platform
+from fowt_hydro_sim.physics.loads.extension import Extension
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.platform_edits import band_split, scaled_added_mass
+from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, base, kc_drag, quadratic_damping, slow_drift
+from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, block_lag_s, gap
+from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 HEAVE = 2
 
@@ -26,11 +27,6 @@ HEAVE = 2
 @pytest.fixture(scope="module")
 def platform():
     return load_platform("windmoor12")
-
-
-@pytest.fixture(scope="module")
-def document():
-    return _read_yaml(platform_path("windmoor12"))
 
 
 def heave_decay(platform, extension: Extension, offset_m: float = 0.05, duration_s: float = 200.0):
@@ -134,26 +130,27 @@ def test_quadratic_damping_dissipates_as_its_equivalent_linear_damping():
         assert quadratic == pytest.approx(linear, rel=1e-4)
 
 
-def test_band_split_and_coefficient_scaling(document):
-    split = frequency_drag.band_split(document, 0.25)
-    zone = split["members"][0]["zones"][0]
-    assert zone["cd"] == {"constant": 0.8, "low_frequency": 0.2, "wave": 0.8}
-    assert split["members"][3]["zones"][0]["cd_vertical"] == 3.0  # one Cd at every frequency: untouched
-    assert document["members"][0]["zones"][0]["cd"]["low_frequency"] == 0.4  # the original is left alone
-    scaled = base.scale_fields(document, "ca", 1.2)
-    assert scaled["members"][0]["end_a_plate"]["ca"] == pytest.approx(1.2)
-    assert scaled["members"][3]["zones"][0]["ca_vertical"] == pytest.approx(1.2)
-    assert scaled["members"][0]["zones"][0]["cd"]["constant"] == 0.8
+def test_band_split_and_coefficient_scaling(platform):
+    split = band_split(platform, 0.25)
+    zone = split.members[0].zones[0]
+    assert zone.cd[0].constant == 0.8 and zone.cd[0].bands == (0.2, 0.8)  # low_frequency, wave
+    assert split.members[3].zones[0].cd[1].constant == 3.0  # one Cd at every frequency: untouched
+    assert split.members[3].zones[0].cd[1].bands is None
+    assert platform.members[0].zones[0].cd[0].bands[0] == 0.4  # the original is left alone
+    scaled = scaled_added_mass(platform, 1.2)
+    assert scaled.members[0].end_a_plate.ca == pytest.approx(1.2)
+    assert scaled.members[3].zones[0].ca[1] == pytest.approx(1.2)  # vertical
+    assert scaled.members[0].zones[0].cd[0].constant == 0.8
     t = np.arange(0.0, 100.0, 0.1)
     run = MeasuredRun("r", t, 1.5 * np.sin(2 * np.pi * 0.1 * t), (0.0, 0.0), t, np.zeros((t.size, 6)))
     assert run.hs_m == pytest.approx(4 * 1.5 / math.sqrt(2))
-    kc = kc_drag.keulegan_carpenter(run.hs_m, document)
+    kc = kc_drag.keulegan_carpenter(run.hs_m, platform)
     assert kc == pytest.approx(math.pi * run.hs_m / 15.0)
-    varied = CATALOGUE["kc_dependent_drag"].apply(Variant(document), run, {"kc_exponent": 0.5})
-    assert varied.document["members"][0]["zones"][0]["cd"]["constant"] == pytest.approx(0.8 * math.sqrt(kc))
+    varied = CATALOGUE["kc_dependent_drag"].apply(Variant(platform), run, {"kc_exponent": 0.5})
+    assert varied.platform.members[0].zones[0].cd[0].constant == pytest.approx(0.8 * math.sqrt(kc))
 
 
-def test_every_effect_module_is_registered_and_off_means_off(document):
+def test_every_effect_module_is_registered_and_off_means_off(platform):
     """Each module of effects/ has one catalogue entry; at its ``off`` values an effect
     leaves the variant as the plain model (frequency-dependent drag: the filtered model
     with every band at the constant Cd)."""
@@ -163,14 +160,14 @@ def test_every_effect_module_is_registered_and_off_means_off(document):
     t = np.arange(0.0, 100.0, 0.1)
     run = MeasuredRun("r", t, np.sin(t), (0.0, 0.0), t, np.zeros((t.size, 6)))
     for effect in CATALOGUE.values():
-        varied = effect.apply(Variant(document), run, effect.values("off"))
+        varied = effect.apply(Variant(platform), run, effect.values("off"))
         extension = varied.extension
         assert not extension.has_force and not np.any(extension.linear_damping) and not np.any(extension.mass)
         assert not np.any(extension.quadratic_damping) and not np.any(extension.cubic_stiffness)
         assert varied.elevation_shift_s == 0.0
         if effect.name != "frequency_dependent_drag":
             assert varied.drag_model == "constant"
-            assert platform_from_dict(varied.document) == platform_from_dict(document), effect.name
+            assert varied.platform == platform, effect.name
 
 
 # ---------------------------------------------------------------------- gap metrics
@@ -192,7 +189,7 @@ def test_gap_of_a_run_against_itself_scaled_shifted_and_noisy():
     same = gap("same", (t, x), (t, x), settings)
     assert np.allclose(same.value, 0.0, atol=1e-9) and not same.flagged.any()
     # the wave band of surge 10 % larger in the model: only that cell moves, by 10 %
-    from fowt_hydro_sim.gap import band_passed
+    from fowt_hydro_sim.studies.diagnosis.gap import band_passed
     y = x.copy()
     y[:, 0] += 0.1 * band_passed(x[:, 0], settings.bands_hz["wave"])
     scaled = gap("scaled", (t, x), (t, y), settings)

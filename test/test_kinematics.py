@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from fowt_hydro_sim.config import SeaState
-from fowt_hydro_sim.dynamics import interpolate_table
-from fowt_hydro_sim.kinematics import KinematicsTable, depth_factors, point_kinematics, table_step
-from fowt_hydro_sim.waves import WaveComponents, read_comp_file, synthesize
+from fowt_hydro_sim.physics.config import SeaState
+from fowt_hydro_sim.physics.dynamics import interpolate_table
+from fowt_hydro_sim.physics.waves.components import WaveComponents, read_comp_file, synthesize
+from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, depth_factors, point_kinematics, table_step
 
 G, RHO = 9.80665, 1025.0
 SHARED = Path(__file__).resolve().parents[2] / "shared"

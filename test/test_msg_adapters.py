@@ -12,7 +12,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import msg_adapters as ma
-from fowt_hydro_sim.rigid_body import euler_from_quaternion, quaternion_from_euler, rotation_matrix
+from fowt_hydro_sim.frames import euler_from_quaternion, quaternion_from_euler, rotation_matrix
 
 RNG = np.random.default_rng(20240611)
 
@@ -50,6 +50,7 @@ def test_euler_from_bad_quaternion_raises(bad, problem):
 
 
 @pytest.mark.parametrize("t", [0.0, 0.05 * 10**7, 0.05 * (10**7 + 7), 1e9 + 0.123456789, 12.3456789012])
+@pytest.mark.ros
 def test_stamp_is_nearest_nanosecond_and_round_trips(t):
     ns = round(Fraction(t) * 10**9)
     msg = ma.stamp(t)
@@ -60,6 +61,7 @@ def test_stamp_is_nearest_nanosecond_and_round_trips(t):
     assert ma.clock_msg(t).clock == msg
 
 
+@pytest.mark.ros
 def test_stamps_of_fixed_steps_at_large_step_counts():
     for n in range(10**7, 10**7 + 2000):
         msg = ma.stamp(0.05 * n)
@@ -68,12 +70,14 @@ def test_stamps_of_fixed_steps_at_large_step_counts():
 
 
 @pytest.mark.parametrize("t", [-1e-12, -0.05, float("nan")])
+@pytest.mark.ros
 def test_negative_or_nan_time_raises(t):
     with pytest.raises(ValueError, match="time"):
         ma.stamp(t)
 
 
 @pytest.mark.parametrize("trial", range(20))
+@pytest.mark.ros
 def test_round_trips(trial):
     t = RNG.uniform(0.0, 1e4)
     motion, velocity, acc, wrench = random_motion(), RNG.normal(size=6), RNG.normal(size=6), 1e6 * RNG.normal(size=6)
@@ -93,6 +97,7 @@ def test_round_trips(trial):
     assert ma.elevation_from_msg(ma.elevation_msg(t, x, y, eta, "sea")) == (t_o, x, y, eta, "sea")
 
 
+@pytest.mark.ros
 def test_odometry_twist_is_in_body_axes():
     # Body x axis points along world +y after +90 deg yaw; world +x is then body -y.
     motion = np.array([1.0, 2.0, -3.0, 0.0, 0.0, np.pi / 2])
@@ -112,6 +117,7 @@ def test_odometry_twist_is_in_body_axes():
     np.testing.assert_allclose([o.x, o.y, o.z, o.w], [0, np.sin(pitch / 2), 0, np.cos(pitch / 2)], atol=1e-15)
 
 
+@pytest.mark.ros
 @pytest.mark.parametrize("call, name", [
     (lambda: ma.pose_msg(0.0, np.zeros(5)), r"motion must have shape \(6,\)"),
     (lambda: ma.twist_msg(0.0, np.zeros((6, 1))), r"velocity must have shape \(6,\)"),
@@ -125,12 +131,14 @@ def test_wrong_shapes_raise_naming_the_argument(call, name):
         call()
 
 
+@pytest.mark.ros
 def test_non_finite_values_pass_through():
     _, w = ma.velocity_from_twist(ma.twist_msg(1.0, [np.nan, np.inf, 0, 0, 0, 0]))
     assert np.isnan(w[0]) and np.isinf(w[1])
 
 
 # --------------------------------------------------------------------------- CDR bytes
+@pytest.mark.ros
 def test_cdr_bytes_are_rclpys_serialisation():
     """Oracle: rclpy's own (de)serialisation. Our bytes deserialise to the message the adapters
     build, and have the length of serialize_message's output (which differs only in the
@@ -163,22 +171,21 @@ def test_cdr_bytes_are_rclpys_serialisation():
 
 def test_a_batch_of_outputs_is_each_messages_own_serialisation():
     """cdr.outputs (vectorised over a batch) against the one-message functions, topic by
-    topic in the contract's order; the contract's loads are the model's components."""
-    from fowt_hydro_sim.dynamics import LOAD_COMPONENTS
+    topic in the contract's order, one load topic per published component."""
+    from fowt_hydro_sim.physics.loads import PUBLISHED
     from msg_adapters import cdr, topics
 
-    assert topics.LOADS + ("extension",) == LOAD_COMPONENTS and set(topics.TOTAL_OF) <= set(LOAD_COMPONENTS)
     rng = np.random.default_rng(3)
     n = 5
     time_s = np.sort(rng.uniform(0, 1e4, n))
     motion = np.hstack([rng.normal(0, 5, (n, 3)), rng.uniform(-1.2, 1.2, (n, 3))])
     velocity, acceleration = rng.normal(0, 1, (n, 6)), rng.normal(0, 1, (n, 6))
-    loads, total, eta = rng.normal(0, 1e6, (n, 7, 6)), rng.normal(0, 1e6, (n, 6)), rng.normal(0, 2, n)
+    loads, total, eta = rng.normal(0, 1e6, (n, len(PUBLISHED), 6)), rng.normal(0, 1e6, (n, 6)), rng.normal(0, 2, n)
     batch = cdr.outputs(time_s, motion, velocity, acceleration, loads, total, eta, "world", "platform")
-    assert [len(row) for row in batch] == [len(topics.OUTPUTS)] * n
+    assert [len(row) for row in batch] == [len(topics.outputs(PUBLISHED))] * n
     for i, row in enumerate(batch):
         t = float(time_s[i])
         expected = [cdr.clock(t), cdr.odometry(t, motion[i], velocity[i]), cdr.pose(t, motion[i]),
                     cdr.six(t, velocity[i]), cdr.six(t, acceleration[i]), cdr.six(t, total[i]),
-                    *(cdr.six(t, loads[i, k]) for k in range(7)), cdr.point(t, 0.0, 0.0, eta[i])]
+                    *(cdr.six(t, loads[i, k]) for k in range(len(PUBLISHED))), cdr.point(t, 0.0, 0.0, eta[i])]
         assert row == expected

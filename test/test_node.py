@@ -18,10 +18,10 @@ from geometry_msgs.msg import PointStamped, PoseStamped, WrenchStamped  # noqa: 
 from rosgraph_msgs.msg import Clock  # noqa: E402
 
 import msg_adapters as adapt  # noqa: E402
-from fowt_hydro_sim.config import load_case, load_platform  # noqa: E402
-from fowt_hydro_sim.model import PlatformModel  # noqa: E402
-from fowt_hydro_sim.waves import repeat_period, synthesize  # noqa: E402
-from ros_helpers import Listener, finish, start  # noqa: E402
+from fowt_hydro_sim.physics.config import load_case, load_platform  # noqa: E402
+from fowt_hydro_sim.physics.model import PlatformModel  # noqa: E402
+from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize  # noqa: E402
+from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
 
 
 def poses(listener: Listener) -> tuple[np.ndarray, np.ndarray]:
@@ -200,7 +200,7 @@ def test_bad_parameters_end_with_one_line(args: dict, message: str):
 
 def _tapered_record(duration_s: float = 600.0, dt_s: float = 0.1) -> tuple[np.ndarray, np.ndarray]:
     """LC5.2-like elevation at the origin: 100 s of calm, 60 s cosine ramps, calm at the end."""
-    from fowt_hydro_sim.config import SeaState
+    from fowt_hydro_sim.physics.config import SeaState
     t = np.arange(0.0, duration_s, dt_s)
     eta = synthesize(SeaState(6.19, 9.0, 4.9, seed=2), 3600.0).elevation(0.0, 0.0, t, 150.0, 9.80665)
     ramp = np.clip(np.minimum(t - 100.0, duration_s - 40.0 - t) / 60.0, 0.0, 1.0)
@@ -212,7 +212,7 @@ def test_wave_topic_gives_the_offline_models_motion():
     kinematics) against the offline model fed the same record by FFT decomposition: surge,
     heave and pitch agree within 1 % of their standard deviation over 150-500 s (measured: 0.16 %,
     0.07 %, 0.02 %)."""
-    from fowt_hydro_sim.waves import from_elevation_record
+    from fowt_hydro_sim.physics.waves.components import from_elevation_record
     t, eta = _tapered_record()
     listener = Listener({"/platform/pose": PoseStamped})
     publisher = listener.publisher(PointStamped, "/waves/elevation")

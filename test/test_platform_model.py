@@ -7,15 +7,16 @@ import math
 
 import numpy as np
 import pytest
-from physics_helpers import hydrodyn_case, read_hydrodyn_out, scaled_drag, uniform_drag, windmoor12
 
-from fowt_hydro_sim.config import SeaState, load_case
-from fowt_hydro_sim.dynamics import LOAD_COMPONENTS
-from fowt_hydro_sim.model import PlatformModel
-from fowt_hydro_sim.waves import WaveComponents, read_comp_file, synthesize, wavenumber
+from fowt_hydro_sim.physics.config import SeaState, load_case, load_platform
+from fowt_hydro_sim.physics.loads import ROW
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.platform_edits import scaled_drag, uniform_drag
+from fowt_hydro_sim.physics.waves.components import WaveComponents, read_comp_file, synthesize, wavenumber
+from fowt_hydro_sim.testing.references import hydrodyn_case, read_hydrodyn_out
 
 RHO, G, DEPTH = 1025.0, 9.80665, 150.0
-HYDRO = [LOAD_COMPONENTS.index(c) for c in ("drag", "inertia", "added_mass", "hydrostatic")]
+HYDRO = [ROW[c] for c in ("drag", "inertia", "added_mass", "hydrostatic")]
 CHANNELS = ("HydroFxi", "HydroFyi", "HydroFzi", "HydroMxi", "HydroMyi", "HydroMzi")
 
 
@@ -39,7 +40,7 @@ def fixed_body_loads(platform, case: str, out_name: str, strip_length_m: float):
 def test_fixed_column_matches_hydrodyn():
     """One windmoor12 column, fixed, in 169 JONSWAP components: OpenFAST HydroDyn's total
     load (inertia, drag, keel end plate, buoyancy). Its README expects ~1e-3 relative RMS."""
-    p = windmoor12()
+    p = load_platform("windmoor12")
     column = dataclasses.replace(uniform_drag(p.members[0], 0.8, 0.8), end_a_m=(0.0, 0.0, -15.5),
                                  end_b_m=(0.0, 0.0, 15.0))
     ours, ref = fixed_body_loads(dataclasses.replace(p, members=(column,)), "cyl_fixed",
@@ -53,7 +54,7 @@ def test_fixed_column_matches_hydrodyn():
 def test_fixed_platform_matches_hydrodyn():
     """The whole windmoor12 hull held fixed in the same waves (columns Cd 0.8, pontoons Cd 2.0
     in both directions, as the reference README says)."""
-    p = windmoor12()
+    p = load_platform("windmoor12")
     members = tuple(uniform_drag(m, 0.8, 0.8) if m.section == "circular" else uniform_drag(m, 2.0, 2.0)
                     for m in p.members)
     ours, ref = fixed_body_loads(dataclasses.replace(p, members=members), "windmoor12_fixed_waves",
@@ -67,7 +68,7 @@ def test_fixed_platform_matches_hydrodyn():
 def test_regular_wave_inertia_force_on_a_fixed_cylinder():
     """Inline force amplitude on a fixed vertical cylinder (Cd = 0) in one regular wave against
     the analytic integral Cm rho pi R^2 a w^2 [sinh(kh) - sinh(k(h - d))] / (k sinh(kh))."""
-    p = windmoor12()
+    p = load_platform("windmoor12")
     column = dataclasses.replace(uniform_drag(p.members[0], 0.0, 0.0), end_a_m=(0.0, 0.0, -15.5),
                                  end_b_m=(0.0, 0.0, 15.0), strip_length_m=0.25)
     period, amplitude = 10.0, 1.5
@@ -76,7 +77,7 @@ def test_regular_wave_inertia_force_on_a_fixed_cylinder():
     model = PlatformModel(dataclasses.replace(p, members=(column,)), waves, dt_s=0.05, wave_table_dt_s=0.05)
     t = np.arange(0.0, period, 0.05)
     still = np.zeros((t.size, 6))
-    fx = model.prescribed_motion_loads(t, still, still, still)[:, LOAD_COMPONENTS.index("inertia"), 0]
+    fx = model.prescribed_motion_loads(t, still, still, still)[:, ROW["inertia"], 0]
     omega = 2 * np.pi / period
     k = wavenumber(omega, DEPTH, G)[0]
     draft, radius = 15.5, 7.5
@@ -89,7 +90,7 @@ def test_regular_wave_inertia_force_on_a_fixed_cylinder():
 def test_hydrostatics_match_the_platform_spec():
     """Displaced volume, centre of buoyancy, waterplane area, C33 and C55 from the spec's
     numbers (platform_windmoor12.md)."""
-    model = PlatformModel(windmoor12())
+    model = PlatformModel(load_platform("windmoor12"))
     h = model.hydrostatics
     assert h.displaced_volume_m3 == pytest.approx(13737.2, abs=0.1)
     assert h.centre_of_buoyancy_m[2] == pytest.approx(-10.06, abs=0.005)
@@ -108,14 +109,14 @@ def test_hydrostatics_match_the_platform_spec():
 def test_still_water_stays_at_rest():
     """No waves, no wrench: the platform stays put for 1000 s (buoyancy = weight, mooring in
     equilibrium)."""
-    result = PlatformModel(windmoor12()).run(1000.0, output_interval_s=1.0)
+    result = PlatformModel(load_platform("windmoor12")).run(1000.0, output_interval_s=1.0)
     assert np.abs(result.motion[:, :3]).max() < 2e-3
     assert np.abs(result.motion[:, 3:]).max() < 1e-5
 
 
 def test_natural_periods_match_the_independent_linear_analysis():
     """Field notes: surge about 97 s, heave about 14.4 s, pitch about 26.9 s."""
-    periods = PlatformModel(windmoor12()).natural_periods_s()
+    periods = PlatformModel(load_platform("windmoor12")).natural_periods_s()
     assert periods[0] == pytest.approx(97.0, rel=0.02)  # surge (and sway)
     assert periods[-1] == pytest.approx(14.4, rel=0.02)  # heave
     assert np.any(np.isclose(periods, 26.9, rtol=0.02))  # pitch (and roll)
@@ -148,13 +149,13 @@ def test_free_decay(dof: int, amplitude: float, duration: float):
     """Free decay in surge, heave and pitch from the mode shape: without drag the period is the
     linear eigen-period (within 2 %) and the amplitude is kept; with drag it decays faster and
     no peak ever exceeds the one before."""
-    no_drag = scaled_drag(windmoor12(), 0.0)
+    no_drag = scaled_drag(load_platform("windmoor12"), 0.0)
     t, x, eigen_period = _decay(no_drag, dof, amplitude, duration)
     assert _crossing_period(t, x) == pytest.approx(eigen_period, rel=0.02)
     undamped = _peaks(x)
     assert np.all(np.abs(undamped / amplitude - 1.0) < 0.03)
 
-    t, x, _ = _decay(windmoor12(), dof, amplitude, duration)
+    t, x, _ = _decay(load_platform("windmoor12"), dof, amplitude, duration)
     damped = _peaks(x)
     assert np.all(np.diff(damped) < 0)
     n = min(len(damped), len(undamped))
@@ -177,7 +178,7 @@ def _prescribed_motion(t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 def test_member_with_swapped_ends_gives_the_same_loads():
     """Reversing every member's end points (and its end plates) changes nothing."""
-    p = windmoor12()
+    p = load_platform("windmoor12")
     swapped = dataclasses.replace(p, members=tuple(
         dataclasses.replace(m, end_a_m=m.end_b_m, end_b_m=m.end_a_m, end_a_plate=m.end_b_plate,
                             end_b_plate=m.end_a_plate) for m in p.members))
@@ -203,11 +204,11 @@ def _euler_of(rotation: np.ndarray) -> np.ndarray:
 def test_platform_rotated_with_the_waves_gives_rotated_loads():
     """Rotating the whole platform (members, mass, mooring) and the wave heading by the same
     angle about z rotates the loads and nothing else."""
-    from fowt_hydro_sim.rigid_body import rotation_matrix
+    from fowt_hydro_sim.frames import rotation_matrix
 
     angle = math.radians(37.0)
     rz = _rz(angle)
-    p = windmoor12()
+    p = load_platform("windmoor12")
 
     def turn(v):
         return tuple(rz @ np.array(v))
@@ -233,15 +234,15 @@ def test_platform_rotated_with_the_waves_gives_rotated_loads():
     b = PlatformModel(turned, turned_waves).prescribed_motion_loads(
         t, motion2, velocity @ rotate6.T, acceleration @ rotate6.T)
     expected = a @ rotate6.T
-    components = [LOAD_COMPONENTS.index(c) for c in ("drag", "inertia", "added_mass", "mooring", "gravity")]
+    components = [ROW[c] for c in ("drag", "inertia", "added_mass", "mooring", "gravity")]
     scale = np.abs(a[:, components]).max(axis=0) + 1.0
     assert np.all(np.abs(b[:, components] - expected[:, components]) <= 1e-6 * scale)
 
 
 def test_stepping_one_dt_at_a_time_equals_a_batch_run_bit_for_bit():
     waves = synthesize(load_case("lc5.3").sea_state, 3600.0)
-    batch = PlatformModel(windmoor12(), waves).run(60.0)
-    stepped = PlatformModel(windmoor12(), waves)
+    batch = PlatformModel(load_platform("windmoor12"), waves).run(60.0)
+    stepped = PlatformModel(load_platform("windmoor12"), waves)
     rows = []
     for _ in range(int(round(60.0 / stepped.dt_s))):
         stepped.step()
@@ -253,9 +254,9 @@ def test_prescribed_motion_replays_a_simulated_run():
     """The loads of a simulated run, recomputed from its own motion in prescribed-motion mode,
     are the same loads (the path the diagnosis uses to replay measured motion)."""
     waves = synthesize(load_case("lc5.3").sea_state, 3600.0)
-    model = PlatformModel(windmoor12(), waves)
+    model = PlatformModel(load_platform("windmoor12"), waves)
     run = model.run(200.0)
-    replay = PlatformModel(windmoor12(), waves).prescribed_motion_loads(run.time_s, run.motion, run.velocity,
+    replay = PlatformModel(load_platform("windmoor12"), waves).prescribed_motion_loads(run.time_s, run.motion, run.velocity,
                                                                         run.acceleration)
     scale = np.abs(run.loads).max(axis=0) + 1.0
     assert np.all(np.abs(replay - run.loads) <= 1e-9 * scale)
@@ -265,14 +266,14 @@ def test_wetted_fraction_makes_loads_continuous_through_the_water_line():
     """Heaving the platform through the still water line in 1 mm steps moves the loads
     smoothly: no jump larger than a small multiple of the typical step change."""
     waves = _irregular_waves()
-    model = PlatformModel(windmoor12(), waves)
+    model = PlatformModel(load_platform("windmoor12"), waves)
     heave = np.arange(-1.2, 1.2, 0.001)
     motion = np.zeros((heave.size, 6))
     motion[:, 2] = heave
     velocity = np.zeros_like(motion)
     velocity[:, 0] = 0.5
     loads = model.prescribed_motion_loads(np.full(heave.size, 12.3), motion, velocity, np.zeros_like(motion))
-    fx = loads[:, LOAD_COMPONENTS.index("drag"), 0] + loads[:, LOAD_COMPONENTS.index("inertia"), 0]
+    fx = loads[:, ROW["drag"], 0] + loads[:, ROW["inertia"], 0]
     steps = np.abs(np.diff(fx))
     assert steps.max() < 5 * np.median(steps) + 1e-6 * np.abs(fx).max()
 
@@ -280,14 +281,14 @@ def test_wetted_fraction_makes_loads_continuous_through_the_water_line():
 def test_external_wrench_frames():
     """A hub thrust held on a pitched platform: world = body force rotated, and the moment
     about the reference point is r_hub x F in world axes."""
-    from fowt_hydro_sim.rigid_body import rotation_matrix
+    from fowt_hydro_sim.frames import rotation_matrix
 
-    model = PlatformModel(windmoor12())
+    model = PlatformModel(load_platform("windmoor12"))
     thrust = np.array([1.5e6, 0.0, 0.0, 0.0, 2e5, 0.0])
     model.set_external_wrench(thrust, frame="hub")
     pose = np.array([0.0, 0.0, 0.0, 0.0, 0.1, 0.0])
     loads = model.prescribed_motion_loads(np.zeros(1), pose[None], np.zeros((1, 6)), np.zeros((1, 6)))
-    external = loads[0, LOAD_COMPONENTS.index("external")]
+    external = loads[0, ROW["external"]]
     r = rotation_matrix(0.0, 0.1, 0.0)
     force = r @ thrust[:3]
     assert np.allclose(external[:3], force)

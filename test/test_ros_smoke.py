@@ -16,8 +16,8 @@ import pytest
 
 try:
     import rclpy
-    from rclpy.executors import SingleThreadedExecutor
     from geometry_msgs.msg import PointStamped
+    from rclpy.executors import SingleThreadedExecutor
     _ROS_IMPORT_ERROR = None
 except ImportError as exc:  # pragma: no cover - depends on the environment
     _ROS_IMPORT_ERROR = exc

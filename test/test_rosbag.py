@@ -23,17 +23,18 @@ from mcap.records import Message
 from mcap_ros2.decoder import DecoderFactory
 from rosbags.highlevel import AnyReader
 
-from fowt_hydro_sim.config import load_case, load_platform
-from fowt_hydro_sim.model import PlatformModel
+from fowt_hydro_sim.physics.config import load_case, load_platform
+from fowt_hydro_sim.physics.loads import COMPONENTS, PUBLISHED
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.waves.feed import run_with_elevation
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.rosbag.writer import BagError, BagWriter
-from fowt_hydro_sim.rosbag.wave_bags import write_wave_bag
-from fowt_hydro_sim.wave_feed import run_with_elevation
+from fowt_hydro_sim.studies.wave_bags import write_wave_bag
+from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing.ros import Listener, finish, start
 from msg_adapters import cdr, topics
-from ros_helpers import REPO, Listener, finish, start
-from rosgraph_msgs.msg import Clock
 
-OUTPUT_TOPICS = [topic for topic, _ in topics.OUTPUTS.values()]
+OUTPUT_TOPICS = [topic for topic, _ in topics.outputs(PUBLISHED).values()]
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess:
@@ -54,6 +55,7 @@ def recorded_run(tmp_path_factory) -> tuple[Path, str]:
     return bag, log
 
 
+@pytest.mark.ros
 def test_a_recorded_run_holds_exactly_the_messages_published(recorded_run):
     bag, log = recorded_run
     counts = {topic: info.message_count for topic, info in Bag(bag).topics.items()}
@@ -62,6 +64,23 @@ def test_a_recorded_run_holds_exactly_the_messages_published(recorded_run):
     assert sum(counts[t] for t in OUTPUT_TOPICS) == published_count(log) == rows * len(OUTPUT_TOPICS)
 
 
+@pytest.mark.ros
+def test_every_load_component_is_published_recorded_and_summed(recorded_run):
+    """The load registry drives the node: each published component has its recorded topic,
+    an unpublished one none, and /platform/loads/total is the sum of the summed components
+    at every sample (the node sums them in the registry's order)."""
+    bag = Bag(recorded_run[0])
+    for component in COMPONENTS:
+        assert (topics.load_topic(component.name) in bag.topics) == component.published, component.name
+    summed = [c.name for c in COMPONENTS if c.summed]
+    assert set(summed) <= set(PUBLISHED)  # the total is checkable from the bag alone
+    _, loads = bag.aligned([topics.load_topic(name) for name in (topics.TOTAL, *summed)])
+    total = loads.pop(topics.load_topic(topics.TOTAL))
+    np.testing.assert_allclose(total, sum(loads.values()), rtol=1e-12, atol=1e-6)
+    assert np.abs(total).max() > 1e6  # buoyancy and waves: a real sum
+
+
+@pytest.mark.ros
 def test_two_independent_readers_read_every_message_and_schema(recorded_run):
     bag, _ = recorded_run
     ours = Bag(bag)
@@ -96,6 +115,7 @@ def test_two_independent_readers_read_every_message_and_schema(recorded_run):
         assert reader.connections[0].ext.offered_qos_profiles[0].depth == 1000
 
 
+@pytest.mark.ros
 def test_the_run_configuration_in_the_bag_reproduces_the_run(recorded_run, tmp_path):
     bag, _ = recorded_run
     config = Bag(bag).config
@@ -142,6 +162,7 @@ def test_a_wave_bag_has_the_sea_states_elevation(wave_bag):
     assert 0.6 * sea.hs_m < 4 * elevation.values[:, 2].std() < 1.4 * sea.hs_m  # 200 s of an 11 m sea
 
 
+@pytest.mark.ros
 def test_bag_wave_source_gives_the_offline_models_motion_and_records_the_same_samples(wave_bag, tmp_path):
     record = tmp_path / "run"
     log = finish(start("node", real_time_factor=0.0, wave_source="bag", wave_bag=str(wave_bag),
@@ -173,6 +194,7 @@ def recording_node(bag: Path, real_time_factor: float, run_s: float) -> subproce
     return process
 
 
+@pytest.mark.ros
 @pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
 def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
     bag = tmp_path / "run"
@@ -186,6 +208,7 @@ def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
         assert sum(1 for _ in reader.messages()) == sum(t.message_count for t in counts.values())
 
 
+@pytest.mark.ros
 def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
     bag = tmp_path / "run"
     process = recording_node(bag, real_time_factor=10.0, run_s=5.0)
@@ -231,6 +254,7 @@ def test_bad_bags_give_a_clear_error(wave_bag, tmp_path):
         assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr, name
 
 
+@pytest.mark.ros
 def test_wrong_topic_types_and_empty_bags_are_named(tmp_path):
     with BagWriter(tmp_path / "wrong") as writer:
         channel = writer.add_topic(topics.POSE, topics.POINT_STAMPED)  # a pose topic of the wrong type
@@ -245,6 +269,7 @@ def test_wrong_topic_types_and_empty_bags_are_named(tmp_path):
     assert "no topic /waves/elevation" in log and "Traceback" not in log
 
 
+@pytest.mark.ros
 def test_an_existing_bag_is_not_overwritten_unless_asked(recorded_run, tmp_path):
     bag, _ = recorded_run
     before = {p.name: p.stat().st_mtime_ns for p in bag.iterdir()}
@@ -279,23 +304,27 @@ def test_the_shipped_sample_bags_hold_their_load_cases(case):
     assert abs(4 * elevation.values[:, 2].std() / sea.hs_m - 1) < 0.15
 
 
+@pytest.mark.ros
 def test_a_wave_bag_played_on_the_topic_is_recorded_again_bit_for_bit(wave_bag, tmp_path):
     """fowt-sim play into the node (wave_source topic, recording): the samples the node
     recorded are the bag's, byte for byte, and in order."""
     record = tmp_path / "run"
+    from rosgraph_msgs.msg import Clock
     listener = Listener({"/clock": Clock})
     node = start("node", real_time_factor=0.0, wave_source="topic", drag_model="constant", record=str(record),
                  wave_timeout_s=60.0)  # as fast as possible, a silent topic soon means still water
     try:
-        assert listener.wait_for(lambda: listener.messages["/clock"], 60.0)  # the node is up
+        try:
+            assert listener.wait_for(lambda: listener.messages["/clock"], 180.0)  # the node is up
+        finally:
+            listener.close()
+        player = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(wave_bag), "--rate", "0",
+                                 "--start-delay", "3"], cwd=REPO, capture_output=True, text=True, timeout=120)
+        assert player.returncode == 0, player.stderr
+        time.sleep(3.0)  # the node takes the last samples
+        node.send_signal(signal.SIGINT)
     finally:
-        listener.close()
-    player = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(wave_bag), "--rate", "0",
-                             "--start-delay", "3"], cwd=REPO, capture_output=True, text=True, timeout=120)
-    assert player.returncode == 0, player.stderr
-    time.sleep(3.0)  # the node takes the last samples
-    node.send_signal(signal.SIGINT)
-    log = finish(node, timeout_s=60)
+        log = finish(node, timeout_s=60)  # the node is never left running
     assert "stepping ended" in log, log
     source = [data for _, _, data in Bag(wave_bag).messages()]
     recorded = [data for _, _, data in Bag(record).messages([topics.ELEVATION])]

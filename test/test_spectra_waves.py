@@ -15,10 +15,17 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.signal import welch
 
-from fowt_hydro_sim.config import ConfigError, SeaState
-from fowt_hydro_sim.spectra import jonswap, pierson_moskowitz, spectrum
-from fowt_hydro_sim.waves import (WaveComponents, from_elevation_record, read_comp_file, repeat_period,
-                                  synthesize, wavenumber, write_comp_file)
+from fowt_hydro_sim.physics.config import ConfigError, SeaState
+from fowt_hydro_sim.physics.waves.components import (
+    WaveComponents,
+    from_elevation_record,
+    read_comp_file,
+    repeat_period,
+    synthesize,
+    wavenumber,
+    write_comp_file,
+)
+from fowt_hydro_sim.physics.waves.spectra import jonswap, pierson_moskowitz, spectrum
 
 G = 9.80665
 SHARED = Path(__file__).resolve().parents[2] / "shared"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fowt_hydro_sim.spectral import BANDS_HZ, band_std, band_stds, psd
+from fowt_hydro_sim.studies.psd import BANDS_HZ, band_std, band_stds, psd
 
 
 @pytest.mark.parametrize("frequency_hz, band", [(0.012, "low_frequency"), (0.1, "wave")])

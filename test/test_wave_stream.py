@@ -14,11 +14,16 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from fowt_hydro_sim.config import SeaState
-from fowt_hydro_sim.kinematics import CHANNELS, point_kinematics
-from fowt_hydro_sim.wave_stream import (DEFAULT_BAND_HZ, DEFAULT_TAPER_HZ, ElevationStream, design_taps,
-                                        transfer_functions)
-from fowt_hydro_sim.waves import WaveComponents, from_elevation_record, synthesize
+from fowt_hydro_sim.physics.config import SeaState
+from fowt_hydro_sim.physics.waves.components import WaveComponents, from_elevation_record, synthesize
+from fowt_hydro_sim.physics.waves.kinematics import CHANNELS, point_kinematics
+from fowt_hydro_sim.physics.waves.stream import (
+    DEFAULT_BAND_HZ,
+    DEFAULT_TAPER_HZ,
+    ElevationStream,
+    design_taps,
+    transfer_functions,
+)
 
 log = logging.getLogger(__name__)
 

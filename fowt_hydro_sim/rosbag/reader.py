@@ -18,11 +18,10 @@ from mcap.exceptions import McapError
 from mcap.reader import make_reader
 from mcap.writer import MCAP0_MAGIC
 
+from fowt_hydro_sim.frames import euler_from_quaternion
+from fowt_hydro_sim.rosbag.writer import METADATA_FILE, RUN_CONFIG_KEY, BagError
 from msg_adapters import topics as contract
 from msg_adapters.cdr import decode_stamped
-
-from ..rigid_body import euler_from_quaternion
-from .writer import METADATA_FILE, RUN_CONFIG_KEY, BagError
 
 RECOVER_HINT = "`fowt-sim recover {path}` rebuilds it from its complete chunks"
 
@@ -126,6 +125,15 @@ class Bag:
     def message_count(self) -> int:
         return sum(t.message_count for t in self.topics.values())
 
+    def summary(self) -> str:
+        """Topics with their types and counts, and the run configuration (``fowt-sim info``)."""
+        lines = [f"bag {self.path}: {self.message_count} messages"]
+        lines += [f"  {topic}  {t.type}  {t.message_count}" for topic, t in sorted(self.topics.items())]
+        if self.config:
+            lines += ["configuration:", *("  " + line for line in yaml.safe_dump(
+                {k: v for k, v in self.config.items() if k != "platform_yaml"}, sort_keys=False).splitlines())]
+        return "\n".join(lines)
+
     def messages(self, topics: list[str] | None = None) -> Iterator[tuple[str, int, bytes]]:
         """(topic, log time [ns], CDR bytes) in log-time order, file by file."""
         for file in self.files:
@@ -137,7 +145,7 @@ class Bag:
         """The topic's type, checked against ``expected`` (default: the contract's)."""
         if topic not in self.topics:
             raise BagError(f"bag {self.path}: no topic {topic} (topics: {', '.join(sorted(self.topics)) or 'none'})")
-        expected = expected or contract.TYPES.get(topic)
+        expected = expected or contract.type_of(topic)
         actual = self.topics[topic].type
         if expected and actual != expected:
             raise BagError(f"bag {self.path}: topic {topic} has type {actual}, expected {expected}")

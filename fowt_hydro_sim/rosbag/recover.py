@@ -13,7 +13,7 @@ from mcap.exceptions import McapError
 from mcap.records import Channel, Message, Metadata, Schema
 from mcap.stream_reader import StreamReader
 
-from .writer import METADATA_FILE, RUN_CONFIG_KEY, BagError, BagWriter
+from fowt_hydro_sim.rosbag.writer import METADATA_FILE, RUN_CONFIG_KEY, BagError, BagWriter
 
 log = logging.getLogger(__name__)
 

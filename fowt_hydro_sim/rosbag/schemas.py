@@ -3,7 +3,7 @@ rosbag2 writes them, so any reader decodes the bag without this package or ROS i
 
 Definitions come from the installed ROS packages (``$AMENT_PREFIX_PATH`` and this Python's
 prefix, ``<prefix>/share/<package>/msg/<Type>.msg``), else from the copies of the contract's
-types packaged in ``data/msg`` (so wave bags are written on a machine without ROS).
+types packaged in ``rosbag/msg`` (so wave bags are written on a machine without ROS).
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ def split_type(type_name: str) -> tuple[str, str]:
 
 def _search_roots() -> list[Path]:
     prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p] + [sys.prefix]
-    return [Path(p) / "share" for p in prefixes] + [Path(str(resources.files("fowt_hydro_sim") / "data" / "msg"))]
+    return [Path(p) / "share" for p in prefixes] + [Path(str(resources.files("fowt_hydro_sim.rosbag") / "msg"))]
 
 
 @lru_cache(maxsize=None)

@@ -1,0 +1,63 @@
+"""``fowt-sim``: the command line. Each subcommand's module parses its options and calls a
+function of the studies, bags or ROS packages that tests and Python users call directly.
+
+Errors in the user's input end the command with one line naming the problem (exit 2),
+never a traceback.
+"""
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+
+from fowt_hydro_sim.cli import analyze, bags, calibrate, diagnose, simulate
+
+# commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')
+ROS_COMMANDS = {
+    "node": "the ROS 2 simulator node: fowt-sim node [--ros-args -p name:=value ... --params-file F]",
+    "controller": "the example thrust controller node: fowt-sim controller [--ros-args ...]",
+    "play": "publish a bag's messages on the ROS graph: fowt-sim play BAG [--rate R] [--clock] ...",
+    "record": "record topics of the ROS graph to a bag: fowt-sim record -o DIR [--topics ...]",
+}
+
+
+def _ros_command(name: str, argv: list[str]) -> int:
+    if name in ("node", "controller") and any(a in ("-h", "--help") for a in argv[:1]):
+        sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n")
+        return 0
+    if name == "node":
+        from fowt_hydro_sim.ros.node import main as run
+        return run(["fowt-sim", *argv])
+    if name == "controller":
+        from fowt_hydro_sim.ros.controller import main as run
+        return run(["fowt-sim", *argv])
+    if name == "play":
+        from fowt_hydro_sim.ros.player import main as play
+        return play(argv)
+    from fowt_hydro_sim.ros.recorder import main as record
+    return record(argv)
+
+
+def parser() -> argparse.ArgumentParser:
+    top = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
+    top.add_argument("-v", "--verbose", action="store_true", help="debug logging")
+    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for module in (simulate, bags, analyze, calibrate, diagnose):
+        module.add_parsers(sub)
+    for name, text in ROS_COMMANDS.items():
+        sub.add_parser(name, help=text.split(": ", 1)[0], add_help=False)
+    return top
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] and argv[0] in ROS_COMMANDS:
+        return _ros_command(argv[0], argv[1:])
+    args = parser().parse_args(argv)
+    logging.basicConfig(level=logging.DEBUG if args.verbose else logging.INFO,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return args.func(args)
+    except ValueError as exc:  # ConfigError, BagError, SettingError...: the user's input
+        sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
+        return 2

@@ -1,0 +1,88 @@
+"""``fowt-sim simulate`` (one offline run) and ``fowt-sim load-cases`` (the paper's load cases
+with both drag models)."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from fowt_hydro_sim.cli import options
+from fowt_hydro_sim.physics.config import RunConfig, load_case, load_platform, load_run_file
+from fowt_hydro_sim.studies import simulate as study
+from fowt_hydro_sim.studies.load_case_study import STUDY_CASES, run_study
+
+RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",
+               "initial_state")
+
+
+def simulate(args: argparse.Namespace) -> int:
+    if args.config:
+        spec = load_run_file(args.config)
+        run, sea, case = spec.run, spec.sea_state, spec.load_case
+        still_water = sea is None
+    else:
+        run = RunConfig(**{k: v for k, v in options.values(args, RunConfig, RUN_OPTIONS).items() if v is not None})
+        still_water = args.still_water
+        sea, case = (None, None) if still_water or args.waves_comp or args.elevation else options.sea_state(args)
+    platform = load_platform(run.platform)
+    if still_water:
+        waves, info = None, {"source": "still water"}
+    elif args.waves_comp:
+        waves, info = study.comp_file_waves(args.waves_comp)
+    elif args.elevation:
+        waves, info = study.elevation_record_waves(args.elevation, tuple(args.elevation_point), args.heading_deg,
+                                                   platform)
+    else:
+        waves, info = study.sea_state_waves(sea, run.duration_s, case)
+    if args.transient < 0:
+        raise ValueError(f"--transient: must not be negative, got {args.transient:g}")
+    summary = study.simulate(run, waves, info, Path(args.output), args.transient, args.overwrite)
+    sys.stdout.write(study.summary_text(summary, Path(args.output)) + "\n")
+    return 0
+
+
+def load_cases(args: argparse.Namespace) -> int:
+    out = Path(args.output)
+    if out.exists() and any(out.iterdir()) and not args.overwrite:
+        raise ValueError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
+    cases = tuple(load_case(c).name for c in args.cases)
+    rows = run_study(load_platform(args.platform), cases, args.duration, args.transient, args.seed, out)
+    sys.stdout.write((out / "band_stds.md").read_text())
+    sys.stdout.write(f"wrote {out / 'band_stds.csv'}, {out / 'band_stds.md'} and {len(cases)} PSD plots "
+                     f"({len(rows)} rows)\n")
+    return 0
+
+
+def add_parsers(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("simulate", help="run the platform model offline and write its time series",
+                       description="Run the platform model offline (no ROS) and write timeseries.csv "
+                                   "and summary.json to the output folder.")
+    p.add_argument("--config", type=Path, help="run file (YAML: platform, load_case or sea_state, run); "
+                                                "replaces the platform, wave and run options")
+    waves = p.add_argument_group("waves (default: load case lc5.3)")
+    options.add_sea_state(waves)
+    waves.add_argument("--waves-comp", type=Path, help="OpenFAST SeaState .Comp file of wave components")
+    waves.add_argument("--elevation", type=Path, help="CSV time_s,elevation_m measured at --elevation-point")
+    waves.add_argument("--elevation-point", type=float, nargs=2, default=(0.0, 0.0), metavar=("X", "Y"),
+                       help="where --elevation was measured, world x y [m] (default 0 0)")
+    waves.add_argument("--still-water", action="store_true", help="no waves")
+    options.add(p, RunConfig, RUN_OPTIONS)
+    p.add_argument("--transient", type=float, default=0.0, help="seconds at the start left out of the "
+                                                                  "summary statistics (start-up; default %(default)s)")
+    p.add_argument("-o", "--output", default="out/simulate", help="output folder (default %(default)s)")
+    p.add_argument("--overwrite", action="store_true", help="replace files in a non-empty output folder")
+    p.set_defaults(func=simulate)
+
+    p = sub.add_parser("load-cases", help="the paper's load cases with both drag models: band STDs and PSDs",
+                       description="Run load cases with the constant and the filtered drag model and write "
+                                   "band_stds.csv, band_stds.md and psd_<case>.png to the output folder.")
+    options.add(p, RunConfig, ("platform",))
+    p.add_argument("--cases", nargs="+", default=list(STUDY_CASES), help="load cases (default: %(default)s)")
+    p.add_argument("--duration", type=float, default=12000.0, help="analysed seconds per run (default %(default)s)")
+    p.add_argument("--transient", type=float, default=600.0,
+                   help="start-up seconds simulated before them (default %(default)s)")
+    p.add_argument("--seed", type=int, default=1, help="random phase seed, the same for both models "
+                                                         "(default %(default)s)")
+    p.add_argument("-o", "--output", default="out/load_cases", help="output folder (default %(default)s)")
+    p.add_argument("--overwrite", action="store_true", help="replace files in a non-empty output folder")
+    p.set_defaults(func=load_cases)

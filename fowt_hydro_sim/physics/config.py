@@ -1,0 +1,605 @@
+"""Platform, sea-state and run configuration: YAML validated into typed dataclasses.
+
+Every reader names the offending field in its error (``ConfigError``), e.g.
+``windmoor12.yaml: members[2].diameter_m: must be a positive number, got -1``. A sea state's
+and a run's fields are settings (``fowt_hydro_sim.settings``): their defaults, meanings and
+ranges are written here once, and the command line and the ROS node derive their options
+and parameters from them.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, setting, validate
+
+DRAG_MODELS = ("constant", "filtered")
+SPECTRA = ("jonswap", "pierson_moskowitz")
+DEFAULT_PLATFORM = "windmoor12"
+FILTER_KINDS = ("lowpass", "highpass", "bandpass", "allpass")
+SECTIONS = ("circular", "rectangular")
+
+
+class ConfigError(ValueError):
+    """A configuration file or value that cannot be used; the message names the field."""
+
+
+class InputError(ValueError):
+    """An input sample or message the simulator refuses (the message says why); the caller
+    logs it and keeps the last good input."""
+
+
+# --------------------------------------------------------------------------- dataclasses
+@dataclass(frozen=True)
+class Environment:
+    water_density_kg_m3: float = 1025.0
+    gravity_m_s2: float = 9.80665
+    water_depth_m: float = 150.0
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    mass_kg: float
+    cog_m: tuple[float, float, float]
+    inertia_about_cog_kg_m2: tuple[tuple[float, ...], ...]  # 3x3, body axes
+
+
+@dataclass(frozen=True)
+class DragCoefficients:
+    """Drag coefficients of one transverse direction.
+
+    ``constant`` is the one Cd over all frequencies (the ``constant`` drag model, and the
+    ``filtered`` model's Cd of a direction without bands). ``bands`` holds one Cd per drag
+    band of the platform (``Platform.drag_bands`` order) for a direction the ``filtered``
+    model splits into bands; None keeps the direction unfiltered.
+    """
+
+    constant: float
+    bands: tuple[float, ...] | None = None
+
+
+@dataclass(frozen=True)
+class DragBand:
+    """A frequency band of the ``filtered`` drag model: an analog Butterworth filter on the
+    transverse relative velocity (seed paper, eqs. 3-5).
+
+    lowpass / highpass: ``order`` and ``cutoff_hz`` (|H| = 1/sqrt 2 there); bandpass: the
+    paper's (w_c/Q) s / (s^2 + (w_c/Q) s + w_c^2) with w_c = 2 pi ``centre_hz`` and ``q``;
+    allpass: H = 1.
+    """
+
+    name: str
+    kind: str
+    order: int = 1
+    cutoff_hz: float | None = None
+    centre_hz: float | None = None
+    q: float | None = None
+
+
+@dataclass(frozen=True)
+class Zone:
+    """Transverse coefficients for strips whose undisplaced centre is below ``below_z_m``.
+
+    Direction 1 is the section's width direction (horizontal for a horizontal member),
+    direction 2 its height direction; a circular section has the same values in both.
+    """
+
+    name: str
+    below_z_m: float
+    ca: tuple[float, float]
+    cd: tuple[DragCoefficients, DragCoefficients]
+
+
+@dataclass(frozen=True)
+class EndPlate:
+    """Axial end terms (HydroDyn's): pressure on the end area, added mass on a hemisphere."""
+
+    ca: float
+    cp: float
+    cd: float
+
+
+@dataclass(frozen=True)
+class Member:
+    name: str
+    section: str
+    end_a_m: tuple[float, float, float]
+    end_b_m: tuple[float, float, float]
+    width_m: float  # diameter for a circular section
+    height_m: float  # diameter for a circular section
+    strip_length_m: float
+    zones: tuple[Zone, ...]
+    end_a_plate: EndPlate | None = None
+    end_b_plate: EndPlate | None = None
+
+
+@dataclass(frozen=True)
+class MooringLine:
+    fairlead_m: tuple[float, float, float]  # body frame
+    anchor_m: tuple[float, float, float]  # world frame
+
+
+@dataclass(frozen=True)
+class Mooring:
+    stiffness_n_m: float
+    pretension_n: float
+    unstretched_length_m: float
+    lines: tuple[MooringLine, ...]
+
+
+@dataclass(frozen=True)
+class Platform:
+    name: str
+    environment: Environment
+    mass: MassProperties
+    hub_point_m: tuple[float, float, float]
+    members: tuple[Member, ...]
+    mooring: Mooring
+    description: str = ""
+    drag_bands: tuple[DragBand, ...] = ()  # the ``filtered`` drag model's bands
+
+
+@dataclass(frozen=True)
+class SeaState:
+    """An irregular long-crested sea. Frequencies outside [f_min_hz, f_max_hz] are left out
+    (defaults: 0.5 and 5 times the peak frequency). The synthesised record repeats every
+    ``repeat_period_s`` (None: the run's duration, at least 3600 s)."""
+
+    hs_m: float = setting(REQUIRED, "significant wave height [m]", ge=0.0, le=30.0)
+    tp_s: float = setting(REQUIRED, "peak period [s]", gt=0.0)
+    gamma: float = setting(1.0, "JONSWAP peak enhancement factor", gt=0.0)
+    spectrum: str = setting("jonswap", "wave spectrum", choices=SPECTRA)
+    heading_deg: float = setting(0.0, "wave direction [deg], 0 = toward +x")
+    seed: int = setting(1, "random phase seed", ge=0)
+    f_min_hz: float | None = setting(None, "lowest wave frequency [Hz] (default half the peak frequency)", gt=0.0)
+    f_max_hz: float | None = setting(None, "highest wave frequency [Hz] (default 5 times the peak frequency)",
+                                     gt=0.0)
+    repeat_period_s: float | None = setting(None, "repeat period of the synthesised sea [s] (default the run's "
+                                                  "duration, at least 3600 s)", gt=0.0)
+
+    def __post_init__(self) -> None:
+        _validate(self, "sea state")
+
+    @property
+    def peak_frequency_hz(self) -> float:
+        return 1.0 / self.tp_s
+
+    @property
+    def band_hz(self) -> tuple[float, float]:
+        fp = self.peak_frequency_hz
+        return (self.f_min_hz or 0.5 * fp, self.f_max_hz or 5.0 * fp)
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    name: str
+    role: str
+    sea_state: SeaState
+
+
+@dataclass(frozen=True)
+class RunConfig:
+    """A simulation run. ``initial_state`` is the 6-DOF offset (m, rad) at t = 0."""
+
+    platform: str = setting(DEFAULT_PLATFORM, "packaged platform name or platform YAML file")
+    drag_model: str = setting("constant", "drag model: constant Cd (the paper's case 1) or filtered, one Cd per "
+                                          "frequency band (case 2; bands in the platform YAML)", choices=DRAG_MODELS)
+    dt_s: float = setting(0.05, "model time step [s]", gt=0.0)
+    duration_s: float = setting(600.0, "simulated time [s]", gt=0.0)
+    output_interval_s: float = setting(0.25, "output sample interval [s]", gt=0.0)
+    initial_state: tuple[float, ...] = setting((0.0,) * 6, "initial offset: surge, sway, heave [m], roll, "
+                                                           "pitch, yaw [rad]")
+    wave_table_dt_s: float | None = setting(None, "kinematics table step [s] (default: chosen for 1e-3 "
+                                                  "interpolation error); must divide the repeat period", gt=0.0)
+
+    def __post_init__(self) -> None:
+        _validate(self, "run")
+
+
+def _validate(instance, where: str) -> None:
+    try:
+        validate(instance, where)
+    except SettingError as exc:
+        raise ConfigError(str(exc)) from None
+
+
+# --------------------------------------------------------------------------- validation
+class _Fields:
+    """Typed access to one YAML mapping, with the path of each field for error messages."""
+
+    def __init__(self, data: Any, path: str, is_root: bool = True):
+        if not isinstance(data, dict):
+            raise ConfigError(f"{path}: expected a mapping, got {type(data).__name__}")
+        self.data, self.path, self.is_root = data, path, is_root
+        self.used: set[str] = set()
+
+    def at(self, name: str) -> str:
+        """The path of a field: ``file.yaml: members[2].diameter_m``."""
+        return f"{self.path}: {name}" if self.is_root else f"{self.path}.{name}"
+
+    def _raw(self, name: str, default: Any) -> Any:
+        self.used.add(name)
+        if name not in self.data or self.data[name] is None:
+            if default is _REQUIRED:
+                raise ConfigError(f"{self.at(name)}: missing")
+            return default
+        return self.data[name]
+
+    def number(self, name: str, default: Any = None, *, positive: bool = False,
+               non_negative: bool = False) -> float:
+        default = _REQUIRED if default is None else default
+        value = self._raw(name, default)
+        if isinstance(value, bool):  # (strings stay: PyYAML reads 1.2e6 as one)
+            raise ConfigError(f"{self.at(name)}: must be a number, got {value!r}")
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            raise ConfigError(f"{self.at(name)}: must be a number, got {value!r}") from None
+        if not math.isfinite(value):
+            raise ConfigError(f"{self.at(name)}: must be finite, got {value}")
+        if positive and value <= 0:
+            raise ConfigError(f"{self.at(name)}: must be a positive number, got {value:g}")
+        if non_negative and value < 0:
+            raise ConfigError(f"{self.at(name)}: must not be negative, got {value:g}")
+        return value
+
+    def optional_number(self, name: str, *, positive: bool = False) -> float | None:
+        if self.data.get(name) is None:
+            self.used.add(name)
+            return None
+        return self.number(name, positive=positive)
+
+    def vector(self, name: str, size: int = 3, default: Any = None) -> tuple[float, ...]:
+        value = self._raw(name, _REQUIRED if default is None else default)
+        if not isinstance(value, (list, tuple)) or len(value) != size:
+            raise ConfigError(f"{self.at(name)}: must be a list of {size} numbers, got {value!r}")
+        try:
+            if any(isinstance(v, bool) for v in value):
+                raise TypeError
+            out = tuple(float(v) for v in value)
+        except (TypeError, ValueError):
+            raise ConfigError(f"{self.at(name)}: must be a list of {size} numbers, got {value!r}") from None
+        if not all(math.isfinite(v) for v in out):
+            raise ConfigError(f"{self.at(name)}: must be finite, got {value!r}")
+        return out
+
+    def text(self, name: str, default: Any = None, choices: tuple[str, ...] | None = None) -> str:
+        value = str(self._raw(name, _REQUIRED if default is None else default))
+        if choices and value not in choices:
+            raise ConfigError(f"{self.at(name)}: must be one of {', '.join(choices)}, got {value!r}")
+        return value
+
+    def setting(self, item) -> Any:
+        """A field that is a setting (``fowt_hydro_sim.settings``), checked against it."""
+        value = self._raw(name := item.name, None if item.default is REQUIRED else item.default)
+        if value is None and item.default is REQUIRED:
+            raise ConfigError(f"{self.at(name)}: missing")
+        try:
+            return check(item, value)
+        except SettingError as exc:
+            raise ConfigError(f"{self.at(name)}: {exc}") from None
+
+    def settings(self, cls: type, skip: tuple[str, ...] = ()) -> dict[str, Any]:
+        """Every setting of the dataclass ``cls`` (but ``skip``) from this mapping."""
+        return {name: self.setting(item) for name, item in described(cls).items() if name not in skip}
+
+    def sub(self, name: str, default: Any = None) -> "_Fields":
+        return _Fields(self._raw(name, _REQUIRED if default is None else default), self.at(name), False)
+
+    def items(self, name: str) -> list["_Fields"]:
+        value = self._raw(name, _REQUIRED)
+        if not isinstance(value, list) or not value:
+            raise ConfigError(f"{self.at(name)}: must be a non-empty list")
+        return [_Fields(v, f"{self.at(name)}[{i}]", False) for i, v in enumerate(value)]
+
+    def finish(self) -> None:
+        unknown = sorted(set(self.data) - self.used)
+        if unknown:
+            raise ConfigError(f"{self.path}: unknown field(s) {', '.join(unknown)}")
+
+
+_REQUIRED = object()
+
+
+def _drag(f: _Fields, name: str, bands: tuple[str, ...]) -> DragCoefficients:
+    """A Cd (one value: unfiltered) or ``{constant: .., <band>: .., ...}`` with a Cd for
+    every drag band or for none."""
+    if not isinstance(f.data.get(name), dict):
+        return DragCoefficients(f.number(name, non_negative=True))
+    d = f.sub(name)
+    given = [b for b in bands if b in d.data]
+    if given and len(given) < len(bands):
+        missing = ", ".join(b for b in bands if b not in given)
+        raise ConfigError(f"{d.path}: a Cd for every drag band or for none; missing {missing}")
+    out = DragCoefficients(d.number("constant", non_negative=True),
+                           tuple(d.number(b, non_negative=True) for b in bands) if given else None)
+    d.finish()
+    return out
+
+
+def _drag_band(f: _Fields) -> DragBand:
+    kind = f.text("filter", choices=FILTER_KINDS)
+    name = f.text("name")
+    if kind in ("lowpass", "highpass"):
+        order = f.number("order", positive=True)
+        if order != int(order):
+            raise ConfigError(f"{f.at('order')}: must be a whole number, got {order:g}")
+        band = DragBand(name, kind, int(order), cutoff_hz=f.number("cutoff_hz", positive=True))
+    elif kind == "bandpass":
+        band = DragBand(name, kind, 1, centre_hz=f.number("centre_hz", positive=True),
+                        q=f.number("q", positive=True))
+    else:
+        band = DragBand(name, kind, 0)
+    f.finish()
+    return band
+
+
+def _drag_bands(f: _Fields) -> tuple[DragBand, ...]:
+    if f.data.get("drag_bands") is None:
+        f.used.add("drag_bands")
+        return ()
+    bands = tuple(_drag_band(b) for b in f.items("drag_bands"))
+    names = [b.name for b in bands]
+    if "constant" in names or len(set(names)) < len(names):
+        raise ConfigError(f"{f.at('drag_bands')}: band names must be unique and not 'constant', got {names}")
+    return bands
+
+
+def _zone(f: _Fields, section: str, is_last: bool, bands: tuple[str, ...]) -> Zone:
+    below = math.inf if is_last and f.data.get("below_z_m") is None else f.number("below_z_m")
+    if section == "circular":
+        ca = f.number("ca", non_negative=True)
+        cd = _drag(f, "cd", bands)
+        zone = Zone(f.text("name", "zone"), below, (ca, ca), (cd, cd))
+    else:
+        zone = Zone(f.text("name", "zone"), below,
+                    (f.number("ca_horizontal", non_negative=True), f.number("ca_vertical", non_negative=True)),
+                    (_drag(f, "cd_horizontal", bands), _drag(f, "cd_vertical", bands)))
+    f.finish()
+    return zone
+
+
+def _end_plate(f: _Fields) -> EndPlate:
+    plate = EndPlate(ca=f.number("ca", non_negative=True), cp=f.number("cp", 1.0),
+                     cd=f.number("cd", non_negative=True))
+    f.finish()
+    return plate
+
+
+def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
+    section = f.text("section", choices=SECTIONS)
+    if section == "circular":
+        width = height = f.number("diameter_m", positive=True)
+    else:
+        width, height = f.number("width_m", positive=True), f.number("height_m", positive=True)
+    a, b = f.vector("end_a_m"), f.vector("end_b_m")
+    if math.dist(a, b) <= 0:
+        raise ConfigError(f"{f.path}: end_a_m and end_b_m are the same point")
+    zones = f.items("zones")
+    member = Member(
+        name=f.text("name"), section=section, end_a_m=a, end_b_m=b, width_m=width, height_m=height,
+        strip_length_m=f.number("strip_length_m", 1.0, positive=True),
+        zones=tuple(_zone(z, section, i == len(zones) - 1, bands) for i, z in enumerate(zones)),
+        end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
+        end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
+    )
+    f.used.update({"end_a_plate", "end_b_plate"})
+    if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
+        raise ConfigError(f"{f.path}.zones: below_z_m must increase from the first zone to the last")
+    f.finish()
+    return member
+
+
+def _inertia(f: _Fields) -> tuple[tuple[float, ...], ...]:
+    ixx, iyy, izz = (f.number(k, positive=True) for k in ("ixx", "iyy", "izz"))
+    ixy, ixz, iyz = (f.number(k, 0.0) for k in ("ixy", "ixz", "iyz"))
+    f.finish()
+    return ((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))
+
+
+def platform_from_dict(data: Any, source: str = "platform") -> Platform:
+    """Validate a parsed platform YAML document."""
+    f = _Fields(data, source)
+    env_f = f.sub("environment", {})
+    env = Environment(env_f.number("water_density_kg_m3", 1025.0, positive=True),
+                      env_f.number("gravity_m_s2", 9.80665, positive=True),
+                      env_f.number("water_depth_m", 150.0, positive=True))
+    env_f.finish()
+    m = f.sub("mass")
+    mass = MassProperties(m.number("mass_kg", positive=True), m.vector("cog_m"),
+                          _inertia(m.sub("inertia_about_cog_kg_m2")))
+    m.finish()
+    mo = f.sub("mooring")
+    lines = []
+    for line in mo.items("lines"):
+        lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
+        line.finish()
+    mooring = Mooring(mo.number("stiffness_n_m", non_negative=True), mo.number("pretension_n", non_negative=True),
+                      mo.number("unstretched_length_m", positive=True), tuple(lines))
+    mo.finish()
+    drag_bands = _drag_bands(f)
+    band_names = tuple(b.name for b in drag_bands)
+    platform = Platform(
+        name=f.text("name"), description=f.text("description", ""), environment=env, mass=mass,
+        hub_point_m=f.vector("hub_point_m"), members=tuple(_member(x, band_names) for x in f.items("members")),
+        mooring=mooring, drag_bands=drag_bands)
+    f.used.update(k for k in f.data if k.endswith(("_zones", "_end")))  # YAML anchors' holders
+    f.finish()
+    return platform
+
+
+def _cd_document(cd: DragCoefficients, bands: tuple[DragBand, ...]) -> float | dict:
+    if cd.bands is None:
+        return cd.constant
+    return {"constant": cd.constant, **{b.name: value for b, value in zip(bands, cd.bands)}}
+
+
+def _zone_document(zone: Zone, section: str, bands: tuple[DragBand, ...]) -> dict:
+    out: dict = {"name": zone.name}
+    if math.isfinite(zone.below_z_m):
+        out["below_z_m"] = zone.below_z_m
+    if section == "circular":
+        return {**out, "ca": zone.ca[0], "cd": _cd_document(zone.cd[0], bands)}
+    return {**out, "ca_horizontal": zone.ca[0], "ca_vertical": zone.ca[1],
+            "cd_horizontal": _cd_document(zone.cd[0], bands), "cd_vertical": _cd_document(zone.cd[1], bands)}
+
+
+def _band_document(band: DragBand) -> dict:
+    out: dict = {"name": band.name, "filter": band.kind}
+    if band.kind in ("lowpass", "highpass"):
+        out.update(order=band.order, cutoff_hz=band.cutoff_hz)
+    elif band.kind == "bandpass":
+        out.update(centre_hz=band.centre_hz, q=band.q)
+    return out
+
+
+def platform_document(platform: Platform) -> dict:
+    """The platform as a YAML document (``platform_from_dict`` reads it back to an equal Platform)."""
+    bands = platform.drag_bands
+    members = []
+    for m in platform.members:
+        size = {"diameter_m": m.width_m} if m.section == "circular" else {"width_m": m.width_m, "height_m": m.height_m}
+        member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
+                  "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
+                  "zones": [_zone_document(z, m.section, bands) for z in m.zones]}
+        for end in ("end_a_plate", "end_b_plate"):
+            plate = getattr(m, end)
+            if plate is not None:
+                member[end] = {"ca": plate.ca, "cp": plate.cp, "cd": plate.cd}
+        members.append(member)
+    (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = platform.mass.inertia_about_cog_kg_m2
+    mooring = platform.mooring
+    return {
+        "name": platform.name, "description": platform.description,
+        "environment": dict(vars(platform.environment)),
+        "mass": {"mass_kg": platform.mass.mass_kg, "cog_m": list(platform.mass.cog_m),
+                 "inertia_about_cog_kg_m2": {"ixx": ixx, "iyy": iyy, "izz": izz, "ixy": ixy, "ixz": ixz, "iyz": iyz}},
+        "hub_point_m": list(platform.hub_point_m),
+        "drag_bands": [_band_document(b) for b in bands] or None,
+        "members": members,
+        "mooring": {"stiffness_n_m": mooring.stiffness_n_m, "pretension_n": mooring.pretension_n,
+                    "unstretched_length_m": mooring.unstretched_length_m,
+                    "lines": [{"fairlead_m": list(line.fairlead_m), "anchor_m": list(line.anchor_m)}
+                              for line in mooring.lines]},
+    }
+
+
+def _read_yaml(path: Path) -> Any:
+    try:
+        return yaml.safe_load(path.read_text())
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f":{mark.line + 1}:{mark.column + 1}" if mark else ""
+        raise ConfigError(f"{path}{where}: not valid YAML ({getattr(exc, 'problem', None) or exc})") from None
+
+
+def packaged_platforms() -> list[str]:
+    folder = resources.files("fowt_hydro_sim.physics") / "data" / "platforms"
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".yaml"))
+
+
+def platform_path(name_or_path: str | Path = "windmoor12") -> Path:
+    """The YAML file of a packaged platform (by name) or a platform file."""
+    path = Path(name_or_path)
+    if not path.suffix and str(name_or_path) in packaged_platforms():
+        return Path(str(resources.files("fowt_hydro_sim.physics") / "data" / "platforms" / f"{name_or_path}.yaml"))
+    if not path.exists():
+        raise ConfigError(f"platform {str(name_or_path)!r}: no such file and not a packaged platform "
+                          f"({', '.join(packaged_platforms())})")
+    return path
+
+
+def load_platform(name_or_path: str | Path = "windmoor12") -> Platform:
+    """A packaged platform by name (``windmoor12``) or a platform YAML file."""
+    path = platform_path(name_or_path)
+    return platform_from_dict(_read_yaml(path), path.name)
+
+
+def load_cases() -> dict[str, LoadCase]:
+    """The paper's load cases by name (``lc5.3`` ...)."""
+    data = _read_yaml(Path(str(resources.files("fowt_hydro_sim.physics") / "data" / "load_cases.yaml")))
+    cases = {}
+    for name, spec in data.items():
+        f = _Fields(spec, name)
+        role = f.text("role")
+        cases[name] = LoadCase(name, role, SeaState(**f.settings(SeaState)))
+        f.finish()
+    return cases
+
+
+def load_case(name: str) -> LoadCase:
+    """A load case by name: ``lc5.3``, ``LC5.3`` or ``5.3``."""
+    cases = load_cases()
+    key = name.lower() if name.lower().startswith("lc") else f"lc{name}"
+    if key not in cases:
+        raise ConfigError(f"load case {name!r}: unknown; known: {', '.join(cases)}")
+    return cases[key]
+
+
+def sea_state_from_dict(data: Any, source: str = "sea_state") -> SeaState:
+    return _sea_state(_Fields(data, source))
+
+
+def _sea_state(f: _Fields) -> SeaState:
+    sea = SeaState(**f.settings(SeaState))
+    f.finish()
+    lo, hi = sea.band_hz
+    if lo >= hi:
+        raise ConfigError(f"{f.path}: f_min_hz ({lo:g}) must be below f_max_hz ({hi:g})")
+    return sea
+
+
+def run_from_dict(data: Any, source: str = "run") -> RunConfig:
+    return _run(_Fields(data, source))
+
+
+def _run(f: _Fields, platform: str = DEFAULT_PLATFORM) -> RunConfig:
+    """The run mapping of a run file (its platform is given beside it, at the top level)."""
+    run = RunConfig(platform=platform, **f.settings(RunConfig, skip=("platform",)))
+    f.finish()
+    return run
+
+
+@dataclass(frozen=True)
+class RunFile:
+    """A run described in one YAML file: waves (load case or sea state) and run (with its
+    platform)."""
+
+    sea_state: SeaState | None  # None: still water
+    run: RunConfig
+    load_case: str | None = None
+
+
+def load_run_file(path: str | Path) -> RunFile:
+    """Read a run file::
+
+        platform: windmoor12          # packaged name or platform YAML path
+        load_case: lc5.3              # or sea_state: {hs_m: .., tp_s: .., gamma: .., seed: ..}
+        seed: 1                       # with load_case
+        run: {dt_s: 0.05, duration_s: 3600, drag_model: constant, output_interval_s: 0.25}
+    """
+    path = Path(path)
+    f = _Fields(_read_yaml(path), path.name)
+    platform = f.setting(described(RunConfig)["platform"])
+    case_name = f.data.get("load_case")
+    f.used.add("load_case")
+    if case_name is not None and f.data.get("sea_state") is not None:
+        raise ConfigError(f"{path.name}: give load_case or sea_state, not both")
+    if case_name is not None:
+        case = load_case(str(case_name))
+        sea = SeaState(case.sea_state.hs_m, case.sea_state.tp_s, case.sea_state.gamma,
+                       seed=f.setting(described(SeaState)["seed"]))
+        case_name = case.name
+    else:
+        sea = _sea_state(f.sub("sea_state")) if f.data.get("sea_state") else None
+        f.used.add("sea_state")
+    run = _run(f.sub("run", {}), platform)
+    f.finish()
+    return RunFile(sea, run, case_name)

@@ -1,0 +1,228 @@
+"""6-DOF equations of motion and the fixed-step ABM4 integrator, compiled with numba.
+
+State y = [x, y, z, roll, pitch, yaw, v_x, v_y, v_z, w_x, w_y, w_z] (world axes, reference
+point), followed by the drag filter states, ordered (filter state, strip, direction); none
+for the constant-Cd model. The right-hand side fills one row of loads per registered load
+component (``physics.loads``): the Morison strip model's rows, then each module
+component's. It solves (M + A(q) + sum M_c) [a; alpha] = F, with the strip added mass A and
+any component's mass M_c on the left-hand side.
+
+``integrate`` advances any number of steps in compiled code; a node stepping one dt at a
+time and a batch run call the same function, so both give the same numbers, bit for bit.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from fowt_hydro_sim.physics.drag_filters import band_velocities, drag_per_length, filter_rates
+from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, N_LOADS, ROW, component_loads
+from fowt_hydro_sim.physics.morison import end_plate_loads, relative_velocities, strip_loads
+from fowt_hydro_sim.physics.rigid_body import (
+    euler_rates,
+    mass_matrix_and_bias,
+    rotate_inertia,
+    rotation_matrix,
+    solve_spd,
+)
+from fowt_hydro_sim.physics.tables import interpolate_table
+
+N_BODY_STATES = 12
+DRAG, INERTIA, ADDED_MASS = ROW["drag"], ROW["inertia"], ROW["added_mass"]  # the strip model's rows
+N_MODULE_COMPONENTS = N_LOADS - FIRST_MODULE_ROW
+
+
+class WaveTable(NamedTuple):
+    values: np.ndarray  # (n_samples, n_points, 7) float32, periodic
+    step_s: float
+
+
+class StripData(NamedTuple):
+    """Strips (physics.strips) with their per-unit-length coefficients and 6x6 added mass."""
+
+    centre: np.ndarray
+    axis: np.ndarray
+    directions: np.ndarray
+    length: np.ndarray
+    inertia: np.ndarray
+    added_mass: np.ndarray
+    added_mass_6x6: np.ndarray
+    drag: np.ndarray  # (n, 2): 0.5 rho Cd b, constant Cd (unfiltered directions)
+    band_drag: np.ndarray  # (n, n_bands, 2): 0.5 rho Cd_b b per drag band; no bands: constant Cd
+    filtered: np.ndarray  # (n, 2) bool: the direction's drag is summed over the bands
+    point: np.ndarray  # (n,) index of the kinematics point
+
+
+class PlateData(NamedTuple):
+    centre: np.ndarray
+    normal: np.ndarray
+    pressure_area: np.ndarray
+    added_mass: np.ndarray
+    drag: np.ndarray
+    added_mass_6x6: np.ndarray
+    point: np.ndarray
+
+
+class FilterBank(NamedTuple):
+    """The drag filter bank (drag_filters.StateSpace), shared by every strip."""
+
+    a: np.ndarray
+    a_nonzero: np.ndarray  # (nnz, 2) int64 entries of A that are not zero
+    b: np.ndarray
+    c: np.ndarray
+    c_nonzero: np.ndarray
+    d: np.ndarray
+
+
+class RigidBody(NamedTuple):
+    mass: float
+    cog: np.ndarray
+    inertia_cog: np.ndarray
+
+
+class KernelData(NamedTuple):
+    """Everything the compiled right-hand side reads."""
+
+    waves: WaveTable
+    strips: StripData
+    plates: PlateData
+    filters: FilterBank
+    body: RigidBody
+    component_params: tuple  # (params, ...) of the module components, registry order
+    component_tables: tuple  # (table, ...)
+
+
+@njit(cache=True)
+def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, masses: np.ndarray,
+                  filter_rates_out: np.ndarray) -> np.ndarray:
+    """Fill ``loads`` (N_LOADS, 6; world axes, about the reference point) at state y and time
+    t, with only the centripetal part in the added-mass row, the module components' masses
+    (N_MODULE_COMPONENTS, 6, 6) and the drag filter states' rates; return the strips' 6x6
+    added mass (world axes) that multiplies the body acceleration."""
+    position, angles = y[0:3], y[3:6]
+    velocity, omega = y[6:9], y[9:12]
+    rotation = rotation_matrix(angles[0], angles[1], angles[2])
+    kinematics = interpolate_table(d.waves.values, d.waves.step_s, t)
+    s, plates, bank = d.strips, d.plates, d.filters
+
+    body = np.zeros((3, 6))  # drag, inertia, centripetal added mass, body axes
+    added_mass_body = np.zeros((6, 6))
+    n_strips = s.length.size
+    wet, v_rel, a_fluid = np.empty(n_strips), np.empty((n_strips, 2)), np.empty((n_strips, 2))
+    relative_velocities(rotation, position, velocity, omega, kinematics, s.centre, s.axis, s.directions,
+                        s.length, s.point, wet, v_rel, a_fluid)
+    filter_states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * n_strips))
+    v_flat = v_rel.reshape(2 * n_strips)
+    v_band = np.empty((bank.d.size, 2 * n_strips))
+    band_velocities(filter_states, v_flat, bank.c, bank.c_nonzero, bank.d, v_band)
+    filter_rates(filter_states, v_flat, bank.a, bank.a_nonzero, bank.b, filter_rates_out.reshape(filter_states.shape))
+    drag = np.empty((n_strips, 2))
+    drag_per_length(v_rel, v_band, s.band_drag, s.drag, s.filtered, drag)
+    strip_loads(rotation, omega, wet, a_fluid, drag, s.centre, s.directions, s.length, s.inertia, s.added_mass,
+                s.added_mass_6x6, body[0], body[1], body[2], added_mass_body)
+    end_plate_loads(rotation, position, velocity, omega, kinematics, plates.centre, plates.normal,
+                    plates.pressure_area, plates.added_mass, plates.drag, plates.added_mass_6x6, plates.point,
+                    body[0], body[1], body[2], added_mass_body)
+    for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
+        loads[row, 0:3] = rotation @ body[c, 0:3]
+        loads[row, 3:6] = rotation @ body[c, 3:6]
+    component_loads(t, y, rotation, d.component_params, d.component_tables, loads, masses)
+    added_mass = np.empty((6, 6))
+    for r in range(0, 6, 3):
+        for c in range(0, 6, 3):
+            added_mass[r:r + 3, c:c + 3] = rotate_inertia(rotation, added_mass_body[r:r + 3, c:c + 3])
+    return added_mass
+
+
+@njit(cache=True)
+def react(loads: np.ndarray, added_mass: np.ndarray, masses: np.ndarray, acceleration: np.ndarray) -> None:
+    """Each left-hand-side mass's reaction -M a into its row."""
+    loads[ADDED_MASS] -= added_mass @ acceleration
+    for k in range(masses.shape[0]):
+        loads[FIRST_MODULE_ROW + k] -= masses[k] @ acceleration
+
+
+@njit(cache=True)
+def derivative(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, out: np.ndarray) -> None:
+    """Write dy/dt at time t to ``out`` (entries 6-12 are the accelerations); fill ``loads``,
+    whose rows then include the reactions -M a of the masses on the left-hand side."""
+    masses = np.empty((N_MODULE_COMPONENTS, 6, 6))
+    added_mass = applied_loads(t, y, d, loads, masses, out[N_BODY_STATES:])
+    rotation = rotation_matrix(y[3], y[4], y[5])
+    mass6, bias = mass_matrix_and_bias(d.body.mass, d.body.cog, d.body.inertia_cog, rotation, y[9:12])
+    total = -bias
+    for c in range(N_LOADS):
+        total += loads[c]
+    lhs = mass6 + added_mass
+    for k in range(N_MODULE_COMPONENTS):
+        lhs += masses[k]
+    acceleration = solve_spd(lhs, total)
+    react(loads, added_mass, masses, acceleration)
+    out[0:3] = y[6:9]
+    out[3:6] = euler_rates(y[3], y[4], y[5], y[9:12])
+    out[6:12] = acceleration
+
+
+@njit(cache=True)
+def prescribed_motion_loads(times: np.ndarray, states: np.ndarray, accelerations: np.ndarray,
+                            d: KernelData, out_loads: np.ndarray) -> None:
+    """Loads for a given motion (HydroDyn driver mode): states (n, 12), accelerations (n, 6);
+    for a model without drag filter states."""
+    no_filter_states = np.empty(0)
+    masses = np.empty((N_MODULE_COMPONENTS, 6, 6))
+    for n in range(times.size):
+        added_mass = applied_loads(times[n], states[n], d, out_loads[n], masses, no_filter_states)
+        react(out_loads[n], added_mass, masses, accelerations[n])
+
+
+@njit(cache=True)
+def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, loads: np.ndarray) -> None:
+    k2, k3, k4 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
+    derivative(t + 0.5 * dt, y + 0.5 * dt * k1, d, loads, k2)
+    derivative(t + 0.5 * dt, y + 0.5 * dt * k2, d, loads, k3)
+    derivative(t + dt, y + dt * k3, d, loads, k4)
+    y += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+
+
+@njit(cache=True, nogil=True)  # a node publishes the last batch while the next one runs
+def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_every: int,
+              d: KernelData, history: np.ndarray, newest: np.ndarray, out_t: np.ndarray,
+              out_y: np.ndarray, out_acceleration: np.ndarray, out_loads: np.ndarray) -> int:
+    """Advance ``n_steps`` steps of the 4th-order Adams-Bashforth-Moulton predictor-corrector
+    (PECE, as OpenFAST's ElastoDyn), started with RK4 until four derivatives are known.
+
+    y is updated in place. ``history`` (4, len(y)) is a ring of dy/dt at the last four steps:
+    row ``newest[0]`` is the latest, the rows before it (cyclically) the older ones; rows
+    not yet filled are marked by NaN. Time is counted in whole steps (t = step dt), so
+    stepping one at a time and in a batch give the same numbers. The body state,
+    accelerations and loads at every ``record_every``-th step end are written to the
+    outputs; returns the number written.
+    """
+    loads = np.zeros((N_LOADS, 6))
+    predicted, fp = np.empty_like(y), np.empty_like(y)
+    h = dt / 24.0
+    written = 0
+    for n in range(n_steps):
+        t = (first_step + n) * dt
+        t_next = (first_step + n + 1) * dt
+        i0 = newest[0]
+        f0, f1, f2, f3 = history[i0], history[(i0 + 3) % 4], history[(i0 + 2) % 4], history[(i0 + 1) % 4]
+        if np.isnan(f3[0]):
+            _rk4(t, dt, y, f0, d, loads)
+        else:
+            for m in range(y.size):  # (loops: no temporaries over the filter states)
+                predicted[m] = y[m] + h * (55.0 * f0[m] - 59.0 * f1[m] + 37.0 * f2[m] - 9.0 * f3[m])
+            derivative(t_next, predicted, d, loads, fp)
+            for m in range(y.size):
+                y[m] += h * (9.0 * fp[m] + 19.0 * f0[m] - 5.0 * f1[m] + f2[m])
+        newest[0] = (i0 + 1) % 4  # the oldest row takes the new derivative
+        derivative(t_next, y, d, loads, history[newest[0]])
+        if (n + 1) % record_every == 0:
+            out_t[written] = t_next
+            out_y[written] = y[:N_BODY_STATES]
+            out_acceleration[written] = history[newest[0], 6:12]
+            out_loads[written] = loads
+            written += 1
+    return written

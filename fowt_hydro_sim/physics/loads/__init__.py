@@ -1,0 +1,106 @@
+"""The platform's load components: one registry naming every row of the loads the model
+computes (world axes, about the reference point), in row order.
+
+Each entry says whether the component is part of the contract's ``total`` and whether it
+has a topic of its own (``/platform/loads/NAME``); the compiled kernel, the model's
+results, the node's publishers and recording, and the offline outputs all read this table.
+
+The Morison strip model (``physics.morison``) fills the first rows itself. Every other
+component is a module with
+
+- ``parameters(inputs: ComponentInputs) -> (params, table)``: its data as one float array
+  and one 2-D float table (periodic samples, if it has any), built once per model;
+- ``wrench(t, y, rotation, params, table, out, mass)``: compiled (numba), adds its wrench
+  at state y and time t to ``out`` (6,) and any mass it puts on the left-hand side of the
+  equations of motion to ``mass`` (6, 6); its row then also holds -mass a.
+
+Adding a component is one such module and one ``LoadComponent`` line below.
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+from types import ModuleType
+from typing import NamedTuple
+
+import numpy as np
+from numba import literal_unroll, njit
+from numba.core.errors import NumbaExperimentalFeatureWarning
+
+from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.physics.loads import extension, external, gravity, hydrostatic, mooring
+from fowt_hydro_sim.physics.loads.extension import Extension
+from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics
+from fowt_hydro_sim.physics.strips import Discretisation
+
+# the kernel calls the components through a tuple of compiled functions (literal_unroll)
+warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
+
+
+@dataclass(frozen=True)
+class LoadComponent:
+    name: str
+    summary: str
+    summed: bool  # part of the contract's total (/platform/loads/total)
+    published: bool  # a topic of its own, /platform/loads/NAME
+    module: ModuleType | None = None  # None: a row of the Morison strip model
+
+
+COMPONENTS = (
+    LoadComponent("drag", "Morison drag on the relative velocity (constant or band-filtered Cd)", True, True),
+    LoadComponent("inertia", "Froude-Krylov and added-mass force from the fluid acceleration", True, True),
+    LoadComponent("added_mass", "strip added mass on the body acceleration (-A a) and its centripetal part",
+                  False, True),
+    LoadComponent("hydrostatic", "buoyancy and hydrostatic restoring", True, True, hydrostatic),
+    LoadComponent("mooring", "mooring lines", True, True, mooring),
+    LoadComponent("gravity", "weight at the centre of gravity", False, True, gravity),
+    LoadComponent("external", "external wrench (controller, rotor)", True, True, external),
+    LoadComponent("extension", "loads beyond the Morison model (the gap diagnosis's effects)", False, False,
+                  extension),
+)
+
+NAMES = tuple(c.name for c in COMPONENTS)
+N_LOADS = len(COMPONENTS)
+ROW = {name: row for row, name in enumerate(NAMES)}
+SUMMED = tuple(c.name for c in COMPONENTS if c.summed)
+PUBLISHED = tuple(c.name for c in COMPONENTS if c.published)
+MODULE_COMPONENTS = tuple(c for c in COMPONENTS if c.module is not None)
+FIRST_MODULE_ROW = ROW[MODULE_COMPONENTS[0].name]
+if any(c.module is None for c in COMPONENTS[FIRST_MODULE_ROW:]):
+    raise ImportError("load registry: the Morison strip model's rows must come before the module components")
+_WRENCHES = tuple(c.module.wrench for c in MODULE_COMPONENTS)
+
+
+class ComponentInputs(NamedTuple):
+    """What the components' ``parameters`` read."""
+
+    platform: Platform
+    geometry: Discretisation
+    hydrostatics: Hydrostatics
+    extension: Extension
+
+
+def component_data(inputs: ComponentInputs) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
+    """Every module component's (params, table), in registry order, as the kernel takes them."""
+    data = [c.module.parameters(inputs) for c in MODULE_COMPONENTS]
+    return (tuple(np.ascontiguousarray(p, dtype=float) for p, _ in data),
+            tuple(np.ascontiguousarray(np.atleast_2d(t), dtype=float) for _, t in data))
+
+
+def params_of(name: str, params: tuple[np.ndarray, ...]) -> np.ndarray:
+    """The params array of the module component ``name`` (mutable: e.g. the external wrench)."""
+    return params[ROW[name] - FIRST_MODULE_ROW]
+
+
+@njit(cache=True)
+def component_loads(t: float, y: np.ndarray, rotation: np.ndarray, params: tuple, tables: tuple,
+                    loads: np.ndarray, masses: np.ndarray) -> None:
+    """Each module component's wrench into its row of ``loads`` (set, not added) and its
+    left-hand-side mass into ``masses[k]`` (k counting module components)."""
+    k = 0
+    for wrench in literal_unroll(_WRENCHES):
+        row = FIRST_MODULE_ROW + k
+        loads[row, :] = 0.0
+        masses[k, :, :] = 0.0
+        wrench(t, y, rotation, params[k], tables[k], loads[row], masses[k])
+        k += 1

@@ -1,0 +1,167 @@
+"""Strip-theory Morison loads in the relative form (HydroDyn's conventions; see strips.py).
+
+Work is done in body axes, where the strip geometry is constant: fluid kinematics are
+rotated in, loads are summed about the reference point and rotated out once. The added
+mass acts on the body acceleration and is returned as a 6x6 matrix for the left-hand side;
+only its velocity-dependent (centripetal) part is a force here.
+
+A strip's loads act at its centre, scaled by its wetted fraction: the part of its
+displaced length below the still water line, continuous as the strip crosses it.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from fowt_hydro_sim.physics.rigid_body import point_jacobian
+from fowt_hydro_sim.physics.strips import Discretisation
+
+
+@njit(cache=True)
+def wetted_fraction(z_centre_m: float, axis_z: float, length_m: float) -> float:
+    half = 0.5 * length_m * abs(axis_z)
+    if half < 1e-9:
+        return 1.0 if z_centre_m < 0.0 else 0.0
+    return min(1.0, max(0.0, (half - z_centre_m) / (2.0 * half)))
+
+
+@njit(cache=True, inline="always")
+def _to_body(rotation: np.ndarray, x: float, y: float, z: float) -> tuple[float, float, float]:
+    """R^T [x, y, z]: world axes to body axes."""
+    return (rotation[0, 0] * x + rotation[1, 0] * y + rotation[2, 0] * z,
+            rotation[0, 1] * x + rotation[1, 1] * y + rotation[2, 1] * z,
+            rotation[0, 2] * x + rotation[1, 2] * y + rotation[2, 2] * z)
+
+
+@njit(cache=True, inline="always")
+def _cross(a: tuple, b: tuple) -> tuple[float, float, float]:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+@njit(cache=True, inline="always")
+def _add_wrench(out: np.ndarray, point: np.ndarray, f0: float, f1: float, f2: float) -> None:
+    out[0] += f0
+    out[1] += f1
+    out[2] += f2
+    out[3] += point[1] * f2 - point[2] * f1
+    out[4] += point[2] * f0 - point[0] * f2
+    out[5] += point[0] * f1 - point[1] * f0
+
+
+@njit(cache=True, inline="always")
+def _add_scaled(out: np.ndarray, scale: float, matrix: np.ndarray) -> None:
+    for r in range(6):
+        for c in range(6):
+            out[r, c] += scale * matrix[r, c]
+
+
+@njit(cache=True)
+def relative_velocities(rotation: np.ndarray, position: np.ndarray, velocity: np.ndarray,
+                        omega: np.ndarray, kinematics: np.ndarray, centre: np.ndarray,
+                        axis: np.ndarray, directions: np.ndarray, length: np.ndarray,
+                        kinematics_point: np.ndarray, wet: np.ndarray, v_rel: np.ndarray,
+                        a_fluid: np.ndarray) -> None:
+    """Per strip: wetted fraction, transverse relative velocity (d1, d2) and transverse fluid
+    acceleration (d1, d2), written to ``wet``, ``v_rel`` and ``a_fluid``: the inputs of the
+    drag and inertia terms. Dry strips get them too (with the kinematics at the water line),
+    so that drag filters see a continuous input."""
+    v_body = _to_body(rotation, velocity[0], velocity[1], velocity[2])
+    w_body = _to_body(rotation, omega[0], omega[1], omega[2])
+    for i in range(centre.shape[0]):
+        c = centre[i]
+        z = position[2] + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2]
+        axis_z = rotation[2, 0] * axis[i, 0] + rotation[2, 1] * axis[i, 1] + rotation[2, 2] * axis[i, 2]
+        wet[i] = wetted_fraction(z, axis_z, length[i])
+        p = kinematics_point[i]
+        u = _to_body(rotation, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+        a = _to_body(rotation, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+        spin = _cross(w_body, (c[0], c[1], c[2]))
+        vr0 = u[0] - v_body[0] - spin[0]
+        vr1 = u[1] - v_body[1] - spin[1]
+        vr2 = u[2] - v_body[2] - spin[2]
+        for k in range(2):
+            d = directions[i, k]
+            v_rel[i, k] = vr0 * d[0] + vr1 * d[1] + vr2 * d[2]
+            a_fluid[i, k] = a[0] * d[0] + a[1] * d[1] + a[2] * d[2]
+
+
+@njit(cache=True)
+def strip_loads(rotation: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: np.ndarray,
+                drag_per_length: np.ndarray, centre: np.ndarray,
+                directions: np.ndarray, length: np.ndarray, inertia: np.ndarray,
+                added_mass: np.ndarray, added_mass_6x6: np.ndarray,
+                out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
+                out_added_mass: np.ndarray) -> None:
+    """Add the strips' drag, fluid-inertia and centripetal added-mass wrenches (body axes,
+    about the reference point) and their 6x6 added mass (body axes) to the outputs.
+
+    ``drag_per_length`` (n, 2) is the transverse drag per unit wetted length of the drag
+    model (drag_filters.drag_per_length).
+    """
+    w_body = _to_body(rotation, omega[0], omega[1], omega[2])
+    for i in range(centre.shape[0]):
+        if wet[i] == 0.0:
+            continue
+        c = centre[i]
+        wet_length = wet[i] * length[i]
+        centripetal = _cross(w_body, _cross(w_body, (c[0], c[1], c[2])))
+        for k in range(2):
+            d = directions[i, k]
+            drag = drag_per_length[i, k] * wet_length
+            fluid = inertia[i, k] * a_fluid[i, k] * wet_length
+            spin = -added_mass[i, k] * wet_length * (
+                centripetal[0] * d[0] + centripetal[1] * d[1] + centripetal[2] * d[2])
+            _add_wrench(out_drag, c, drag * d[0], drag * d[1], drag * d[2])
+            _add_wrench(out_inertia, c, fluid * d[0], fluid * d[1], fluid * d[2])
+            _add_wrench(out_centripetal, c, spin * d[0], spin * d[1], spin * d[2])
+        _add_scaled(out_added_mass, wet_length, added_mass_6x6[i])
+
+
+@njit(cache=True)
+def end_plate_loads(rotation: np.ndarray, position: np.ndarray, velocity: np.ndarray,
+                    omega: np.ndarray, kinematics: np.ndarray, centre: np.ndarray,
+                    normal: np.ndarray, pressure_area: np.ndarray, added_mass: np.ndarray,
+                    drag: np.ndarray, added_mass_6x6: np.ndarray, kinematics_point: np.ndarray,
+                    out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
+                    out_added_mass: np.ndarray) -> None:
+    """Axial end-plate terms: dynamic pressure on the end area, added mass and scattering on
+    a hemisphere, drag 0.25 rho Cd A |w| w; only for submerged ends."""
+    v_body = _to_body(rotation, velocity[0], velocity[1], velocity[2])
+    w_body = _to_body(rotation, omega[0], omega[1], omega[2])
+    for i in range(centre.shape[0]):
+        c, n = centre[i], normal[i]
+        if position[2] + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2] >= 0.0:
+            continue
+        p = kinematics_point[i]
+        u = _to_body(rotation, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+        a = _to_body(rotation, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+        point = (c[0], c[1], c[2])
+        spin = _cross(w_body, point)
+        centripetal = _cross(w_body, spin)
+        w_rel = ((u[0] - v_body[0] - spin[0]) * n[0] + (u[1] - v_body[1] - spin[1]) * n[1]
+                 + (u[2] - v_body[2] - spin[2]) * n[2])
+        a_n = a[0] * n[0] + a[1] * n[1] + a[2] * n[2]
+        c_n = centripetal[0] * n[0] + centripetal[1] * n[1] + centripetal[2] * n[2]
+        f_drag = drag[i] * abs(w_rel) * w_rel
+        f_fluid = pressure_area[i] * kinematics[p, 6] + added_mass[i] * a_n
+        f_spin = -added_mass[i] * c_n
+        _add_wrench(out_drag, c, f_drag * n[0], f_drag * n[1], f_drag * n[2])
+        _add_wrench(out_inertia, c, f_fluid * n[0], f_fluid * n[1], f_fluid * n[2])
+        _add_wrench(out_centripetal, c, f_spin * n[0], f_spin * n[1], f_spin * n[2])
+        _add_scaled(out_added_mass, 1.0, added_mass_6x6[i])
+
+
+def added_mass_matrices(geometry: Discretisation) -> tuple[np.ndarray, np.ndarray]:
+    """Body-axes 6x6 added mass about the reference point of each strip per unit wetted
+    length, and of each end plate: J^T A J with A the 3x3 added mass at the point."""
+    s, plates = geometry.strips, geometry.plates
+    strip_6x6 = np.empty((len(s.length_m), 6, 6))
+    for i in range(len(s.length_m)):
+        a3 = sum(s.added_mass_kg_m[i, k] * np.outer(s.directions[i, k], s.directions[i, k]) for k in range(2))
+        jac = point_jacobian(s.centre_m[i])
+        strip_6x6[i] = jac.T @ a3 @ jac
+    plate_6x6 = np.empty((len(plates.added_mass_kg), 6, 6))
+    for i in range(len(plates.added_mass_kg)):
+        jac = point_jacobian(plates.centre_m[i])
+        plate_6x6[i] = jac.T @ (plates.added_mass_kg[i] * np.outer(plates.normal[i], plates.normal[i])) @ jac
+    return strip_6x6, plate_6x6

@@ -1,0 +1,150 @@
+"""Discretise the platform's members into Morison strips and end plates (body frame).
+
+Each member is cut at its zone boundaries and at the still water line, then into equal
+strips no longer than ``strip_length_m``. A strip carries its per-unit-length coefficients
+in its two transverse directions: d1 (the section's width direction, horizontal for a
+horizontal member) and d2 = axis x d1. Loads (HydroDyn's conventions, platform spec):
+
+* fluid inertia   rho (A + Ca_k A_k) a_k      (Froude-Krylov + scattering, Cp = 1)
+* added mass      rho Ca_k A_k                 on the body acceleration
+* drag            0.5 rho Cd_k b_k |v_perp| v_k   (per band for the filtered model: drag_filters.py)
+
+with A the section area, A_k the added-mass reference area (pi D^2/4; pi h^2/4 for flow
+along the width of a rectangle, pi w^2/4 along its height) and b_k the projected width
+(D; h for flow along the width, w along the height).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fowt_hydro_sim.physics.config import ConfigError, Member, Platform
+
+
+@dataclass(frozen=True)
+class Strips:
+    centre_m: np.ndarray  # (n, 3) body frame, relative to the reference point
+    axis: np.ndarray  # (n, 3) unit vector from end a to end b
+    directions: np.ndarray  # (n, 2, 3) transverse unit vectors d1, d2
+    length_m: np.ndarray  # (n,)
+    area_m2: np.ndarray  # (n,) section area
+    inertia_kg_m: np.ndarray  # (n, 2) fluid-inertia coefficient per unit length
+    added_mass_kg_m: np.ndarray  # (n, 2)
+    drag_kg_m2: np.ndarray  # (n, 2): 0.5 rho Cd b with the constant Cd, per direction
+    band_drag_kg_m2: np.ndarray  # (n, n_bands, 2): 0.5 rho Cd b per drag band (zero if unfiltered)
+    filtered: np.ndarray  # (n, 2) bool: the direction has band Cds
+    member: np.ndarray  # (n,) index of the member
+    zone: tuple[str, ...]  # zone name of each strip
+    kinematics_point: np.ndarray  # (n,) index into Discretisation.points_m
+
+
+@dataclass(frozen=True)
+class EndPlates:
+    centre_m: np.ndarray  # (m, 3)
+    normal: np.ndarray  # (m, 3) unit vector from the end into the member
+    pressure_area_m2: np.ndarray  # (m,) Cp A
+    added_mass_kg: np.ndarray  # (m,) rho Ca (2/3) pi R^3
+    drag_kg_m: np.ndarray  # (m,) 0.25 rho Cd A (HydroDyn's factor)
+    kinematics_point: np.ndarray  # (m,)
+
+
+@dataclass(frozen=True)
+class Discretisation:
+    strips: Strips
+    plates: EndPlates
+    points_m: np.ndarray  # (p, 3) undisplaced kinematics points, z <= 0
+
+
+def _transverse_directions(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    d1 = np.cross([0.0, 0.0, 1.0], axis)
+    if np.linalg.norm(d1) < 1e-9:  # a vertical member: width along x
+        d1 = np.array([1.0, 0.0, 0.0])
+    d1 /= np.linalg.norm(d1)
+    return d1, np.cross(axis, d1)
+
+
+def _cuts(member: Member) -> np.ndarray:
+    """Fractions along the member (0 at end a, 1 at end b) where strips must end."""
+    a, b = np.array(member.end_a_m), np.array(member.end_b_m)
+    levels = [0.0] + [z.below_z_m for z in member.zones if math.isfinite(z.below_z_m)]
+    cuts = [0.0, 1.0]
+    if abs(b[2] - a[2]) > 1e-12:
+        cuts += [(lv - a[2]) / (b[2] - a[2]) for lv in levels]
+    return np.unique(np.clip(cuts, 0.0, 1.0))
+
+
+def _section(member: Member) -> tuple[float, tuple[float, float], tuple[float, float]]:
+    """Section area, added-mass reference areas and projected widths per direction."""
+    w, h = member.width_m, member.height_m
+    if member.section == "circular":
+        area = math.pi * w**2 / 4
+        return area, (area, area), (w, w)
+    return w * h, (math.pi * h**2 / 4, math.pi * w**2 / 4), (h, w)
+
+
+def discretise(platform: Platform) -> Discretisation:
+    rho = platform.environment.water_density_kg_m3
+    n_bands = len(platform.drag_bands)
+    rows: dict[str, list] = {k: [] for k in ("centre", "axis", "dirs", "length", "area", "inertia",
+                                               "added", "drag", "band_drag", "filtered", "member", "zone")}
+    plates: dict[str, list] = {k: [] for k in ("centre", "normal", "pressure", "added", "drag")}
+    for index, member in enumerate(platform.members):
+        a, b = np.array(member.end_a_m), np.array(member.end_b_m)
+        length = float(np.linalg.norm(b - a))
+        axis = (b - a) / length
+        d1, d2 = _transverse_directions(axis)
+        area, am_area, width = _section(member)
+        cuts = _cuts(member)
+        for s0, s1 in zip(cuts[:-1], cuts[1:]):
+            n = max(1, math.ceil((s1 - s0) * length / member.strip_length_m - 1e-9))
+            for j in range(n):
+                mid = s0 + (j + 0.5) * (s1 - s0) / n
+                centre = a + mid * (b - a)
+                zone = next(z for z in member.zones if centre[2] < z.below_z_m or z is member.zones[-1])
+                rows["centre"].append(centre)
+                rows["axis"].append(axis)
+                rows["dirs"].append([d1, d2])
+                rows["length"].append((s1 - s0) * length / n)
+                rows["area"].append(area)
+                rows["inertia"].append([rho * (area + zone.ca[k] * am_area[k]) for k in range(2)])
+                rows["added"].append([rho * zone.ca[k] * am_area[k] for k in range(2)])
+                rows["drag"].append([0.5 * rho * zone.cd[k].constant * width[k] for k in range(2)])
+                rows["band_drag"].append([[0.5 * rho * (zone.cd[k].bands or (0.0,) * n_bands)[b] * width[k]
+                                           for k in range(2)] for b in range(n_bands)])
+                rows["filtered"].append([zone.cd[k].bands is not None for k in range(2)])
+                rows["member"].append(index)
+                rows["zone"].append(zone.name)
+        for plate, end, normal in ((member.end_a_plate, a, axis), (member.end_b_plate, b, -axis)):
+            if plate is None:
+                continue
+            if member.section != "circular":
+                raise ConfigError(f"member {member.name}: end plates are supported on circular sections only")
+            radius = member.width_m / 2
+            plates["centre"].append(end)
+            plates["normal"].append(normal)
+            plates["pressure"].append(plate.cp * math.pi * radius**2)
+            plates["added"].append(rho * plate.ca * 2.0 / 3.0 * math.pi * radius**3)
+            plates["drag"].append(0.25 * rho * plate.cd * math.pi * radius**2)
+
+    strip_centres = np.array(rows["centre"])
+    plate_centres = np.array(plates["centre"]).reshape(-1, 3)
+    undisplaced = np.round(np.vstack([strip_centres, plate_centres]), 9)
+    undisplaced[:, 2] = np.minimum(undisplaced[:, 2], 0.0)  # no kinematics above the water line
+    points, index = np.unique(undisplaced, axis=0, return_inverse=True)
+    index = index.ravel()
+    n = len(strip_centres)
+    strips = Strips(
+        centre_m=strip_centres, axis=np.array(rows["axis"]), directions=np.array(rows["dirs"]),
+        length_m=np.array(rows["length"]), area_m2=np.array(rows["area"]),
+        inertia_kg_m=np.array(rows["inertia"]), added_mass_kg_m=np.array(rows["added"]),
+        drag_kg_m2=np.array(rows["drag"]),
+        band_drag_kg_m2=np.array(rows["band_drag"]).reshape(n, n_bands, 2),
+        filtered=np.array(rows["filtered"], dtype=bool), member=np.array(rows["member"]),
+        zone=tuple(rows["zone"]), kinematics_point=index[:n])
+    end_plates = EndPlates(
+        centre_m=plate_centres, normal=np.array(plates["normal"]).reshape(-1, 3),
+        pressure_area_m2=np.array(plates["pressure"]), added_mass_kg=np.array(plates["added"]),
+        drag_kg_m=np.array(plates["drag"]), kinematics_point=index[n:])
+    return Discretisation(strips, end_plates, points)

@@ -1,0 +1,485 @@
+"""The ``fowt_hydro_sim`` ROS 2 node: steps the platform model in real or accelerated time and
+publishes its motion and loads (contract: shared/spec/ros_interface.md).
+
+The node stays thin: parameters become a ``PlatformModel``; messages go in and out through
+``msg_adapters``; input checks live in ``inputs.py``. The simulator owns time: ``/clock`` and
+every stamp are simulation time. A stepping thread advances the model one publish period
+at a time, paced against the wall clock (``real_time_factor``), while the executor serves
+the subscriptions.
+"""
+from __future__ import annotations
+
+import logging
+import math
+import threading
+import time
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import rclpy
+from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, WrenchStamped
+from nav_msgs.msg import Odometry
+from rcl_interfaces.msg import SetParametersResult
+from rclpy.executors import ExternalShutdownException
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+from rclpy.node import Node
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.serialization import deserialize_message
+from rosgraph_msgs.msg import Clock
+
+import msg_adapters as adapt
+from fowt_hydro_sim.physics.config import (
+    ConfigError,
+    InputError,
+    RunConfig,
+    SeaState,
+    load_case,
+    load_platform,
+    platform_path,
+)
+from fowt_hydro_sim.physics.loads import PUBLISHED, ROW, SUMMED
+from fowt_hydro_sim.physics.loads.external import check_wrench
+from fowt_hydro_sim.physics.model import PlatformModel, RunResult
+from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
+from fowt_hydro_sim.physics.waves.feed import WaveFeed
+from fowt_hydro_sim.ros import parameters
+from fowt_hydro_sim.ros.run_config import run_config
+from fowt_hydro_sim.ros.startup import init_ros
+from fowt_hydro_sim.rosbag.reader import Bag
+from fowt_hydro_sim.rosbag.writer import BagWriter
+from fowt_hydro_sim.settings import like, setting
+from msg_adapters import cdr, topics
+from msg_adapters.sim_time import nanoseconds
+
+MESSAGE_CLASSES = {topics.type_name(c): c for c in (AccelStamped, Clock, Odometry, PointStamped, PoseStamped,
+                                                    TwistStamped, WrenchStamped)}
+
+OUTPUTS = topics.outputs(PUBLISHED)  # every published load component has its topic
+WAVE_SOURCES = ("internal", "topic", "bag")
+BATCH_S = 1.0  # simulated seconds stepped per compiled call when running as fast as possible
+MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
+MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
+
+@dataclass(frozen=True)
+class NodeSettings:
+    """The node's parameters: run and sea-state settings (their defaults, meanings and ranges
+    from ``physics.config``), and the node's own."""
+
+    platform: str = like(RunConfig, "platform")
+    drag_model: str = like(RunConfig, "drag_model", default="filtered")
+    load_case: str = setting("lc5.3", "load case giving the sea state (lc5.0 .. lc6.5); hs_m/tp_s > 0 override it")
+    hs_m: float = like(SeaState, "hs_m", default=0.0, unset=0.0, note="; 0 = the load case's")
+    tp_s: float = like(SeaState, "tp_s", default=0.0, unset=0.0, note="; 0 = the load case's")
+    gamma: float = like(SeaState, "gamma", default=0.0, unset=0.0, note="; 0 = the load case's")
+    heading_deg: float = like(SeaState, "heading_deg")
+    seed: int = like(SeaState, "seed", note=" of the internal waves")
+    wave_source: str = setting("internal", "internal: synthesised from the sea state; topic: /waves/elevation; "
+                                           "bag: /waves/elevation of wave_bag", choices=WAVE_SOURCES)
+    wave_bag: str = setting("", "bag whose /waves/elevation drives the model (wave_source bag)")
+    wave_point_xy: tuple[float, float] = setting((0.0, 0.0), "where the /waves/elevation samples are measured "
+                                                             "(world x, y) [m]")
+    wave_sample_dt_s: float = setting(0.1, "step of the streamed elevation series [s] (samples are resampled "
+                                           "onto it)", gt=0.0)
+    preview_s: float = setting(60.0, "delay of the streamed wave kinematics behind the elevation samples [s]",
+                               gt=0.0)
+    wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed",
+                                    gt=0.0)
+    dt_s: float = like(RunConfig, "dt_s")
+    real_time_factor: float = setting(1.0, "1 = real time, N = N times faster, 0 = as fast as possible", ge=0.0)
+    publish_rate_hz: float = setting(20.0, "output rate in simulation time [Hz]; a multiple of it must be 1/dt_s",
+                                     gt=0.0)
+    duration_s: float = like(RunConfig, "duration_s", default=0.0, gt=None, ge=0.0,
+                             description="simulated seconds, then stop stepping; 0 = until stopped")
+    world_frame_id: str = setting("world", "frame id of the world frame")
+    platform_frame_id: str = setting("platform", "frame id of the platform (body) frame")
+    lockstep: bool = setting(False, "wait for an external wrench stamped for each publish time before stepping")
+    lockstep_timeout_s: float = setting(5.0, "wall seconds to wait for the wrench in lockstep, then step anyway",
+                                        gt=0.0)
+    record: str = setting("", "bag directory recording every input and output of the run; empty = no recording")
+    record_overwrite: bool = setting(False, "replace an existing bag at the record path")
+
+    def __post_init__(self) -> None:
+        """The rules between parameters (each one's own range is checked as it is read)."""
+        ratio = 1.0 / (self.publish_rate_hz * self.dt_s)
+        if abs(ratio - round(ratio)) > 1e-6 or round(ratio) < 1:
+            raise ConfigError(f"parameter publish_rate_hz: 1/(publish_rate_hz dt_s) must be a whole number, "
+                              f"got {ratio:g}")
+        if self.wave_source == "bag" and not self.wave_bag:
+            raise ConfigError("parameter wave_bag: wave_source bag needs the path of a bag with /waves/elevation")
+        if not (self.world_frame_id and self.platform_frame_id):
+            raise ConfigError("parameters world_frame_id, platform_frame_id: must not be empty")
+        self.sea_state  # an unknown load case fails here
+
+    @property
+    def sea_state(self) -> SeaState:
+        case = load_case(self.load_case).sea_state
+        return SeaState(self.hs_m or case.hs_m, self.tp_s or case.tp_s, self.gamma or case.gamma,
+                        heading_deg=self.heading_deg, seed=self.seed)
+
+    @property
+    def steps_per_publish(self) -> int:
+        return int(round(1.0 / (self.publish_rate_hz * self.dt_s)))
+
+
+class SimulatorNode(Node):
+    """The simulator node; its settings come from the ROS parameters (``PARAMETERS``)."""
+
+    def __init__(self, **node_kwargs):
+        super().__init__("fowt_hydro_sim", **node_kwargs)
+        parameters.declare(self, NodeSettings)
+        self.settings = parameters.read(self, NodeSettings)
+        s = self.settings
+        platform = load_platform(s.platform)
+        waves = None
+        if s.wave_source == "internal":
+            waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
+        self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model)
+        self._feed: WaveFeed | None = None
+        self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
+        if s.wave_source != "internal":
+            self._feed = WaveFeed(self.model, s.wave_point_xy, s.world_frame_id, s.wave_sample_dt_s, s.preview_s,
+                                  s.sea_state.heading_deg)
+            self._last_sample_wall = time.monotonic()
+            self._still_water = False
+        if s.wave_source == "bag":
+            bag = Bag(s.wave_bag)
+            bag.check_type(topics.ELEVATION)
+            self._wave_bag = bag.messages([topics.ELEVATION])
+        self._recorder = self._open_recorder() if s.record else None
+        self._lock = threading.Condition()
+        self._wrench = (np.zeros(6), "world", -math.inf)  # wrench, frame, stamp
+        self._rtf = s.real_time_factor
+        self._stop = threading.Event()
+        self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
+        self.dropped = 0  # messages DDS refused (a subscriber too slow for the pace)
+        self.published = 0  # messages published (each also recorded when recording)
+        self._publisher = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fowt_publish")
+        self._published: Future | None = None  # the batch being published
+        self._make_interface()
+        self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.get_logger().info(
+            f"{platform.name}, drag {s.drag_model}, waves {s.wave_source}"
+            + (f" (Hs {s.sea_state.hs_m:g} m, Tp {s.sea_state.tp_s:g} s, seed {s.sea_state.seed})"
+               if s.wave_source == "internal" else
+               f" ({topics.ELEVATION} {'of ' + s.wave_bag if s.wave_bag else ''} at {s.wave_point_xy}, "
+               f"kinematics {self._feed.delay_s:g} s behind the samples)")
+            + f", dt {s.dt_s:g} s, real-time factor {s.real_time_factor:g}"
+            + (", lockstep" if s.lockstep else "") + (f", recording to {s.record}" if s.record else ""))
+        self._thread = threading.Thread(target=self._run, name="fowt_stepping", daemon=True)
+
+    # ------------------------------------------------------------------ set-up
+    def _open_recorder(self) -> BagWriter:
+        """The run's bag, holding its full configuration (reproducible from the bag alone)."""
+        s = self.settings
+        config = run_config(parameters.values(s), platform_path(s.platform).read_text(), asdict(s.sea_state))
+        recorder = BagWriter(s.record, config=config, overwrite=s.record_overwrite)
+        self._output_channels = [recorder.add_topic(topic, kind) for topic, kind in OUTPUTS.values()]
+        self._input_channel = {topic: recorder.add_topic(topic, kind) for topic, kind in topics.INPUTS.items()}
+        return recorder
+
+    def _make_interface(self) -> None:
+        out = QoSProfile(depth=1000)  # accelerated runs: room for a slower subscriber
+        self._pub = {name: self.create_publisher(MESSAGE_CLASSES[kind], topic, out)
+                     for name, (topic, kind) in OUTPUTS.items()}
+        self._output_names = list(OUTPUTS)  # the order of cdr.outputs
+        self._total_rows = [ROW[c] for c in SUMMED]
+        self._load_rows = [ROW[c] for c in PUBLISHED]  # one topic each
+        inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
+        # raw: the bytes as sent are recorded (rclpy's serialisation leaves padding bytes unset)
+        self.create_subscription(WrenchStamped, topics.EXTERNAL_WRENCH, self._on_wrench, inputs, raw=True)
+        if self.settings.wave_source == "topic":  # room for a record replayed faster than it is read
+            samples = QoSProfile(depth=100_000, reliability=ReliabilityPolicy.RELIABLE)
+            self.create_subscription(PointStamped, topics.ELEVATION, self._on_elevation, samples, raw=True)
+
+    def _on_set_parameters(self, changes) -> SetParametersResult:
+        for p in changes:
+            if p.name == "real_time_factor" and isinstance(p.value, (int, float)) and p.value >= 0:
+                self._rtf = float(p.value)
+                continue
+            return SetParametersResult(successful=False, reason=f"{p.name}: only real_time_factor (>= 0) can "
+                                                                f"change while running; restart the node")
+        return SetParametersResult(successful=True)
+
+    # ------------------------------------------------------------------ inputs
+    def _record_input(self, topic: str, data: bytes) -> None:
+        if self._recorder is not None:
+            self._recorder.write(self._input_channel[topic], nanoseconds(self.model.time_s), data)
+
+    def _on_wrench(self, data: bytes) -> None:
+        self._record_input(topics.EXTERNAL_WRENCH, data)
+        t, wrench, frame = adapt.wrench_from_msg(deserialize_message(data, WrenchStamped))
+        try:
+            wrench = check_wrench(wrench, frame)
+        except InputError as exc:
+            self.get_logger().warning(f"{exc}; keeping the last good wrench")
+            return
+        with self._lock:
+            self._wrench = (wrench, frame, t)
+            self._lock.notify_all()
+
+    def _on_elevation(self, data: bytes) -> None:
+        self._record_input(topics.ELEVATION, data)
+        with self._lock:
+            self._accept_elevation(*adapt.elevation_from_msg(deserialize_message(data, PointStamped)))
+            self._lock.notify_all()
+
+    def _accept_elevation(self, t: float, x: float, y: float, eta: float, frame: str) -> None:
+        """One elevation sample into the wave feed; a refused one is logged and ignored."""
+        feed = self._feed
+        try:
+            made = feed.accept(t, x, y, eta, frame)
+        except InputError as exc:
+            self.get_logger().warning(f"{exc}; sample ignored")
+            return
+        if feed.resampler.gap_s > 2.5 * feed.resampler.sample_dt_s and not self._still_water:
+            self.get_logger().warning(f"wave elevation: {feed.resampler.gap_s:.2f} s gap before t = {t:.3f} s, "
+                                      f"interpolated")
+        self._last_sample_wall = time.monotonic()
+        if self._still_water and made:
+            self.get_logger().info("wave elevation samples again: leaving still water")
+            self._still_water = False
+
+    def _next_bag_sample(self) -> bool:
+        """Feed the wave bag's next elevation sample; False at the end of the bag."""
+        message = next(self._wave_bag, None)
+        if message is None:
+            return False
+        _, _, data = message
+        self._record_input(topics.ELEVATION, data)
+        (t,), ((x, y, eta),) = cdr.decode_stamped(topics.POINT_STAMPED, [data])
+        self._accept_elevation(float(t), float(x), float(y), float(eta), cdr.frame_id(data))
+        return True
+
+    def _wait_for_waves(self, until_s: float) -> bool:
+        """Stream kinematics up to ``until_s``: from the wave bag (False at its end), or from
+        the topic, going on in still water after wave_timeout_s without samples (said once).
+        False if the node is stopping."""
+        s = self.settings
+        with self._lock:
+            while not self._stop.is_set():
+                if self._feed.feed(until_s):
+                    return True
+                if self._wave_bag is not None:
+                    if not self._next_bag_sample():
+                        self.get_logger().info(f"wave bag {s.wave_bag} ends: waves known up to t = "
+                                               f"{self._feed.until_s:.2f} s, stepping stopped")
+                        return False
+                    continue
+                silent = time.monotonic() - self._last_sample_wall
+                if silent > s.wave_timeout_s:
+                    if not self._still_water:
+                        self.get_logger().warning(
+                            f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s: going on in still water")
+                        self._still_water = True
+                    self._feed.fill_still_water()
+                    continue
+                self._lock.wait(timeout=0.05)
+        return False
+
+    def _wait_for_controller(self) -> None:
+        """Lockstep: before the first step, wait until a controller is connected both ways."""
+        said = time.monotonic()
+        while not self._stop.is_set() and (self._pub["odom"].get_subscription_count() == 0
+                                           or self.count_publishers("/platform/external_wrench") == 0):
+            if time.monotonic() - said > 5.0:
+                self.get_logger().info("lockstep: waiting for a controller on /platform/odom and "
+                                       "/platform/external_wrench")
+                said = time.monotonic()
+            time.sleep(0.05)
+        time.sleep(0.5)  # let discovery finish on the controller's side too
+
+    def _wait_for_lockstep(self, time_s: float) -> None:
+        """Wait for a wrench stamped ``time_s``, sending the state again every 0.5 s."""
+        deadline = time.monotonic() + self.settings.lockstep_timeout_s
+        with self._lock:
+            while self._wrench[2] < time_s - 1e-9 and not self._stop.is_set():
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    self.get_logger().warning(f"lockstep: no external wrench stamped {time_s:.3f} s within "
+                                              f"{self.settings.lockstep_timeout_s:g} s; stepping with the last one")
+                    return
+                if not self._lock.wait(timeout=min(remaining, 0.5)):
+                    self._publish_now()
+
+    # ------------------------------------------------------------------ stepping
+    def start(self) -> None:
+        self._thread.start()
+
+    def stop(self) -> None:
+        """Stop stepping, finish publishing and close the recording (complete and indexed)."""
+        self._stop.set()
+        with self._lock:
+            self._lock.notify_all()
+        if self._thread.is_alive():
+            self._thread.join(timeout=10)
+        self._publisher.shutdown(wait=True)
+        if self._recorder is not None:
+            self._recorder.close()
+
+    @property
+    def finished(self) -> bool:
+        return not self._thread.is_alive()
+
+    def _run(self) -> None:
+        start_wall, start_sim = time.monotonic(), self.model.time_s
+        try:
+            self._step_until_done()
+        finally:
+            wall = time.monotonic() - start_wall
+            report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
+                     f"simulated in {wall:.2f} s of wall time, {self.published} messages published"
+            if self.lateness_s:
+                late = np.array(self.lateness_s) * 1e3
+                report += (f"; pacing lateness p50 {np.percentile(late, 50):.3f} ms, p99 "
+                           f"{np.percentile(late, 99):.3f} ms over {late.size} steps")
+            self.get_logger().info(report)
+
+    def _step_until_done(self) -> None:
+        s, model = self.settings, self.model
+        period = s.steps_per_publish * s.dt_s
+        if s.lockstep:
+            self._wait_for_controller()
+        self._publish_now()
+        self._anchor = (time.monotonic(), model.time_s, self._rtf)  # pacing: wall, sim, factor
+        try:
+            while not self._stop.is_set():
+                if s.duration_s and model.time_s >= s.duration_s - 1e-9:
+                    self.get_logger().info(f"duration {s.duration_s:g} s reached: stepping stopped")
+                    return
+                if s.lockstep:
+                    self._wait_for_lockstep(model.time_s)
+                # as fast as possible: a batch of publish periods per compiled call
+                periods = 1 if self._rtf > 0 or s.lockstep else max(1, int(round(BATCH_S / period)))
+                if s.duration_s:
+                    periods = max(1, min(periods, int(round((s.duration_s - model.time_s) / period))))
+                if self._feed is not None and not self._wait_for_waves(
+                        model.time_s + periods * period + 3 * s.wave_sample_dt_s):
+                    return
+                with self._lock:
+                    wrench, frame, _ = self._wrench
+                model.set_external_wrench(wrench, frame)
+                if periods > 1:
+                    if not self._step_batch(periods * period, period):
+                        return
+                    continue
+                self._finish_publishing()
+                model.step(s.steps_per_publish)
+                if not self._healthy(model.time_s, model.motion, model.velocity):
+                    return
+                self._pace(period)
+                self._publish_now()
+        finally:
+            self._finish_publishing()
+
+    def _step_batch(self, duration_s: float, period_s: float) -> bool:
+        """Step a batch, computed (without the GIL) while the previous batch is published;
+        False if it diverged."""
+        result = self.model.run(duration_s, output_interval_s=period_s)
+        healthy = self._healthy_rows(result)
+        self._finish_publishing()
+        self._published = self._publisher.submit(self._publish_batch, result, healthy)
+        return healthy == len(result.time_s) - 1
+
+    def _finish_publishing(self) -> None:
+        if self._published is not None:
+            self._published.result()
+            self._published = None
+
+    def _pace(self, period_s: float) -> None:
+        """Sleep until the wall-clock time of the current simulated time."""
+        wall0, sim0, rtf = self._anchor
+        if self._rtf != rtf:  # re-anchor after a change of speed
+            wall0, sim0, rtf = time.monotonic(), self.model.time_s - period_s, self._rtf
+        if rtf > 0:
+            target = wall0 + (self.model.time_s - sim0) / rtf
+            delay = target - time.monotonic()
+            if delay < -MAX_LATENESS_S:  # after a stall (waiting for input): no catching up
+                wall0, sim0 = time.monotonic(), self.model.time_s
+            else:
+                if delay > 0:
+                    time.sleep(delay)
+                self.lateness_s.append(time.monotonic() - target)
+        self._anchor = (wall0, sim0, rtf)
+
+    def _healthy(self, time_s: float, motion: np.ndarray, velocity: np.ndarray) -> bool:
+        if np.all(np.isfinite(motion)) and np.all(np.isfinite(velocity)) and np.all(np.abs(motion) < MOTION_LIMITS):
+            return True
+        self.get_logger().error(f"the state diverged at t = {time_s:.3f} s (motion {motion.tolist()}): "
+                                f"stepping stopped, nothing more is published")
+        self._stop.set()
+        return False
+
+    def _healthy_rows(self, result: RunResult) -> int:
+        """How many of a batch's samples after its first row are healthy (all, or up to the
+        first that is not, which is logged and stops the stepping)."""
+        for i in range(1, len(result.time_s)):
+            if not self._healthy(float(result.time_s[i]), result.motion[i], result.velocity[i]):
+                return i - 1
+        return len(result.time_s) - 1
+
+    def _publish_batch(self, result: RunResult, n_rows: int) -> None:
+        """Publish a batch's first ``n_rows`` samples after its first row (where it started)."""
+        rows = slice(1, n_rows + 1)
+        self._publish(result.time_s[rows], result.motion[rows], result.velocity[rows], result.acceleration[rows],
+                      result.loads[rows], result.wave_elevation_m[rows])
+
+    def _publish_now(self) -> None:
+        m = self.model
+        self._publish(np.array([m.time_s]), m.motion[None], m.velocity[None], m.acceleration[None], m.loads[None],
+                      np.array([float(m.wave_elevation(m.time_s)[0])]))
+
+    def _publish(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
+                 loads: np.ndarray, elevation_m: np.ndarray) -> None:
+        """Every output of each sample (rows), as pre-serialised CDR, published and recorded."""
+        total = loads[:, self._total_rows].sum(axis=1)
+        samples = cdr.outputs(time_s, motion, velocity, acceleration, loads[:, self._load_rows], total, elevation_m,
+                              self.settings.world_frame_id, self.settings.platform_frame_id)
+        send, names = self._send, self._output_names
+        for messages in samples:
+            for name, data in zip(names, messages):
+                send(name, data)
+        self.published += len(samples) * len(names)
+        if self._recorder is not None:
+            channels = self._output_channels
+            self._recorder.write_rows((nanoseconds(t), zip(channels, messages))
+                                      for t, messages in zip(time_s.tolist(), samples))
+
+    def _send(self, name: str, data: bytes) -> None:
+        """Publish; a reliable subscriber too slow for an accelerated run makes DDS refuse the
+        write after blocking: the message is dropped and counted, the node goes on."""
+        try:
+            self._pub[name].publish(data)
+        except _rclpy.RCLError as exc:
+            self.dropped += 1
+            if self.dropped == 1 or self.dropped % 1000 == 0:
+                self.get_logger().warning(f"{self.dropped} message(s) dropped, e.g. on {self._pub[name].topic_name} "
+                                          f"({str(exc).split(',')[0]}): a subscriber cannot keep up; lower "
+                                          f"real_time_factor or publish_rate_hz")
+
+
+def main(args: list[str] | None = None) -> int:
+    """``fowt-sim node [--ros-args ...]``: run the node until stopped or its duration is done."""
+    logging.basicConfig(level=logging.INFO, format="[%(levelname)s] [%(name)s]: %(message)s")
+    log = logging.getLogger("fowt_hydro_sim")
+    try:
+        init_ros(args)
+        node = SimulatorNode()
+    except Exception as exc:  # bad parameters, parameter file or platform: one line, no traceback
+        log.error(f"fowt-sim node: {exc}".splitlines()[0])
+        rclpy.try_shutdown()
+        return 2
+    node.start()
+    try:
+        while rclpy.ok() and not node.finished:
+            rclpy.spin_once(node, timeout_sec=0.1)
+        for _ in range(5):  # let the last messages go out
+            rclpy.spin_once(node, timeout_sec=0.1)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.stop()
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0

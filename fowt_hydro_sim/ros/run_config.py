@@ -1,0 +1,40 @@
+"""A run's full configuration, stored in its bag, and the node parameter file that
+reproduces the run from it (``fowt-sim info BAG --params-file F``)."""
+from __future__ import annotations
+
+import datetime
+import platform as host
+from pathlib import Path
+
+import numpy as np
+import scipy
+import yaml
+
+from fowt_hydro_sim import __version__
+
+
+def run_config(parameters: dict, platform_yaml: str, sea_state: dict) -> dict:
+    """Software versions, the node's parameters, the platform definition and the sea state."""
+    return {
+        "software": {"fowt_hydro_sim": __version__, "python": host.python_version(), "numpy": np.__version__,
+                     "scipy": scipy.__version__},
+        "started_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "parameters": {k: list(v) if isinstance(v, (list, tuple)) else v for k, v in parameters.items()},
+        "sea_state": sea_state,
+        "platform_yaml": platform_yaml,
+    }
+
+
+def write_params_file(config: dict, path: str | Path) -> Path:
+    """A ROS parameter file for ``fowt-sim node --ros-args --params-file`` that reruns the
+    recorded run (not recording again), with its platform written beside it."""
+    path = Path(path)
+    if "parameters" not in config or "platform_yaml" not in config:
+        raise ValueError("the bag's configuration has no node parameters (not recorded by fowt-sim node)")
+    platform_file = path.with_name(path.stem + "_platform.yaml")
+    platform_file.write_text(config["platform_yaml"])
+    parameters = {**config["parameters"], "platform": str(platform_file.resolve()), "record": "",
+                  "record_overwrite": False}
+    path.write_text(yaml.safe_dump({"fowt_hydro_sim": {"ros__parameters": parameters}}, sort_keys=False))
+    return path
+

@@ -1,0 +1,273 @@
+"""Offline analysis of recorded runs (the metric of shared/spec/load_cases.md): Welch PSD
+of each DOF, band STDs with chi-square confidence intervals, and against a reference run
+(measured, or another simulation) the STD error per DOF and band, pass/fail at a
+threshold and the pass rate, as in the paper's tables.
+
+Confidence: a band variance from a record of T seconds has about ``band_dof`` degrees of
+freedom, so its STD lies in a chi-square interval, and the ratio of two runs' band
+variances in an F interval. An error whose interval excludes zero is "significant": a
+real gap rather than sampling noise.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import math
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+import scipy.stats
+
+from fowt_hydro_sim.physics.model import DOF_NAMES
+from fowt_hydro_sim.studies.psd import BANDS_HZ, SEGMENT_S, band_dof, band_std, psd
+
+ANGULAR = {"roll", "pitch", "yaw"}  # analysed in degrees
+
+
+def unit(dof: str) -> str:
+    return "deg" if dof in ANGULAR else "m"
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """How runs are analysed and compared (the CLI's options)."""
+
+    transient_s: float = 600.0  # discarded at the start of each run
+    segment_s: float = SEGMENT_S  # Welch segment
+    window: str = "hann"
+    overlap: float = 0.5
+    dofs: tuple[str, ...] = ("surge", "heave", "pitch")
+    bands_hz: dict[str, dict[str, tuple[float, float]]] = field(default_factory=dict)  # per DOF; default BANDS_HZ
+    threshold: float = 0.15  # |STD error| within this passes
+    confidence: float = 0.90
+
+    def bands(self, dof: str) -> dict[str, tuple[float, float]]:
+        return self.bands_hz.get(dof, BANDS_HZ)
+
+
+@dataclass
+class RunAnalysis:
+    """One run's spectra and band statistics, per DOF and band."""
+
+    name: str
+    analysed_s: float
+    frequency_hz: np.ndarray
+    psd: dict[str, np.ndarray]
+    std: dict[str, dict[str, float]]
+    dof_nu: dict[str, dict[str, float]]  # equivalent degrees of freedom of each band variance
+    std_interval: dict[str, dict[str, tuple[float, float]]]
+
+
+def uniform(time_s: np.ndarray, values: np.ndarray) -> tuple[float, np.ndarray]:
+    """(step, values) on a uniform grid at the median step (linear interpolation)."""
+    step = float(np.median(np.diff(time_s)))
+    if step <= 0:
+        raise ValueError("analysis: stamps do not increase")
+    grid = np.arange(time_s[0], time_s[-1] + 0.5 * step, step)
+    return step, np.column_stack([np.interp(grid, time_s, column) for column in values.T])
+
+
+def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: AnalysisSettings) -> RunAnalysis:
+    """Spectra and band STDs of a run's 6-DOF motion (surge ... yaw, angles in rad)."""
+    keep = time_s >= time_s[0] + settings.transient_s
+    if keep.sum() < 64:
+        raise ValueError(f"run {name}: {time_s[-1] - time_s[0]:.0f} s recorded, nothing left after the "
+                         f"{settings.transient_s:g} s transient")
+    step, values = uniform(time_s[keep], motion[keep])
+    analysed_s = step * len(values)
+    spectra, stds, nus, intervals = {}, {}, {}, {}
+    alpha = 1.0 - settings.confidence
+    for dof in settings.dofs:
+        column = values[:, DOF_NAMES.index(dof)] * (180.0 / math.pi if dof in ANGULAR else 1.0)
+        frequency, spectra[dof] = psd(column, step, settings.segment_s, settings.window, settings.overlap)
+        stds[dof], nus[dof], intervals[dof] = {}, {}, {}
+        for band, limits in settings.bands(dof).items():
+            std = band_std(frequency, spectra[dof], limits)
+            nu = band_dof(frequency, spectra[dof], limits, analysed_s)
+            stds[dof][band], nus[dof][band] = std, nu
+            intervals[dof][band] = (std * math.sqrt(nu / scipy.stats.chi2.ppf(1 - alpha / 2, nu)),
+                                    std * math.sqrt(nu / scipy.stats.chi2.ppf(alpha / 2, nu))) if nu > 0 else \
+                (float("nan"), float("nan"))
+    return RunAnalysis(name, analysed_s, frequency, spectra, stds, nus, intervals)
+
+
+def compare(run: RunAnalysis, reference: RunAnalysis, settings: AnalysisSettings) -> list[dict]:
+    """One row per DOF and band: both STDs, the error (run - ref) / ref in percent with its
+    confidence interval (F distribution of the variance ratio), pass and significance."""
+    rows, alpha = [], 1.0 - settings.confidence
+    for dof in settings.dofs:
+        for band in settings.bands(dof):
+            s, r = run.std[dof][band], reference.std[dof][band]
+            nu_s, nu_r = run.dof_nu[dof][band], reference.dof_nu[dof][band]
+            error = 100.0 * (s / r - 1.0) if r > 0 else float("nan")
+            ratio = (s / r) ** 2 if r > 0 else float("nan")
+            low = ratio / scipy.stats.f.ppf(1 - alpha / 2, nu_s, nu_r)
+            high = ratio / scipy.stats.f.ppf(alpha / 2, nu_s, nu_r)
+            interval = (100.0 * (math.sqrt(low) - 1.0), 100.0 * (math.sqrt(high) - 1.0))
+            rows.append({"run": run.name, "reference": reference.name, "dof": dof, "unit": unit(dof), "band": band,
+                         "std_run": s, "std_reference": r, "error_percent": error,
+                         "error_low_percent": interval[0], "error_high_percent": interval[1],
+                         "passes": bool(abs(error) <= 100.0 * settings.threshold),
+                         "significant": bool(interval[0] > 0 or interval[1] < 0)})
+    return rows
+
+
+def pass_rate(rows: list[dict]) -> float:
+    return sum(r["passes"] for r in rows) / len(rows) if rows else float("nan")
+
+
+def stats_rows(analyses: list[RunAnalysis]) -> list[dict]:
+    """Band STDs with their confidence intervals, one row per run, DOF and band."""
+    return [{"run": a.name, "dof": dof, "unit": unit(dof), "band": band, "std": a.std[dof][band],
+             "std_low": a.std_interval[dof][band][0], "std_high": a.std_interval[dof][band][1],
+             "dof_equivalent": a.dof_nu[dof][band], "analysed_s": a.analysed_s}
+            for a in analyses for dof in a.std for band in a.std[dof]]
+
+
+def table_text(analyses: list[RunAnalysis], comparisons: list[dict], settings: AnalysisSettings) -> str:
+    """The terminal table: band STDs (and errors against the reference, the paper's Table 4
+    layout: one line per run, DOF and band) and the pass rate per run and overall."""
+    conf = f"{100 * settings.confidence:g} %"
+    if not comparisons:
+        lines = [f"{'run':<18}{'DOF':<8}{'band':<15}{'STD':>10}   {conf} interval"]
+        lines += [f"{r['run']:<18}{r['dof']:<8}{r['band']:<15}{r['std']:>10.4g}   [{r['std_low']:.4g}, "
+                  f"{r['std_high']:.4g}] {r['unit']}" for r in stats_rows(analyses)]
+        return "\n".join(lines)
+    lines = [f"{'run':<18}{'DOF':<8}{'band':<15}{'STD':>10}{'reference':>11}{'error':>9}   {conf} interval   pass"]
+    for r in comparisons:
+        flag = "yes" if r["passes"] else "NO"
+        star = " *" if r["significant"] else ""
+        lines.append(f"{r['run']:<18}{r['dof']:<8}{r['band']:<15}{r['std_run']:>10.4g}{r['std_reference']:>11.4g}"
+                     f"{r['error_percent']:>+8.1f}%   [{r['error_low_percent']:+.1f}, {r['error_high_percent']:+.1f}] %"
+                     f"   {flag}{star}")
+    for run in dict.fromkeys(r["run"] for r in comparisons):
+        mine = [r for r in comparisons if r["run"] == run]
+        lines.append(f"{run}: {sum(r['passes'] for r in mine)}/{len(mine)} within "
+                     f"+-{100 * settings.threshold:g} %")
+    lines.append(f"pass rate: {100 * pass_rate(comparisons):.0f} % of {len(comparisons)} band metrics "
+                 f"(* = significant at {conf})")
+    return "\n".join(lines)
+
+
+def write_report(analyses: list[RunAnalysis], comparisons: list[dict], settings: AnalysisSettings,
+                 folder: Path, references: list[RunAnalysis] = ()) -> list[Path]:
+    """CSV and JSON tables and PNG figures in ``folder``; returns the files written."""
+    folder.mkdir(parents=True, exist_ok=True)
+    written = [_csv(folder / "band_stds.csv", stats_rows([*analyses, *references]))]
+    if comparisons:
+        written.append(_csv(folder / "errors.csv", comparisons))
+    summary = {"settings": {**asdict(settings), "bands_hz": {d: settings.bands(d) for d in settings.dofs}},
+               "band_stds": stats_rows([*analyses, *references]), "errors": comparisons,
+               "pass_rate": pass_rate(comparisons) if comparisons else None}
+    (folder / "analysis.json").write_text(json.dumps(summary, indent=1))
+    written.append(folder / "analysis.json")
+    (folder / "table.txt").write_text(table_text(analyses, comparisons, settings) + "\n")
+    written.append(folder / "table.txt")
+    pairs = _pairs(analyses, references)
+    for run, reference in pairs:
+        written.append(plot_psd(run, reference, settings, folder / f"psd_{_slug(run.name)}.png"))
+        if reference is not None:
+            rows = [r for r in comparisons if r["run"] == run.name]
+            written.append(plot_band_errors(rows, settings, folder / f"band_stds_{_slug(run.name)}.png"))
+    return written
+
+
+def analyze_bags(runs: list[str | Path], references: list[str | Path], settings: AnalysisSettings,
+                 output: Path) -> tuple[str, list[Path]]:
+    """``fowt-sim analyze``: every run bag analysed, against one reference for all or one per
+    run; the table's text and the report's files."""
+    from fowt_hydro_sim.rosbag.reader import Bag
+    if references and len(references) not in (1, len(runs)):
+        raise ValueError(f"--ref: give one reference, or one per run ({len(runs)}), got {len(references)}")
+
+    def load(path: str | Path) -> RunAnalysis:
+        motion = Bag(path).motion()
+        return analyse(Path(path).name, motion.time_s, motion.values, settings)
+
+    analysed = [load(p) for p in runs]
+    reference_runs = [load(p) for p in references]
+    pairs = list(zip(analysed, reference_runs * len(analysed) if len(reference_runs) == 1 else reference_runs))
+    comparisons = [row for run, ref in pairs for row in compare(run, ref, settings)]
+    return (table_text(analysed, comparisons, settings),
+            write_report(analysed, comparisons, settings, Path(output), reference_runs))
+
+
+def _pairs(analyses, references):
+    if not references:
+        return [(a, None) for a in analyses]
+    if len(references) == 1:
+        return [(a, references[0]) for a in analyses]
+    return list(zip(analyses, references))
+
+
+def _slug(name: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
+
+
+def _csv(path: Path, rows: list[dict]) -> Path:
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    return path
+
+
+def _pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def plot_psd(run: RunAnalysis, reference: RunAnalysis | None, settings: AnalysisSettings, path: Path) -> Path:
+    """PSD of each DOF, the run against the reference, log axes, bands shaded."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(len(settings.dofs), 1, figsize=(7.5, 2.8 * len(settings.dofs)), sharex=True,
+                             squeeze=False)
+    for ax, dof in zip(axes[:, 0], settings.dofs):
+        for (band, (low, high)), colour in zip(settings.bands(dof).items(), ("tab:orange", "tab:blue", "tab:green")):
+            ax.axvspan(low, high, color=colour, alpha=0.08, label=f"{band} band")
+        for analysis, style in ((reference, "k-"), (run, "-")):
+            if analysis is not None:
+                f, s = analysis.frequency_hz, analysis.psd[dof]
+                ax.loglog(f[1:], s[1:], style, lw=1.0, label=analysis.name)
+        ax.set_ylabel(f"{dof} [{unit(dof)}$^2$/Hz]")
+        ax.grid(alpha=0.3, which="both")
+        ax.set_xlim(0.002, 0.5)
+        top = max(a.psd[dof].max() for a in (run, reference) if a is not None)
+        ax.set_ylim(top * 1e-6, top * 3)
+    axes[0, 0].legend(fontsize=8, loc="lower left")
+    axes[0, 0].set_title(f"PSD: {run.name}" + (f" vs {reference.name}" if reference else ""))
+    axes[-1, 0].set_xlabel("frequency [Hz]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_band_errors(rows: list[dict], settings: AnalysisSettings, path: Path) -> Path:
+    """Band STDs of run and reference as bars, the error and its interval annotated."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.1 * len(rows)), 3.8))
+    x = np.arange(len(rows))
+    ratio_ref = np.ones(len(rows))
+    ratio_run = np.array([r["std_run"] / r["std_reference"] if r["std_reference"] > 0 else np.nan for r in rows])
+    ax.bar(x - 0.2, ratio_ref, 0.4, color="0.6", label=rows[0]["reference"])
+    low = 1 + np.array([r["error_low_percent"] for r in rows]) / 100
+    high = 1 + np.array([r["error_high_percent"] for r in rows]) / 100
+    ax.bar(x + 0.2, ratio_run, 0.4, color=["tab:green" if r["passes"] else "tab:red" for r in rows],
+           label=rows[0]["run"], yerr=[ratio_run - low, high - ratio_run], capsize=3, ecolor="0.3")
+    for i, r in enumerate(rows):
+        ax.annotate(f"{r['error_percent']:+.0f} %" + ("*" if r["significant"] else ""), (i + 0.2, ratio_run[i]),
+                    ha="center", va="bottom", fontsize=8)
+    ax.axhspan(1 - settings.threshold, 1 + settings.threshold, color="tab:green", alpha=0.08)
+    ax.set_xticks(x, [f"{r['dof']}\n{r['band']}" for r in rows], fontsize=8)
+    ax.set_ylabel("band STD / reference")
+    ax.set_title(f"band STDs, +-{100 * settings.threshold:g} % shaded; {100 * settings.confidence:g} % "
+                 f"intervals, * significant")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

@@ -1,0 +1,277 @@
+"""Checking the gap diagnosis on data whose effect is withheld: "measured" runs are made by
+the model with one effect switched on (each catalogue effect at two strengths, over
+several sea states, with sensor noise and small property perturbations), the diagnosis
+is run with the plain model, and scored:
+
+- top-1 accuracy of the named effect where the injected gap is significant, and whether
+  the cells the effect moves most were flagged;
+- null scenarios (nothing injected): the false-alarm rate;
+- out-of-catalogue scenarios (a rotor's 1P pitch moment, wind thrust): reported as
+  unexplained or not;
+- blind closure: the gap on held-out sea states once the named effect is added, not refitted.
+"""
+from __future__ import annotations
+
+import statistics
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from fowt_hydro_sim.physics.config import Platform, load_case
+from fowt_hydro_sim.physics.loads.extension import Extension
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.platform_edits import scaled_added_mass, scaled_drag, scaled_mooring_stiffness
+from fowt_hydro_sim.physics.waves.components import synthesize
+from fowt_hydro_sim.studies.diagnosis.diagnose import REPLAY_DT_S, Diagnosis
+from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
+from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, gap
+from fowt_hydro_sim.studies.replay import OUTPUT_INTERVAL_S, MeasuredRun, Variant
+
+TUNING_CASES = ("lc5.1", "lc5.2", "lc5.3")
+BLIND_CASES = ("lc6.1", "lc6.4")
+DURATION_S = 1800.0
+ELEVATION_STEP_S = 0.1
+TRUTH_DT_S = 0.05  # the "basin": a finer step than the replays'
+SENSOR_NOISE = 0.01  # white noise STD, share of each signal's STD
+PERTURBATION = {"cd": 0.05, "ca": 0.03, "mooring": 0.03}  # uniform +- share of each property
+
+
+def _rotor_1p(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
+    """A pitch moment at the rotor's 1P frequency."""
+    t = run.elevation_time_s - run.elevation_time_s[0]
+    force = np.zeros((t.size, 6))
+    force[:, 4] = values["amplitude_n_m"] * np.sin(2 * np.pi * values["frequency_hz"] * t)
+    return replace(variant, extension=variant.extension.plus(Extension(force_n=force, force_step_s=run.elevation_step_s)))
+
+
+def _wind_thrust(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
+    """Rotor thrust at the hub (131.7 m): a mean and a slow variation (gusts at 0.006-0.04 Hz,
+    fixed phases), in surge and pitch."""
+    t = run.elevation_time_s - run.elevation_time_s[0]
+    gusts = sum(np.sin(2 * np.pi * f * t + 1.7 * k) for k, f in enumerate(np.linspace(0.006, 0.04, 12)))
+    thrust = values["mean_thrust_n"] * (1.0 + values["gust_share"] * gusts / np.std(gusts))
+    force = np.zeros((t.size, 6))
+    force[:, 0], force[:, 4] = thrust, thrust * 131.7
+    return replace(variant, extension=variant.extension.plus(Extension(force_n=force, force_step_s=run.elevation_step_s)))
+
+
+# effects outside the catalogue, each with the values it is injected at
+OUT_OF_CATALOGUE = (
+    (Effect("rotor_1p_pitch_moment", "a harmonic pitch moment at the rotor's 1P frequency",
+            (Parameter("amplitude_n_m", "N m", 1e7, 0.0, 1e9), Parameter("frequency_hz", "Hz", 0.12, 0.0, 1.0)),
+            _rotor_1p), {"amplitude_n_m": 6.0e7, "frequency_hz": 0.12}),
+    (Effect("wind_thrust", "rotor thrust at the hub: mean and gusts",
+            (Parameter("mean_thrust_n", "N", 1e6, 0.0, 1e7), Parameter("gust_share", "-", 0.2, 0.0, 1.0)),
+            _wind_thrust), {"mean_thrust_n": 3.0e5, "gust_share": 0.3}),
+)
+OUT_OF_CATALOGUE_EFFECTS = {effect.name: effect for effect, _ in OUT_OF_CATALOGUE}
+
+# two strengths of each catalogue effect
+INJECTIONS: dict[str, tuple[dict[str, float], ...]] = {
+    "frequency_dependent_drag": ({"low_frequency_cd_ratio": 0.5}, {"low_frequency_cd_ratio": 0.3}),
+    "slow_drift": ({"drift_coefficient_n_m2": 1.0e5}, {"drift_coefficient_n_m2": 3.0e5}),
+    "linear_damping": ({"surge_damping_ratio": 0.04, "heave_damping_ratio": 0.0, "pitch_damping_ratio": 0.03},
+                       {"surge_damping_ratio": 0.10, "heave_damping_ratio": 0.0, "pitch_damping_ratio": 0.08}),
+    "quadratic_damping": ({"surge_ratio_at_1m": 0.1, "heave_ratio_at_1m": 0.0, "pitch_ratio_at_1deg": 0.1},
+                          {"surge_ratio_at_1m": 0.3, "heave_ratio_at_1m": 0.0, "pitch_ratio_at_1deg": 0.3}),
+    "mooring_stiffness": ({"line_stiffness_scale": 1.4, "hardening": 0.0},
+                          {"line_stiffness_scale": 0.7, "hardening": 1.0}),
+    "added_mass_error": ({"added_mass_scale": 0.7}, {"added_mass_scale": 1.35}),
+    "kc_dependent_drag": ({"kc_exponent": 0.5}, {"kc_exponent": -0.5}),
+    "wave_measurement_delay": ({"delay_s": 1.0}, {"delay_s": 2.5}),
+}
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """One benchmark case: ``kind`` injected, null or out_of_catalogue."""
+
+    name: str
+    kind: str
+    effect: str | None
+    values: dict[str, float]
+    seed: int
+
+
+def scenarios(effects: list[str] | None = None, strengths: int = 2, nulls: int = 10,
+              out_of_catalogue: int = 2) -> list[Scenario]:
+    out = []
+    for name in effects or list(INJECTIONS):
+        for k, values in enumerate(INJECTIONS[name][:strengths]):
+            out.append(Scenario(f"{name}#{k + 1}", "injected", name, values, 0))
+    out += [Scenario(f"null#{k + 1}", "null", None, {}, 0) for k in range(nulls)]
+    out += [Scenario(effect.name, "out_of_catalogue", effect.name, values, 0)
+            for effect, values in OUT_OF_CATALOGUE[:out_of_catalogue]]
+    return [replace(s, seed=1000 + 17 * i) for i, s in enumerate(out)]
+
+
+def perturbed(platform: Platform, rng: np.random.Generator) -> Platform:
+    """The platform with Cd, Ca and the mooring lines' stiffness off by small random shares."""
+    share = {k: rng.uniform(-v, v) for k, v in PERTURBATION.items()}
+    platform = scaled_added_mass(scaled_drag(platform, 1 + share["cd"]), 1 + share["ca"])
+    return scaled_mooring_stiffness(platform, 1 + share["mooring"])
+
+
+def truth_run(scenario: Scenario, case: str, platform: Platform, duration_s: float = DURATION_S,
+              with_effect: bool = True) -> MeasuredRun:
+    """A "measured" run of the scenario in the load case's sea (a cluster task)."""
+    index = (TUNING_CASES + BLIND_CASES).index(case) if case in TUNING_CASES + BLIND_CASES else 0
+    rng = np.random.default_rng(scenario.seed + index)
+    sea = replace(load_case(case).sea_state, seed=scenario.seed + index)
+    waves = synthesize(sea, duration_s)
+    truth = perturbed(platform, rng)
+    env = truth.environment
+    t = np.arange(0.0, duration_s, ELEVATION_STEP_S)
+    eta = waves.elevation_series(0.0, 0.0, ELEVATION_STEP_S, env.water_depth_m, env.gravity_m_s2)[:t.size]
+    stub = MeasuredRun(case, t, eta, (0.0, 0.0), t, np.zeros((t.size, 6)))
+    variant = Variant(truth)
+    if with_effect and scenario.effect:
+        effect = CATALOGUE.get(scenario.effect) or OUT_OF_CATALOGUE_EFFECTS[scenario.effect]
+        variant = effect.apply(variant, stub, scenario.values)
+    model = PlatformModel(variant.platform, waves, dt_s=TRUTH_DT_S,
+                          drag_model=variant.drag_model, extension=variant.extension)
+    result = model.run(duration_s, output_interval_s=OUTPUT_INTERVAL_S)
+    motion = result.motion + rng.normal(0.0, 1.0, result.motion.shape) * SENSOR_NOISE * result.motion.std(axis=0)
+    eta_measured = eta + rng.normal(0.0, SENSOR_NOISE * eta.std(), eta.size)
+    # a probe whose stamps are late: the effect's correction is elevation_shift_s = -delay
+    return MeasuredRun(f"{scenario.name}/{case}", t - variant.elevation_shift_s, eta_measured, (0.0, 0.0),
+                       result.time_s, motion)
+
+
+@dataclass
+class Score:
+    """One scenario's outcome."""
+
+    scenario: str
+    kind: str
+    injected: str | None
+    detected: bool  # the tuning gap has a flagged cell
+    verdict: str
+    named: str | None
+    correct: bool | None  # injected: named the injected effect; null: no alarm; out of catalogue: unexplained
+    footprint: list[tuple[str, str]] = field(default_factory=list)  # the cells the effect moves most
+    footprint_flagged: bool | None = None
+    tuning_closure: float | None = None
+    blind_closure: float | None = None
+    model_runs: int = 0
+    wall_s: float = 0.0
+
+
+def footprint(with_effect: list[MeasuredRun], without: list[MeasuredRun], settings: GapSettings) -> list[tuple[str, str]]:
+    """(DOF, metric) cells the injected effect moves beyond their tolerance in any tuning
+    run, strongest first (the truth with the effect against the truth without it)."""
+    strength: dict[tuple[str, str], float] = {}
+    for a, b in zip(with_effect, without):
+        g = gap(a.name, (b.motion_time_s, b.motion), (a.motion_time_s, a.motion), settings)
+        if a.elevation_time_s[0] != b.elevation_time_s[0]:  # a delay: the elevation record's lag
+            strength.update({(dof, "lag"): 99.0 for dof in settings.dofs})
+        for cell, r in zip(settings.cells(), np.abs(g.residual)):
+            if r > 1.0:
+                strength[cell] = max(strength.get(cell, 0.0), float(r))
+    return sorted(strength, key=strength.get, reverse=True)
+
+
+def score_scenario(scenario: Scenario, diagnosis: Diagnosis, cells: list[tuple[str, str]], wall_s: float) -> Score:
+    detected = any(g.flagged.any() for g in diagnosis.tuning_before)
+    flagged = {(dof, metric) for _, dof, metric in diagnosis.flagged_cells(diagnosis.tuning_before)}
+    if scenario.kind == "injected":
+        correct = diagnosis.chosen == scenario.effect
+    elif scenario.kind == "null":
+        correct = diagnosis.verdict == "no significant gap"
+    else:
+        correct = diagnosis.verdict == "unexplained"
+    chosen = diagnosis.candidate(diagnosis.chosen) if diagnosis.chosen else None
+    return Score(scenario.name, scenario.kind, scenario.effect, detected, diagnosis.verdict, diagnosis.chosen,
+                 correct, cells, (cells[0] in flagged) if cells else None,
+                 chosen.closure if chosen else None,
+                 None if not diagnosis.blind_after else diagnosis.blind_closure,
+                 diagnosis.model_runs, wall_s)
+
+
+def summary(scores: list[Score]) -> dict:
+    """The benchmark's figures: top-1 accuracy (detected injected scenarios), footprint
+    flagged, false alarms (null), out-of-catalogue reported unexplained, median blind
+    closure (detected injected scenarios; 0 where nothing was named)."""
+    injected = [s for s in scores if s.kind == "injected" and s.detected]
+    nulls = [s for s in scores if s.kind == "null"]
+    others = [s for s in scores if s.kind == "out_of_catalogue"]
+    rate = lambda xs: sum(xs) / len(xs) if xs else None
+    blind = [s.blind_closure if (s.named and s.blind_closure is not None) else 0.0 for s in injected]
+    return {"injected": sum(s.kind == "injected" for s in scores), "injected_detected": len(injected),
+            "top1_accuracy": rate([s.correct for s in injected]),
+            "footprint_flagged": rate([s.footprint_flagged for s in injected if s.footprint_flagged is not None]),
+            "null": len(nulls), "false_alarm_rate": rate([not s.correct for s in nulls]),
+            "out_of_catalogue": len(others), "out_of_catalogue_unexplained": rate([s.correct for s in others]),
+            "median_blind_closure": statistics.median(blind) if blind else None,
+            "model_runs": sum(s.model_runs for s in scores), "wall_s": sum(s.wall_s for s in scores)}
+
+
+def _truth_task(job: tuple[Scenario, str, bool], platform: Platform, duration_s: float) -> MeasuredRun:
+    scenario, case, with_effect = job
+    return truth_run(scenario, case, platform, duration_s, with_effect)
+
+
+def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: GapSettings,
+                  effects: dict[str, Effect] | None = None, duration_s: float = DURATION_S,
+                  max_evaluations: int = 4, report=None, dt_s: float = REPLAY_DT_S) -> list[Score]:
+    """Make every scenario's measured runs on the cluster, diagnose each with the plain
+    model, score it; ``report(score)`` is called as each scenario ends."""
+    import time
+
+    from fowt_hydro_sim.studies.cluster import map_with_progress
+    from fowt_hydro_sim.studies.diagnosis.diagnose import cluster_evaluate, diagnose
+    cases = TUNING_CASES + BLIND_CASES
+    jobs = [(s, c, True) for s in chosen for c in cases]
+    jobs += [(s, c, False) for s in chosen if s.kind == "injected" for c in TUNING_CASES]
+    made = dict(zip([(s.name, c, w) for s, c, w in jobs],
+                    map_with_progress(client, _truth_task, jobs, "measured runs", platform=platform,
+                                      duration_s=duration_s)))
+    scores = []
+    for scenario in chosen:
+        start = time.perf_counter()
+        tuning = [made[scenario.name, c, True] for c in TUNING_CASES]
+        blind = [made[scenario.name, c, True] for c in BLIND_CASES]
+        evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s)
+        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations)
+        cells = (footprint(tuning, [made[scenario.name, c, False] for c in TUNING_CASES], settings)
+                 if scenario.kind == "injected" else [])
+        scores.append(score_scenario(scenario, diagnosis, cells, time.perf_counter() - start))
+        if report:
+            report(scores[-1])
+    return scores
+
+
+def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effect], output: Path,
+              inject: list[str] | None = None, strengths: int = 2, nulls: int = 10, out_of_catalogue: int = 2,
+              duration_s: float = DURATION_S, max_evaluations: int = 4, dt_s: float = REPLAY_DT_S,
+              scheduler: str | None = None, workers: int | None = None) -> list[str]:
+    """``fowt-sim diagnose-benchmark``: every scenario on a Dask cluster; ``benchmark.json``
+    in ``output``; returns the report's lines (one per scenario, then the summary)."""
+    import json
+    import logging
+
+    from fowt_hydro_sim.studies.cluster import dask_client
+    unknown = [n for n in inject or [] if n not in INJECTIONS]
+    if unknown:
+        raise ValueError(f"--inject: unknown {', '.join(unknown)} (catalogue: {', '.join(INJECTIONS)})")
+    if duration_s < settings.transient_s + 600:
+        raise ValueError(f"--duration: need at least the transient plus 600 s, got {duration_s:g} s")
+    chosen = scenarios(inject, strengths, nulls, out_of_catalogue)
+    output.mkdir(parents=True, exist_ok=True)
+    lines = []
+
+    def report(score: Score) -> None:
+        closure = '-' if score.blind_closure is None else f'{100 * score.blind_closure:.0f} %'
+        lines.append(f"{score.scenario:<30} {score.verdict:<19} named {str(score.named):<26} "
+                     f"{'right' if score.correct else 'WRONG'}  detected {score.detected}  blind closure {closure}  "
+                     f"{score.wall_s:.0f} s")
+        logging.getLogger(__name__).info(lines[-1])
+
+    with dask_client(scheduler, workers) as client:
+        scores = run_benchmark(client, chosen, platform, settings, effects, duration_s, max_evaluations, report,
+                               dt_s)
+    figures = summary(scores)
+    (output / "benchmark.json").write_text(json.dumps({"summary": figures, "scenarios": [s.__dict__ for s in scores]},
+                                                      indent=1) + "\n")
+    return lines + [json.dumps(figures, indent=1)]

@@ -1,0 +1,331 @@
+"""The sim-to-real gap diagnosis: where the model and measured runs differ, which unmodelled
+effect of the catalogue (effects/) explains it, and how far the gap shrinks once that
+effect is added, on the tuning runs and, without refitting, on blind runs.
+
+1. Every run is replayed with its own elevation (replay.py) and its gap cells measured
+   (gap.py); cells that are significant and beyond tolerance are flagged.
+2. Each candidate effect's parameters are fitted to all tuning runs at once (bounded least
+   squares on the cells' residuals in tolerance units; one parameter set for every sea
+   state, so how the gap scales with Hs is part of the fit). Its score is a BIC,
+   n ln(mean r^2 + floor^2) + p ln n, which charges every extra parameter.
+3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE`` and
+   closes at least ``MIN_CLOSURE`` of the gap; otherwise the gap is "unexplained".
+   Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
+   (a low-frequency response the measurement shows but the waves do not explain points
+   to a load quadratic in the waves, e.g. slow drift).
+
+Model runs go through ``evaluate(jobs) -> results`` (in process, or on a Dask cluster);
+each candidate's fit runs in its own thread so that every candidate's runs are in flight
+together.
+"""
+from __future__ import annotations
+
+import math
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+import scipy.optimize
+
+from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
+from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, gap, spectra
+from fowt_hydro_sim.studies.replay import MeasuredRun, Variant, replay
+
+REPLAY_DT_S = 0.1  # the replays' step (a basin's motion at 4 Hz needs no finer one)
+FLOOR = 0.25  # residual floor in tolerance units: fits closer than this are not told apart
+MIN_EVIDENCE = 6.0  # BIC improvement over the plain model to name an effect ("strong")
+MIN_CLOSURE = 0.5  # share of the gap an effect must close to be named
+TIE = 2.0  # BIC difference below which two candidates both fit
+COHERENCE_DEFICIT = 0.1  # measured low-frequency coherence this far below the model's: incoherent load
+FD_STEP = 0.1  # forward-difference step, in units of each parameter's scale
+
+Job = tuple  # (effect name or None, parameter values, run index, with spectra)
+
+
+def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
+               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S) -> tuple[Gap, dict | None]:
+    """One model run (a cluster task): run ``index`` replayed by the plain model or with an
+    effect at the given values; its gap, and its spectra if asked."""
+    name, values, index, with_spectra = job
+    run = runs[index]
+    variant = Variant(platform)
+    if name is not None:
+        variant = (effects or CATALOGUE)[name].apply(variant, run, values)
+    time_s, motion = replay(variant, run, dt_s)
+    result = gap(run.name, (run.motion_time_s, run.motion), (time_s, motion), settings)
+    return result, spectra((run.elevation_time_s, run.elevation_m), (time_s, motion), settings) if with_spectra else None
+
+
+def in_process(runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
+               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S) -> Callable[[list[Job], str], list]:
+    """``evaluate`` that runs every job here, one after another."""
+    return lambda jobs, description="": [replay_job(j, runs, platform, settings, effects, dt_s) for j in jobs]
+
+
+# ---------------------------------------------------------------------- fitting one candidate
+@dataclass
+class CandidateFit:
+    """One candidate effect fitted to the tuning runs."""
+
+    effect: str
+    values: dict[str, float]
+    gaps: list[Gap]  # tuning runs, at the fitted values
+    score: float
+    closure: float  # share of the tuning gap closed
+    model_runs: int
+    fits: bool = False  # beats the plain model and closes enough
+
+    def as_dict(self, settings: GapSettings) -> dict:
+        return {"effect": self.effect, "values": self.values, "score": self.score, "closure": self.closure,
+                "fits": self.fits, "model_runs": self.model_runs,
+                "gaps": [g.as_dict(settings) for g in self.gaps]}
+
+
+def score(gaps: list[Gap], n_parameters: int) -> float:
+    """BIC of a model's residuals: n ln(mean r^2 + floor^2) + p ln n."""
+    r = np.concatenate([g.residual for g in gaps])
+    return float(r.size * math.log(np.mean(r ** 2) + FLOOR ** 2) + n_parameters * math.log(r.size))
+
+
+def closure(before: list[Gap], after: list[Gap]) -> float:
+    """Share of the gap closed: 1 - sum r_after^2 / sum r_before^2 over the cells flagged
+    before or beyond tolerance after (an effect that opens new gaps is charged for them)."""
+    num = den = 0.0
+    for b, a in zip(before, after):
+        cells = b.flagged | a.material
+        num += float(np.sum(a.residual[cells] ** 2))
+        den += float(np.sum(b.residual[cells] ** 2))
+    return 1.0 - num / den if den > 0 else 0.0
+
+
+def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
+               description: str = "") -> tuple[dict[str, float], list[Gap], int]:
+    """Fit the effect's parameters to the tuning runs: (values, gaps at them, model runs)."""
+    params = effect.parameters
+    off = np.array([p.off for p in params])
+    scale = np.array([p.scale for p in params])
+    u0 = (np.array([p.start for p in params]) - off) / scale
+    bounds = ((np.array([p.low for p in params]) - off) / scale, (np.array([p.high for p in params]) - off) / scale)
+    cache: dict[bytes, list[Gap]] = {}
+
+    def values(u: np.ndarray) -> dict[str, float]:
+        return {p.name: float(v) for p, v in zip(params, off + u * scale)}
+
+    def gaps_at(us: list[np.ndarray]) -> list[list[Gap]]:
+        todo = list({u.tobytes(): u for u in us if u.tobytes() not in cache}.values())
+        jobs = [(effect.name, values(u), i, False) for u in todo for i in tuning]
+        results = evaluate(jobs, description) if jobs else []
+        for k, u in enumerate(todo):
+            cache[u.tobytes()] = [g for g, _ in results[k * len(tuning):(k + 1) * len(tuning)]]
+        return [cache[u.tobytes()] for u in us]
+
+    def residual(u: np.ndarray) -> np.ndarray:
+        return np.concatenate([g.residual for g in gaps_at([u])[0]])
+
+    def jacobian(u: np.ndarray) -> np.ndarray:
+        steps = [np.clip(u + FD_STEP * e, *bounds) for e in np.eye(len(u))]
+        steps = [s if np.any(s != u) else u - FD_STEP * e for s, e in zip(steps, np.eye(len(u)))]
+        base, *shifted = gaps_at([u, *steps])
+        r0 = np.concatenate([g.residual for g in base])
+        return np.column_stack([(np.concatenate([g.residual for g in gs]) - r0) / (s - u).sum()
+                                for gs, s in zip(shifted, steps)])
+
+    scipy.optimize.least_squares(residual, u0, jac=jacobian, bounds=bounds, method="trf",
+                                 max_nfev=max_evaluations, xtol=1e-3, ftol=1e-3)
+    # the best point evaluated (the solver's, or a step of its last Jacobian)
+    best = min(cache, key=lambda k: float(np.sum(np.concatenate([g.residual for g in cache[k]]) ** 2)))
+    return values(np.frombuffer(best)), cache[best], len(cache) * len(tuning)
+
+
+# ---------------------------------------------------------------------- the diagnosis
+@dataclass
+class Diagnosis:
+    """Where the gap lies, what explains it and how far it shrinks."""
+
+    settings: GapSettings
+    tuning: list[str]
+    blind: list[str]
+    baseline: list[Gap]  # tuning then blind runs, plain model
+    candidates: list[CandidateFit]  # best score first
+    verdict: str  # "no significant gap", "explained", "unexplained"
+    chosen: str | None
+    reason: str
+    blind_after: list[Gap] = field(default_factory=list)  # blind runs with the chosen effect, not refitted
+    baseline_score: float = float("nan")
+    coherence_deficit: float = float("nan")
+    spectra: dict = field(default_factory=dict)  # run -> {"measured"|"model"|"model+effect": spectra}
+    model_runs: int = 0
+
+    @property
+    def tuning_before(self) -> list[Gap]:
+        return self.baseline[:len(self.tuning)]
+
+    @property
+    def blind_before(self) -> list[Gap]:
+        return self.baseline[len(self.tuning):]
+
+    def candidate(self, name: str) -> CandidateFit:
+        return next(c for c in self.candidates if c.effect == name)
+
+    @property
+    def blind_closure(self) -> float:
+        return closure(self.blind_before, self.blind_after) if self.blind_after else float("nan")
+
+    def flagged_cells(self, gaps: list[Gap]) -> list[tuple[str, str, str]]:
+        """(run, DOF, metric) of every flagged cell."""
+        cells = self.settings.cells()
+        return [(g.run, *cells[i]) for g in gaps for i in np.flatnonzero(g.flagged)]
+
+    def as_dict(self) -> dict:
+        chosen = self.candidate(self.chosen) if self.chosen else None
+        return {"verdict": self.verdict, "chosen": self.chosen, "reason": self.reason,
+                "values": chosen.values if chosen else None,
+                "tuning_runs": self.tuning, "blind_runs": self.blind,
+                "tuning_closure": chosen.closure if chosen else None,
+                "blind_closure": None if math.isnan(self.blind_closure) else self.blind_closure,
+                "baseline_score": self.baseline_score, "coherence_deficit": self.coherence_deficit,
+                "flagged": [list(c) for c in self.flagged_cells(self.baseline)],
+                "baseline": [g.as_dict(self.settings) for g in self.baseline],
+                "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
+                "candidates": [c.as_dict(self.settings) for c in self.candidates],
+                "model_runs": self.model_runs}
+
+
+def coherence_deficit(measured: list[dict], model: list[dict], dof: str, band_hz: tuple[float, float]) -> float:
+    """How far the measured wave-response coherence of ``dof`` in the band lies below the
+    model's, averaged over runs."""
+    return float(np.mean([band_mean(s["frequency_hz"], s[f"coherence.{dof}"], band_hz)
+                          - band_mean(m["frequency_hz"], m[f"coherence.{dof}"], band_hz)
+                          for m, s in zip(measured, model)]))
+
+
+def measured_spectra(run: MeasuredRun, settings: GapSettings) -> dict:
+    return spectra((run.elevation_time_s, run.elevation_m), (run.motion_time_s, run.motion), settings)
+
+
+def check_runs(runs: list[MeasuredRun], settings: GapSettings) -> None:
+    """ValueError naming a run that cannot be diagnosed: too short for the transient, or
+    motion outside its elevation record."""
+    if not runs:
+        raise ValueError("diagnosis: no measured run")
+    for run in runs:
+        span = float(run.motion_time_s[-1] - run.motion_time_s[0]) if run.motion_time_s.size else 0.0
+        if span < settings.transient_s + 300.0:
+            raise ValueError(f"run {run.name}: {span:.0f} s of motion; the diagnosis needs the {settings.transient_s:g} s "
+                             f"transient plus at least 300 s")
+        if run.motion_time_s[0] < run.elevation_time_s[0] - 60.0 or run.motion_time_s[-1] > run.elevation_time_s[-1] + 60.0:
+            raise ValueError(f"run {run.name}: the motion ({run.motion_time_s[0]:.0f}-{run.motion_time_s[-1]:.0f} s) is "
+                             f"not within the wave elevation record ({run.elevation_time_s[0]:.0f}-"
+                             f"{run.elevation_time_s[-1]:.0f} s)")
+
+
+def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Callable, settings: GapSettings,
+             effects: dict[str, Effect] | None = None, max_evaluations: int = 4) -> Diagnosis:
+    """Diagnose the gap between the model and the measured runs. ``evaluate(jobs,
+    description)`` runs replay jobs (``replay_job``) over ``tuning + blind`` in that order."""
+    check_runs(tuning + blind, settings)
+    effects = effects or CATALOGUE
+    n_tuning = len(tuning)
+    runs = tuning + blind
+    first = evaluate([(None, {}, i, i < n_tuning) for i in range(len(runs))], "plain model")
+    baseline = [g for g, _ in first]
+    measured = [measured_spectra(r, settings) for r in tuning]
+    model_spectra = [s for _, s in first[:n_tuning]]
+    lf = settings.bands_hz.get("low_frequency", min(settings.bands_hz.values()))
+    deficit = coherence_deficit(measured, model_spectra, settings.dofs[0], lf)
+    diagnosis = Diagnosis(settings, [r.name for r in tuning], [r.name for r in blind], baseline, [],
+                          "no significant gap", None, "", baseline_score=score(baseline[:n_tuning], 0),
+                          coherence_deficit=deficit, model_runs=len(runs))
+    diagnosis.spectra = {r.name: {"measured": m, "model": s} for r, m, s in zip(tuning, measured, model_spectra)}
+    if not any(g.flagged.any() for g in diagnosis.tuning_before):
+        diagnosis.reason = "no cell of the tuning runs is both significant and beyond its tolerance"
+        return diagnosis
+
+    def fit(effect: Effect) -> CandidateFit:
+        values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name)
+        return CandidateFit(effect.name, values, gaps, score(gaps, len(effect.parameters)),
+                            closure(diagnosis.tuning_before, gaps), count)
+
+    with ThreadPoolExecutor(max_workers=len(effects)) as pool:
+        candidates = sorted(pool.map(fit, effects.values()), key=lambda c: c.score)
+    for c in candidates:
+        c.fits = c.score < diagnosis.baseline_score - MIN_EVIDENCE and c.closure >= MIN_CLOSURE
+    diagnosis.candidates = candidates
+    diagnosis.model_runs += sum(c.model_runs for c in candidates)
+    fitting = [c for c in candidates if c.fits]
+    if not fitting:
+        best = candidates[0]
+        diagnosis.verdict = "unexplained"
+        diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence; the nearest, "
+                            f"{best.effect}, closes {best.closure:.0%}")
+        return diagnosis
+    tied = [c for c in fitting if c.score <= fitting[0].score + TIE]
+    chosen, reason = fitting[0], f"best score, closes {fitting[0].closure:.0%} of the tuning gap"
+    if len(tied) > 1:
+        incoherent = deficit > COHERENCE_DEFICIT
+        agreeing = [c for c in tied if effects[c.effect].wave_coherent != incoherent]
+        if agreeing and agreeing[0] is not chosen:
+            chosen = agreeing[0]
+            reason = (f"ties with {fitting[0].effect} on score; the measured low-frequency {settings.dofs[0]} is "
+                      f"{'less' if incoherent else 'no less'} coherent with the waves than the model's "
+                      f"(deficit {deficit:.2f}), which points to a {'wave-incoherent' if incoherent else 'wave-coherent'} load")
+        else:
+            reason += f"; also fit: {', '.join(c.effect for c in tied if c is not chosen)}"
+    diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
+    jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
+    after = evaluate(jobs, f"{chosen.effect}: all runs")
+    diagnosis.model_runs += len(jobs)
+    diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
+    for r, (_, s) in zip(tuning, after[:n_tuning]):
+        diagnosis.spectra[r.name]["model + effect"] = s
+    return diagnosis
+
+
+def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
+                     effects: dict[str, Effect] | None = None,
+                     dt_s: float = REPLAY_DT_S) -> Callable[[list[Job], str], list]:
+    """``evaluate`` that sends the jobs to a Dask cluster (the runs and platform sent once),
+    with a progress bar per description (one per candidate: their fits run together)."""
+    from fowt_hydro_sim.studies.cluster import map_with_progress, scatter
+    shared = {"runs": scatter(client, runs), "platform": scatter(client, platform),
+              "settings": scatter(client, settings), "effects": scatter(client, effects), "dt_s": dt_s}
+    positions: dict[str, int] = {}
+
+    def evaluate(jobs: list[Job], description: str = "") -> list:
+        position = positions.setdefault(description, len(positions))
+        return map_with_progress(client, replay_job, jobs, description, position, **shared)
+    return evaluate
+
+
+def summary_lines(diagnosis: Diagnosis) -> list[str]:
+    """The diagnosis in a few lines: flagged cells, candidates, verdict, blind closure."""
+    lines = [f"gap: {len(diagnosis.flagged_cells(diagnosis.tuning_before))} flagged cells on the tuning runs"]
+    lines += [f"  {run}: {dof} {metric}" for run, dof, metric in diagnosis.flagged_cells(diagnosis.tuning_before)]
+    if diagnosis.candidates:
+        lines.append(f"{'candidate':<26}{'score':>9}{'closure':>9}  parameters")
+        lines += [f"{c.effect:<26}{c.score:>9.1f}{100 * c.closure:>8.0f}%  "
+                  + ", ".join(f"{k} {v:.4g}" for k, v in c.values.items()) for c in diagnosis.candidates]
+    lines.append(f"verdict: {diagnosis.verdict}" + (f": {diagnosis.chosen}" if diagnosis.chosen else "")
+                 + f" ({diagnosis.reason})")
+    if diagnosis.blind_after:
+        lines.append(f"blind runs (not refitted): {100 * diagnosis.blind_closure:.0f} % of the gap closed")
+    return lines
+
+
+def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, settings: GapSettings,
+                  effects: dict[str, Effect], output: str, heading_deg: float = 0.0, max_evaluations: int = 4,
+                  dt_s: float = REPLAY_DT_S, scheduler: str | None = None, workers: int | None = None) -> list[str]:
+    """``fowt-sim diagnose``: measured bags diagnosed on a Dask cluster, the report written to
+    ``output``; returns the summary's lines."""
+    from fowt_hydro_sim.studies.cluster import dask_client
+    from fowt_hydro_sim.studies.diagnosis.report import write_report
+    from fowt_hydro_sim.studies.replay import measured_run
+    tuning_runs = [measured_run(p, heading_deg) for p in tuning]
+    blind_runs = [measured_run(p, heading_deg) for p in blind]
+    check_runs(tuning_runs + blind_runs, settings)  # before any cluster starts
+    with dask_client(scheduler, workers) as client:
+        evaluate = cluster_evaluate(client, tuning_runs + blind_runs, platform, settings, effects, dt_s)
+        diagnosis = diagnose(tuning_runs, blind_runs, evaluate, settings, effects, max_evaluations)
+    return summary_lines(diagnosis) + [f"report: {write_report(diagnosis, output)}"]

@@ -1,0 +1,20 @@
+"""Added-mass / inertia error: every added-mass coefficient (Ca) scaled, which scales the
+Morison inertia force's diffraction part (Cm = 1 + Ca) with it."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from fowt_hydro_sim.physics.platform_edits import scaled_added_mass
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter
+from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
+
+
+def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
+    return replace(variant, platform=scaled_added_mass(variant.platform, values["added_mass_scale"]))
+
+
+EFFECT = Effect(
+    "added_mass_error",
+    "added mass (Ca) and with it the inertia force's diffraction part in error",
+    (Parameter("added_mass_scale", "-", start=1.1, low=0.3, high=2.0, off=1.0),),
+    apply)

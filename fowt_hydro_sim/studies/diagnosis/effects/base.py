@@ -1,0 +1,58 @@
+"""What a candidate unmodelled effect is: named parameters with a value at which the
+effect is off, and a pure function that turns a model variant into one with the effect."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter: the fit starts at ``start`` within [low, high]; at ``off`` the
+    effect is switched off."""
+
+    name: str
+    unit: str
+    start: float
+    low: float
+    high: float
+    off: float = 0.0
+
+    @property
+    def scale(self) -> float:
+        """The parameter's typical size, for the fit's steps."""
+        return abs(self.start - self.off)
+
+
+@dataclass(frozen=True)
+class Effect:
+    """A switchable, parametrised extension of the model. ``apply(variant, run, values)``
+    returns the variant with the effect at ``values`` (parameter name -> value) for
+    ``run`` (effects may depend on the run's sea state or its elevation record).
+    ``wave_coherent``: whether the loads it adds are linear in the waves (False for loads
+    quadratic in the elevation, whose low-frequency part is not coherent with it)."""
+
+    name: str
+    summary: str
+    parameters: tuple[Parameter, ...]
+    apply: Callable[[Variant, MeasuredRun, dict[str, float]], Variant]
+    wave_coherent: bool = True
+
+    def values(self, which: str = "start") -> dict[str, float]:
+        return {p.name: getattr(p, which) for p in self.parameters}
+
+
+# ---------------------------------------------------------------------- helpers for effects
+def linear_modes(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
+    """Diagonals of the mass (rigid + added) and restoring matrices at rest (6,), (6,)."""
+    model = PlatformModel(platform)
+    return np.diag(model.mass_matrix()), np.diag(model.restoring_matrix())
+
+
+ANALYSED = (0, 2, 4)  # surge, heave, pitch: the DOFs whose per-DOF terms the effects fit

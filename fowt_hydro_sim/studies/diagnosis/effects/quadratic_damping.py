@@ -1,0 +1,38 @@
+"""Additional quadratic damping -B2 |v| v in surge, heave and pitch. Each parameter is the
+damping ratio it is equivalent to (Borgman linearisation, 8/(3 pi) B2 omega a) at an
+oscillation of 1 m (1 deg) at the DOF's natural frequency."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from fowt_hydro_sim.physics.loads.extension import Extension
+from fowt_hydro_sim.studies.diagnosis.effects.base import ANALYSED, Effect, Parameter, linear_modes
+from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
+
+NAMES = ("surge_ratio_at_1m", "heave_ratio_at_1m", "pitch_ratio_at_1deg")
+REFERENCE_AMPLITUDE = {0: 1.0, 2: 1.0, 4: np.deg2rad(1.0)}  # m, m, rad
+
+
+def quadratic_coefficients(mass: np.ndarray, stiffness: np.ndarray, ratios: dict[int, float]) -> np.ndarray:
+    """B2 (6,) with 8/(3 pi) B2 omega_n a_ref = ratio 2 sqrt(K M)."""
+    out = np.zeros(6)
+    for dof, ratio in ratios.items():
+        omega = np.sqrt(stiffness[dof] / mass[dof])
+        out[dof] = ratio * 2.0 * np.sqrt(stiffness[dof] * mass[dof]) * 3.0 * np.pi / (
+            8.0 * omega * REFERENCE_AMPLITUDE[dof])
+    return out
+
+
+def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
+    mass, stiffness = linear_modes(variant.platform)
+    b2 = quadratic_coefficients(mass, stiffness, {dof: values[name] for dof, name in zip(ANALYSED, NAMES)})
+    return replace(variant, extension=variant.extension.plus(Extension(quadratic_damping=b2)))
+
+
+EFFECT = Effect(
+    "quadratic_damping",
+    "additional quadratic (viscous) damping per DOF",
+    tuple(Parameter(name, "of critical", start=0.05, low=0.0, high=2.0) for name in NAMES),
+    apply)

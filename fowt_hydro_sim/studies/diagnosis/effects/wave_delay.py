@@ -1,0 +1,20 @@
+"""Wave-measurement delay (a confounder, not physics): the elevation record's stamps are
+late by ``delay_s``, so the model, driven by it, answers late. Corrected by shifting the
+record back."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter
+from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
+
+
+def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
+    return replace(variant, elevation_shift_s=variant.elevation_shift_s - values["delay_s"])
+
+
+EFFECT = Effect(
+    "wave_measurement_delay",
+    "the wave elevation's time stamps are late or early (probe clock, filtering)",
+    (Parameter("delay_s", "s", start=0.5, low=-10.0, high=10.0),),
+    apply)

@@ -1,0 +1,201 @@
+"""Where a model and a measured run differ: the gap per DOF and metric, for a model replayed
+with the run's own elevation (like for like), with confidence intervals from a paired
+block test, plus the spectra the report shows (PSD ratio, wave-response coherence).
+
+Metrics per DOF (values are model against measured):
+- ``std.BAND``: band STD error, model / measured - 1;
+- ``frequency.BAND``: mean frequency error in the band, sqrt(m2/m0) model / measured - 1
+  (a shifted resonance: stiffness or inertia);
+- ``offset``: mean offset, (model - measured) / the measured STD;
+- ``lag``: time lag [s] of the model's wave-band response behind the measured one.
+
+Because both runs see the same waves, sampling noise largely cancels in their ratio: the
+record is cut into blocks, the metric's log ratio (or difference) is taken per block,
+and its mean gets a Student-t interval. A cell is flagged when that interval excludes
+zero (significant) and the value exceeds its tolerance (material). A band holding less
+than ``NEGLIGIBLE_BAND`` of its DOF's measured STD is not judged (e.g. heave below the
+wave band, which sensor noise and small property errors swing by tens of percent).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.signal
+import scipy.stats
+
+from fowt_hydro_sim.physics.model import DOF_NAMES
+from fowt_hydro_sim.studies.psd import BANDS_HZ
+
+GRID_STEP_S = 0.25
+MAX_LAG_S = 10.0
+TOLERANCES = {"std": 0.05, "frequency": 0.03, "offset": 0.2, "lag": 0.25}  # materiality, per metric kind
+COHERENCE_SEGMENT_S = 300.0
+MIN_BLOCK_S = 180.0  # a block spans nearly two surge periods: shorter blocks are not independent
+NEGLIGIBLE_BAND = 0.15  # share of the DOF's STD below which a band's cells are not judged
+
+
+@dataclass(frozen=True)
+class GapSettings:
+    transient_s: float = 300.0  # discarded at the start of each run
+    dofs: tuple[str, ...] = ("surge", "heave", "pitch")
+    bands_hz: dict[str, tuple[float, float]] = field(default_factory=lambda: dict(BANDS_HZ))
+    blocks: int = 8  # at most; fewer for records too short for blocks of MIN_BLOCK_S
+    confidence: float = 0.90
+    tolerances: dict[str, float] = field(default_factory=lambda: dict(TOLERANCES))
+
+    def metrics(self) -> list[str]:
+        return ([f"std.{b}" for b in self.bands_hz] + [f"frequency.{b}" for b in self.bands_hz]
+                + ["offset", "lag"])
+
+    def cells(self) -> list[tuple[str, str]]:
+        """(DOF, metric) of every cell, in the order of ``gap`` arrays."""
+        return [(dof, metric) for dof in self.dofs for metric in self.metrics()]
+
+    def tolerance(self, metric: str) -> float:
+        return self.tolerances[metric.split(".")[0]]
+
+
+@dataclass(frozen=True)
+class Gap:
+    """One run's gap cells (``GapSettings.cells`` order): value, confidence interval,
+    tolerance (infinite for a cell not judged); and the residual value / tolerance that
+    fits minimise."""
+
+    run: str
+    value: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    tolerance: np.ndarray
+
+    @property
+    def significant(self) -> np.ndarray:
+        return (self.low > 0) | (self.high < 0)
+
+    @property
+    def material(self) -> np.ndarray:
+        return np.abs(self.value) > self.tolerance
+
+    @property
+    def flagged(self) -> np.ndarray:
+        return self.significant & self.material
+
+    @property
+    def residual(self) -> np.ndarray:
+        return self.value / self.tolerance
+
+    def as_dict(self, settings: GapSettings) -> dict:
+        return {"run": self.run, "cells": [
+            {"dof": dof, "metric": metric, "value": float(v), "low": float(lo), "high": float(hi),
+             "tolerance": float(tol) if np.isfinite(tol) else None, "significant": bool(s), "flagged": bool(f)}
+            for (dof, metric), v, lo, hi, tol, s, f in zip(settings.cells(), self.value, self.low, self.high,
+                                                        self.tolerance, self.significant, self.flagged)]}
+
+
+def common_grid(measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndarray, np.ndarray],
+                transient_s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Both motions (n, 6) on one grid over their common span after the transient."""
+    start = max(measured[0][0], model[0][0]) + transient_s
+    end = min(measured[0][-1], model[0][-1])
+    if end - start < 256 * GRID_STEP_S:
+        raise ValueError(f"gap: the runs overlap for {max(0.0, end - start + transient_s):.0f} s, too little "
+                         f"after the {transient_s:g} s transient")
+    grid = np.arange(start, end, GRID_STEP_S)
+    return tuple(np.column_stack([np.interp(grid, t, column) for column in x.T]) for t, x in (measured, model))
+
+
+def band_passed(signal: np.ndarray, band_hz: tuple[float, float], step_s: float = GRID_STEP_S) -> np.ndarray:
+    """The signal's content in the band (FFT mask, mean removed)."""
+    spectrum = np.fft.rfft(signal - signal.mean())
+    f = np.fft.rfftfreq(len(signal), step_s)
+    spectrum[(f < band_hz[0]) | (f > band_hz[1])] = 0.0
+    return np.fft.irfft(spectrum, len(signal))
+
+
+def block_lag_s(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S) -> float:
+    """Lag of ``model`` behind ``measured`` [s]: the cross-correlation's peak, refined by a
+    parabola, within +-MAX_LAG_S."""
+    n = len(model)
+    correlation = np.fft.irfft(np.fft.rfft(model, 2 * n) * np.conj(np.fft.rfft(measured, 2 * n)), 2 * n)
+    reach = int(MAX_LAG_S / step_s)
+    lags = np.concatenate([np.arange(0, reach + 1), np.arange(-reach, 0)])
+    values = np.concatenate([correlation[:reach + 1], correlation[-reach:]])
+    order = np.argsort(lags)
+    lags, values = lags[order], values[order]
+    i = int(np.clip(np.argmax(values), 1, len(values) - 2))
+    y0, y1, y2 = values[i - 1:i + 2]
+    curvature = y0 - 2 * y1 + y2
+    shift = 0.5 * (y0 - y2) / curvature if curvature < 0 else 0.0
+    return float((lags[i] + shift) * step_s)
+
+
+def mean_frequency(x: np.ndarray) -> float:
+    """sqrt(m2 / m0) of a zero-mean record [rad per sample]."""
+    return float(np.diff(x).std() / x[:-1].std())
+
+
+def _interval(samples: np.ndarray, confidence: float) -> tuple[float, float]:
+    """The mean of ``samples`` and its Student-t interval's half-width."""
+    k = len(samples)
+    half = scipy.stats.t.ppf(0.5 + confidence / 2, k - 1) * samples.std(ddof=1) / math.sqrt(k)
+    return float(samples.mean()), float(half)
+
+
+def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndarray, np.ndarray],
+        settings: GapSettings) -> Gap:
+    """The gap cells of a model run (time, motion (n, 6)) against a measured run."""
+    x_measured, x_model = common_grid(measured, model, settings.transient_s)
+    n_blocks = max(3, min(settings.blocks, int(len(x_measured) * GRID_STEP_S // MIN_BLOCK_S)))
+    blocks = np.array_split(np.arange(len(x_measured)), n_blocks)
+    rows, judged = [], []
+    for dof in settings.dofs:
+        j = DOF_NAMES.index(dof)
+        m, s = x_measured[:, j], x_model[:, j]
+        scale = float(m.std()) or 1.0
+        passed = {name: (band_passed(m, band), band_passed(s, band)) for name, band in settings.bands_hz.items()}
+        band_judged = [mb.std() >= NEGLIGIBLE_BAND * scale for mb, _ in passed.values()]
+        judged += band_judged * 2 + [True, True]
+        for mb, sb in passed.values():  # std.BAND
+            per_block = np.array([0.5 * math.log(sb[b].var() / mb[b].var()) for b in blocks])
+            _, half = _interval(per_block, settings.confidence)
+            overall = 0.5 * math.log(sb.var() / mb.var())
+            rows.append((math.expm1(overall), math.expm1(overall - half), math.expm1(overall + half)))
+        for mb, sb in passed.values():  # frequency.BAND
+            per_block = np.array([math.log(mean_frequency(sb[b]) / mean_frequency(mb[b])) for b in blocks])
+            _, half = _interval(per_block, settings.confidence)
+            overall = math.log(mean_frequency(sb) / mean_frequency(mb))
+            rows.append((math.expm1(overall), math.expm1(overall - half), math.expm1(overall + half)))
+        per_block = np.array([(s[b].mean() - m[b].mean()) / scale for b in blocks])  # offset
+        centre, half = _interval(per_block, settings.confidence)
+        rows.append((centre, centre - half, centre + half))
+        mb, sb = passed["wave"] if "wave" in passed else passed[max(settings.bands_hz, key=settings.bands_hz.get)]
+        per_block = np.array([block_lag_s(sb[b], mb[b]) for b in blocks])  # lag
+        centre, half = _interval(per_block, settings.confidence)
+        rows.append((centre, centre - half, centre + half))
+    value, low, high = (np.array(column) for column in zip(*rows))
+    tolerance = np.array([settings.tolerance(metric) if ok else np.inf
+                          for (_, metric), ok in zip(settings.cells(), judged)])
+    return Gap(name, value, low, high, tolerance)
+
+
+def spectra(elevation: tuple[np.ndarray, np.ndarray], motion: tuple[np.ndarray, np.ndarray],
+            settings: GapSettings) -> dict[str, np.ndarray]:
+    """Welch PSD of each analysed DOF and its coherence with the wave elevation (one run):
+    ``frequency_hz``, ``psd.DOF``, ``coherence.DOF``."""
+    start = max(elevation[0][0], motion[0][0]) + settings.transient_s
+    grid = np.arange(start, min(elevation[0][-1], motion[0][-1]), GRID_STEP_S)
+    eta = np.interp(grid, *elevation)
+    n = int(COHERENCE_SEGMENT_S / GRID_STEP_S)
+    out = {}
+    for dof in settings.dofs:
+        x = np.interp(grid, motion[0], motion[1][:, DOF_NAMES.index(dof)])
+        f, p = scipy.signal.welch(x, fs=1 / GRID_STEP_S, nperseg=n)
+        _, c = scipy.signal.coherence(eta, x, fs=1 / GRID_STEP_S, nperseg=n)
+        out["frequency_hz"], out[f"psd.{dof}"], out[f"coherence.{dof}"] = f, p, c
+    return out
+
+
+def band_mean(frequency_hz: np.ndarray, values: np.ndarray, band_hz: tuple[float, float]) -> float:
+    keep = (frequency_hz >= band_hz[0]) & (frequency_hz <= band_hz[1])
+    return float(values[keep].mean())

@@ -1,0 +1,217 @@
+"""The gap diagnosis's report: report.md (what a person reads), diagnosis.json (for
+scripts) and PNG figures: the gap matrix before and after the chosen effect, PSD overlays
+measured / model / model + effect with their ratio and wave coherence, and each
+candidate's closure."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from fowt_hydro_sim.studies.diagnosis.diagnose import Diagnosis
+from fowt_hydro_sim.studies.diagnosis.gap import Gap
+
+SPECTRA_F_MAX_HZ = 0.3  # the figures' and JSON's frequency range
+
+
+def _matplotlib():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def _label(dof: str, metric: str) -> str:
+    return f"{dof} {metric.replace('low_frequency', 'LF').replace('frequency.', 'freq.')}"
+
+
+def _value_text(metric: str, value: float) -> str:
+    if metric == "lag":
+        return f"{value:+.2f} s"
+    if metric == "offset":
+        return f"{value:+.2f} STD"
+    return f"{100 * value:+.1f} %"
+
+
+def plot_gap_matrix(diagnosis: Diagnosis, path: Path) -> None:
+    """Residuals (value / tolerance) per run and cell, plain model and with the chosen
+    effect; flagged cells dotted, cells not judged grey."""
+    plt = _matplotlib()
+    cells = diagnosis.settings.cells()
+    panels = [("plain model", diagnosis.baseline)]
+    if diagnosis.chosen:
+        after = diagnosis.candidate(diagnosis.chosen).gaps + diagnosis.blind_after
+        panels.append((f"with {diagnosis.chosen} (blind runs not refitted)", after))
+    runs = diagnosis.tuning + [f"{r} (blind)" for r in diagnosis.blind]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(max(8, 0.45 * len(cells)), 1.2 + 0.45 * len(runs) * len(panels) + 1),
+                             squeeze=False)
+    for ax, (title, gaps) in zip(axes[:, 0], panels):
+        residual = np.array([g.residual for g in gaps])
+        shown = np.ma.masked_where(np.array([~np.isfinite(g.tolerance) for g in gaps]), np.clip(residual, -5, 5))
+        image = ax.imshow(shown, cmap="RdBu_r", vmin=-5, vmax=5, aspect="auto")
+        ax.set_facecolor("0.85")
+        for i, g in enumerate(gaps):
+            for j in np.flatnonzero(g.flagged):
+                ax.plot(j, i, "k.", markersize=6)
+        ax.set_yticks(range(len(gaps)), runs[:len(gaps)], fontsize=7)
+        ax.set_xticks(range(len(cells)), [_label(*c) for c in cells], rotation=70, fontsize=7)
+        ax.set_title(title, fontsize=9)
+        fig.colorbar(image, ax=ax, label="gap / tolerance")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_spectra(run: str, spectra: dict[str, dict], dofs: tuple[str, ...], path: Path) -> None:
+    """Per DOF: PSDs, their ratio to the measured one, and coherence with the waves."""
+    plt = _matplotlib()
+    fig, axes = plt.subplots(3, len(dofs), figsize=(4.2 * len(dofs), 8.5), sharex=True, squeeze=False)
+    styles = {"measured": "k-", "model": "C0-", "model + effect": "C3--"}
+    for col, dof in enumerate(dofs):
+        measured = spectra["measured"]
+        keep = (measured["frequency_hz"] > 0) & (measured["frequency_hz"] <= SPECTRA_F_MAX_HZ)
+        f = measured["frequency_hz"][keep]
+        for name, s in spectra.items():
+            axes[0, col].semilogy(f, s[f"psd.{dof}"][keep], styles.get(name, "-"), label=name, lw=1)
+            axes[2, col].plot(f, s[f"coherence.{dof}"][keep], styles.get(name, "-"), lw=1)
+            if name != "measured":
+                ratio = s[f"psd.{dof}"][keep] / np.maximum(measured[f"psd.{dof}"][keep], 1e-300)
+                axes[1, col].semilogy(f, ratio, styles.get(name, "-"), lw=1)
+        axes[1, col].axhline(1.0, color="k", lw=0.5)
+        axes[0, col].set_title(f"{run}: {dof}", fontsize=9)
+        axes[2, col].set_xlabel("frequency [Hz]")
+        for row in axes[:, col]:
+            row.axvline(0.05, color="0.6", lw=0.5, ls=":")
+    axes[0, 0].set_ylabel("PSD")
+    axes[1, 0].set_ylabel("PSD / measured")
+    axes[2, 0].set_ylabel("coherence with waves")
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_closure(diagnosis: Diagnosis, path: Path) -> None:
+    """Each candidate's closure of the tuning gap, and the chosen one's on the blind runs."""
+    plt = _matplotlib()
+    names = [c.effect for c in diagnosis.candidates]
+    fig, ax = plt.subplots(figsize=(7, 0.45 * len(names) + 1.5))
+    colours = ["C3" if n == diagnosis.chosen else ("C0" if c.fits else "0.6") for n, c in zip(names, diagnosis.candidates)]
+    ax.barh(range(len(names)), [100 * max(c.closure, -1.0) for c in diagnosis.candidates], color=colours)
+    if diagnosis.blind_after:
+        i = names.index(diagnosis.chosen)
+        ax.plot(100 * diagnosis.blind_closure, i, "kD", label="blind runs, not refitted")
+        ax.legend(fontsize=7)
+    ax.axvline(50, color="k", lw=0.5, ls=":")
+    ax.set_yticks(range(len(names)), names, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel("gap closed on the tuning runs [%] (best score at top)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _rms_flagged(before: list[Gap], after: list[Gap]) -> tuple[float, float]:
+    """RMS residual (tolerance units) over the cells flagged before, before and after."""
+    b = np.concatenate([g.residual[g.flagged] for g in before]) if before else np.empty(0)
+    a = np.concatenate([ga.residual[gb.flagged] for gb, ga in zip(before, after)]) if after else np.empty(0)
+    rms = lambda x: float(np.sqrt(np.mean(x ** 2))) if x.size else float("nan")
+    return rms(b), rms(a)
+
+
+def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
+    d, cells = diagnosis, diagnosis.settings.cells()
+    lines = ["# Sim-to-real gap diagnosis", "",
+             f"Tuning runs: {', '.join(d.tuning)}. Blind runs: {', '.join(d.blind) or 'none'}. "
+             f"Model runs: {d.model_runs}.", "",
+             f"**Verdict: {d.verdict}**" + (f": **{d.chosen}**" if d.chosen else "") + f". {d.reason}.", ""]
+    lines += ["## Where the gap lies", "",
+              "Cells flagged: significant (the paired block test's "
+              f"{100 * d.settings.confidence:g} % interval excludes zero) and beyond tolerance "
+              "(STD 5 %, mean frequency 3 %, offset 0.2 STD, lag 0.25 s). Values are model against measured.", "",
+              "| run | DOF | metric | gap | interval | tolerance |", "|---|---|---|---|---|---|"]
+    for g in d.baseline:
+        for i in np.flatnonzero(g.flagged):
+            dof, metric = cells[i]
+            lines.append(f"| {g.run} | {dof} | {metric} | {_value_text(metric, g.value[i])} | "
+                         f"[{_value_text(metric, g.low[i])}, {_value_text(metric, g.high[i])}] | "
+                         f"{_value_text(metric, g.tolerance[i]).lstrip('+')} |")
+    if not d.flagged_cells(d.baseline):
+        lines.append("| (none) | | | | | |")
+    lines += ["", f"Wave-response coherence, low-frequency {d.settings.dofs[0]}: the model's exceeds the measured "
+              f"runs' by {d.coherence_deficit:+.2f} on average (clearly positive: part of the measured response is "
+              "not explained linearly by the waves).", ""]
+    if d.candidates:
+        lines += ["## Which effect", "",
+                  f"Each candidate fitted to all tuning runs at once; score = BIC (lower is better; the plain "
+                  f"model's is {d.baseline_score:.1f}). Named only if it beats the plain model by 6 and closes "
+                  "half the gap.", "",
+                  "| effect | fitted parameters | score | closure (tuning) | fits |", "|---|---|---|---|---|"]
+        for c in d.candidates:
+            values = ", ".join(f"{k} = {v:.4g}" for k, v in c.values.items())
+            lines.append(f"| {c.effect} | {values} | {c.score:.1f} | {100 * c.closure:.0f} % | "
+                         f"{'yes' if c.fits else 'no'} |")
+        lines.append("")
+    if d.chosen:
+        chosen = d.candidate(d.chosen)
+        tb, ta = _rms_flagged(d.tuning_before, chosen.gaps)
+        lines += ["## How far it shrinks", "",
+                  "| runs | closure | RMS flagged gap before | after |", "|---|---|---|---|",
+                  f"| tuning (fitted) | {100 * chosen.closure:.0f} % | {tb:.2f} | {ta:.2f} |"]
+        if d.blind_after:
+            bb, ba = _rms_flagged(d.blind_before, d.blind_after)
+            lines.append(f"| blind (not refitted) | {100 * d.blind_closure:.0f} % | {bb:.2f} | {ba:.2f} |")
+        lines += ["", "RMS in units of each cell's tolerance. Cell by cell (flagged before):", "",
+                  "| run | DOF | metric | gap before | after |", "|---|---|---|---|---|"]
+        for before, after in zip(d.baseline, chosen.gaps + d.blind_after):
+            for i in np.flatnonzero(before.flagged):
+                dof, metric = cells[i]
+                lines.append(f"| {before.run} | {dof} | {metric} | {_value_text(metric, before.value[i])} | "
+                             f"{_value_text(metric, after.value[i])} |")
+        lines.append("")
+    lines += ["## Figures", ""] + [f"![{name}]({name})" for name in figures] + [""]
+    return "\n".join(lines)
+
+
+def _jsonable(spectra: dict) -> dict:
+    out = {}
+    for run, variants in spectra.items():
+        out[run] = {}
+        for name, s in variants.items():
+            keep = s["frequency_hz"] <= SPECTRA_F_MAX_HZ
+            out[run][name] = {k: v[keep].tolist() for k, v in s.items()}
+    return out
+
+
+def write_report(diagnosis: Diagnosis, folder: str | Path) -> Path:
+    """report.md, diagnosis.json and the figures in ``folder``; returns report.md's path."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    figures = ["gap_matrix.png"]
+    plot_gap_matrix(diagnosis, folder / "gap_matrix.png")
+    for run, spectra in diagnosis.spectra.items():
+        name = f"spectra_{run.replace('/', '_')}.png"
+        plot_spectra(run, spectra, diagnosis.settings.dofs, folder / name)
+        figures.append(name)
+    if diagnosis.candidates:
+        plot_closure(diagnosis, folder / "closure.png")
+        figures.append("closure.png")
+    data = {**diagnosis.as_dict(), "spectra": _jsonable(diagnosis.spectra),
+            "cells": [list(c) for c in diagnosis.settings.cells()]}
+    (folder / "diagnosis.json").write_text(json.dumps(_finite(data), indent=1) + "\n")
+    path = folder / "report.md"
+    path.write_text(markdown(diagnosis, figures))
+    return path
+
+
+def _finite(value):
+    """The data with every non-finite number as None (JSON has no NaN)."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value

@@ -1,0 +1,113 @@
+"""Measured runs and their replay: the model, or a variant of it, driven by a run's own
+measured wave elevation record, so that model and measurement see the same waves.
+
+A ``Variant`` is everything that may differ from the plain model when replaying: the
+platform, the drag model, loads beyond Morison's (``physics.loads.extension``) and a time
+shift of the elevation record. Calibration varies the platform's Cds; the gap diagnosis's
+effects (``studies.diagnosis.effects``) vary any of them.
+"""
+from __future__ import annotations
+
+import hashlib
+from collections import OrderedDict
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.physics.loads.extension import Extension
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.strips import discretise
+from fowt_hydro_sim.physics.waves.components import WaveComponents, from_elevation_record
+from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, table_step
+
+OUTPUT_INTERVAL_S = 0.25  # motion samples of a replayed run
+WAVE_F_MAX_HZ = 0.5  # elevation components kept
+TABLES_KEPT = 6  # kinematics tables kept for further replays of the same runs
+_tables: OrderedDict[bytes, KinematicsTable] = OrderedDict()
+
+
+@dataclass(frozen=True)
+class MeasuredRun:
+    """What a measured bag holds: the elevation record and the platform's 6-DOF motion
+    (optionally the acceleration and mooring loads, which the replay does not need)."""
+
+    name: str
+    elevation_time_s: np.ndarray
+    elevation_m: np.ndarray
+    point_xy_m: tuple[float, float]
+    motion_time_s: np.ndarray
+    motion: np.ndarray
+    heading_deg: float = 0.0  # the waves' direction of travel (long-crested)
+
+    @property
+    def hs_m(self) -> float:
+        """Significant wave height of the record, 4 x its elevation STD."""
+        return 4.0 * float(np.std(self.elevation_m))
+
+    @property
+    def elevation_step_s(self) -> float:
+        return float(self.elevation_time_s[1] - self.elevation_time_s[0])
+
+
+def measured_run(path: str | Path, heading_deg: float = 0.0) -> MeasuredRun:
+    """Read a measured run from a bag (contract: /waves/elevation and /platform/pose); the
+    elevation is resampled onto a uniform grid at its median step."""
+    from fowt_hydro_sim.rosbag.reader import Bag
+    bag = Bag(path)
+    elevation, motion = bag.elevation(), bag.motion()
+    step = float(np.median(np.diff(elevation.time_s)))
+    grid = np.arange(elevation.time_s[0], elevation.time_s[-1] + 0.5 * step, step)
+    eta = np.interp(grid, elevation.time_s, elevation.values[:, 2])
+    return MeasuredRun(Path(path).name, grid, eta, (float(elevation.values[0, 0]), float(elevation.values[0, 1])),
+                       motion.time_s, motion.values, heading_deg)
+
+
+@dataclass(frozen=True)
+class Variant:
+    """A model to replay runs with. ``elevation_shift_s`` is added to the record's stamps
+    (a probe whose clock runs late by d is corrected by -d)."""
+
+    platform: Platform
+    drag_model: str = "constant"
+    extension: Extension = field(default_factory=Extension)
+    elevation_shift_s: float = 0.0
+
+
+def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Time and 6-DOF motion of the variant driven by the run's elevation record, on the
+    record's clock (model time 0 = the record's first sample, shifted), until the run's
+    last motion sample (or for ``duration_s``)."""
+    platform = variant.platform
+    env = platform.environment
+    waves = from_elevation_record(run.elevation_time_s - run.elevation_time_s[0], run.elevation_m,
+                                  *run.point_xy_m, run.heading_deg, env.water_depth_m, env.gravity_m_s2,
+                                  f_max_hz=WAVE_F_MAX_HZ)
+    model = PlatformModel(platform, waves, dt_s=dt_s, drag_model=variant.drag_model, extension=variant.extension,
+                          kinematics=kinematics_table(platform, waves))
+    start = run.elevation_time_s[0] + variant.elevation_shift_s
+    duration = duration_s if duration_s is not None else float(run.motion_time_s[-1] - start)
+    result = model.run(duration, output_interval_s=OUTPUT_INTERVAL_S)
+    return result.time_s + start, result.motion
+
+
+def kinematics_table(platform: Platform, waves: WaveComponents) -> KinematicsTable:
+    """The waves' kinematics at the platform's points, kept for the next replays of the same
+    run (a fit replays each run many times with other coefficients, same points)."""
+    env = platform.environment
+    points = discretise(platform).points_m
+    step = table_step(waves)
+    digest = hashlib.blake2b(digest_size=16)
+    for array in (waves.frequency_hz, waves.amplitude_m, waves.phase_rad, waves.direction_rad, points,
+                  np.array([step, env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3])):
+        digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    key = digest.digest()
+    if key in _tables:
+        _tables.move_to_end(key)
+        return _tables[key]
+    table = KinematicsTable.build(waves, points, step, env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
+    _tables[key] = table
+    while len(_tables) > TABLES_KEPT:
+        _tables.popitem(last=False)
+    return table

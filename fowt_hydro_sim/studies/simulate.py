@@ -1,0 +1,153 @@
+"""Offline runs of the platform model (``fowt-sim simulate``): waves from a sea state, an
+OpenFAST ``.Comp`` file, a measured elevation record or none; the run; its statistics; and
+its plain columnar output, ``timeseries.csv`` (one column per channel, SI units in the
+names) and ``summary.json`` (configuration and statistics)."""
+from __future__ import annotations
+
+import json
+import resource
+import time
+from dataclasses import asdict
+from pathlib import Path
+
+import numpy as np
+
+from fowt_hydro_sim import __version__
+from fowt_hydro_sim.physics.config import ConfigError, Platform, RunConfig, SeaState, load_platform
+from fowt_hydro_sim.physics.loads import NAMES
+from fowt_hydro_sim.physics.model import DOF_NAMES, PlatformModel, RunResult
+from fowt_hydro_sim.physics.waves.components import (
+    WaveComponents,
+    from_elevation_record,
+    read_comp_file,
+    repeat_period,
+    synthesize,
+)
+from fowt_hydro_sim.studies.psd import BANDS_HZ, MIN_SEGMENTS, band_stds
+
+_AXES = ("fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm")
+_MOTION_UNITS = ("m", "m", "m", "rad", "rad", "rad")
+
+
+# ---------------------------------------------------------------------- waves
+def sea_state_waves(sea: SeaState, duration_s: float, load_case: str | None = None) -> tuple[WaveComponents, dict]:
+    """A sea state's synthesised components (repeating every max(duration, 1 h)) and their description."""
+    period = repeat_period(sea, duration_s)
+    return synthesize(sea, period), {"source": "sea state", **asdict(sea), "repeat_period_s": period,
+                                     "load_case": load_case}
+
+
+def comp_file_waves(path: Path) -> tuple[WaveComponents, dict]:
+    return read_comp_file(path), {"source": "components", "file": str(path)}
+
+
+def elevation_record_waves(path: Path, point_xy_m: tuple[float, float], heading_deg: float,
+                           platform: Platform) -> tuple[WaveComponents, dict]:
+    """Components of a measured elevation record (CSV of time_s, elevation_m) at a point."""
+    try:
+        record = np.loadtxt(path, delimiter=",", comments="#", ndmin=2)
+    except (OSError, ValueError) as exc:
+        raise ConfigError(f"{path}: cannot be read as two CSV columns time_s, elevation_m ({exc})") from None
+    if record.shape[1] != 2:
+        raise ConfigError(f"{path}: expected two columns time_s, elevation_m, got {record.shape[1]}")
+    env = platform.environment
+    waves = from_elevation_record(record[:, 0], record[:, 1], *point_xy_m, heading_deg, env.water_depth_m,
+                                  env.gravity_m_s2)
+    return waves, {"source": "elevation record", "file": str(path), "point_m": list(point_xy_m)}
+
+
+# ---------------------------------------------------------------------- the run
+def statistics(result: RunResult, transient_s: float) -> dict:
+    """Per DOF: mean, std, extremes and the paper's band STDs, leaving out the first
+    ``transient_s`` seconds."""
+    keep = result.time_s >= result.time_s[0] + transient_s
+    if not keep.any():
+        raise ConfigError(f"transient {transient_s:g} s leaves nothing of the run to analyse")
+    dt = float(result.time_s[1] - result.time_s[0]) if result.time_s.size > 1 else 1.0
+    stats: dict = {"analysed_from_s": float(result.time_s[keep][0]), "bands_hz": BANDS_HZ}
+    for j, name in enumerate(DOF_NAMES):
+        x = result.motion[keep, j] * (180 / np.pi if j >= 3 else 1.0)
+        stats[name] = {"unit": "deg" if j >= 3 else "m", "mean": float(x.mean()), "std": float(x.std()),
+                       "min": float(x.min()), "max": float(x.max()),
+                       "band_std": band_stds(x, dt) if x.size >= 8 * MIN_SEGMENTS else None}  # (too short)
+    eta = result.wave_elevation_m[keep]
+    stats["wave_elevation"] = {"unit": "m", "mean": float(eta.mean()), "std": float(eta.std()),
+                               "hs_4std": float(4 * eta.std())}
+    return stats
+
+
+def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, output: Path,
+             transient_s: float = 0.0, overwrite: bool = False) -> dict:
+    """Run the model, write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the
+    summary. ``waves`` None is still water."""
+    output = Path(output)
+    if output.exists() and any(output.iterdir()) and not overwrite:
+        raise ConfigError(f"{output}: exists and is not empty (pass --overwrite to replace its files)")
+    platform = load_platform(run.platform)
+    start = time.perf_counter()
+    model = PlatformModel(platform, waves, dt_s=run.dt_s, drag_model=run.drag_model,
+                          wave_table_dt_s=run.wave_table_dt_s)
+    built = time.perf_counter()
+    model.reset(motion=np.array(run.initial_state))
+    result = model.run(run.duration_s, output_interval_s=run.output_interval_s)
+    end = time.perf_counter()
+    summary = {
+        "software": {"name": "fowt_hydro_sim", "version": __version__},
+        "platform": platform.name, "drag_model": run.drag_model, "waves": wave_info,
+        "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
+                "initial_state": list(run.initial_state), "wave_table_step_s": model.wave_table_step_s,
+                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
+        "performance": {"wall_time_s": end - start, "set_up_s": built - start,
+                        "real_time_factor": run.duration_s / (end - built),
+                        "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024},
+        "statistics": statistics(result, transient_s),
+    }
+    write_run(output, result, summary)
+    return summary
+
+
+def summary_text(summary: dict, output: Path) -> str:
+    """The summary as the command prints it."""
+    perf = summary["performance"]
+    lines = [f"{summary['platform']}, {summary['waves']['source']}, drag {summary['drag_model']}: "
+             f"{summary['run']['duration_s']:g} s simulated in {perf['wall_time_s'] - perf['set_up_s']:.2f} s "
+             f"({perf['real_time_factor']:.0f}x real time; set-up {perf['set_up_s']:.1f} s, which includes "
+             f"compiling the kernels on a first run)"]
+    stats = summary["statistics"]
+    lines.append(f"statistics from t = {stats['analysed_from_s']:g} s; band STDs over "
+                 + ", ".join(f"{b} {lo:g}-{hi:g} Hz" for b, (lo, hi) in stats["bands_hz"].items()))
+    lines.append(f"{'':16s}{'mean':>10s}{'std':>10s}{'min':>10s}{'max':>10s}{'std LF':>10s}{'std WF':>10s}")
+    for name in DOF_NAMES:
+        s = stats[name]
+        bands = "".join(f"{s['band_std'][b]:10.3f}" for b in BANDS_HZ) if s["band_std"] else ""
+        lines.append(f"{name + ' [' + s['unit'] + ']':16s}{s['mean']:10.3f}{s['std']:10.3f}{s['min']:10.3f}"
+                     f"{s['max']:10.3f}" + bands)
+    lines.append(f"wave Hs (4 std) at the reference point: {stats['wave_elevation']['hs_4std']:.2f} m")
+    lines.append(f"wrote {output / 'timeseries.csv'} and {output / 'summary.json'}")
+    return "\n".join(lines)
+
+
+# ---------------------------------------------------------------------- files
+def column_names() -> list[str]:
+    names = ["time_s"]
+    names += [f"{d}_{u}" for d, u in zip(DOF_NAMES, _MOTION_UNITS)]
+    names += [f"{d}_velocity_{u}_s" for d, u in zip(DOF_NAMES, _MOTION_UNITS)]
+    names += [f"{d}_acceleration_{u}_s2" for d, u in zip(DOF_NAMES, _MOTION_UNITS)]
+    names += [f"{c}_{a}" for c in NAMES for a in _AXES]
+    names.append("wave_elevation_m")
+    return names
+
+
+def write_run(folder: Path, result: RunResult, summary: dict) -> None:
+    folder.mkdir(parents=True, exist_ok=True)
+    table = np.column_stack([result.time_s, result.motion, result.velocity, result.acceleration,
+                             result.loads.reshape(len(result.time_s), -1), result.wave_elevation_m])
+    np.savetxt(folder / "timeseries.csv", table, delimiter=",", header=",".join(column_names()),
+               comments="", fmt="%.9g")
+    (folder / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+
+
+def read_run(folder: Path) -> dict[str, np.ndarray]:
+    """The columns of a run's ``timeseries.csv`` by name."""
+    data = np.loadtxt(Path(folder) / "timeseries.csv", delimiter=",", skiprows=1, ndmin=2)
+    return dict(zip(column_names(), data.T))
