@@ -16,13 +16,16 @@ from typing import Any
 
 import yaml
 
-from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, setting, validate
+from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, like, setting, validate
 
 DRAG_MODELS = ("constant", "filtered")
 SPECTRA = ("jonswap", "pierson_moskowitz")
 DEFAULT_PLATFORM = "windmoor12"
 FILTER_KINDS = ("lowpass", "highpass", "bandpass", "allpass")
 SECTIONS = ("circular", "rectangular")
+WETTED_LENGTHS = ("displaced", "undisplaced")
+LOAD_DIRECTIONS = ("rotating", "fixed")
+HYDROSTATICS = ("linear", "nonlinear")
 
 
 class ConfigError(ValueError):
@@ -176,6 +179,33 @@ class SeaState:
 
 
 @dataclass(frozen=True)
+class HydroOptions:
+    """How the strip model treats a moving body: choices HydroDyn makes one way and today's
+    model made another, silently. Fluid kinematics are always taken at the undisplaced
+    strip points (HydroDyn's WaveDisp 0). The defaults keep the model's earlier behaviour;
+    ``HYDRODYN`` is HydroDyn v5's (WaveDisp 0, WaveStMod 0, member hydrostatics)."""
+
+    wetted_length: str = setting(
+        "displaced", "wetted length of each strip: the part of its displaced length below z = 0 (heave, roll "
+                     "and pitch change it; adds motion-induced second-order loads) or of its undisplaced length "
+                     "(HydroDyn's WaveDisp 0, no stretching)", choices=WETTED_LENGTHS)
+    load_directions: str = setting(
+        "rotating", "strip load directions (member axes, section axes): rotating with the body or fixed at "
+                    "the undisplaced ones (HydroDyn's projection on the undisplaced member axes)",
+        choices=LOAD_DIRECTIONS)
+    hydrostatics: str = setting(
+        "linear", "hydrostatics: linear about the undisplaced position (W0 - C q, WAMIT's C) or nonlinear, "
+                  "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
+                  "member hydrostatics, MHstLMod 1)", choices=HYDROSTATICS)
+
+    def __post_init__(self) -> None:
+        _validate(self, "hydro options")
+
+
+HYDRO_OPTION_NAMES = ("wetted_length", "load_directions", "hydrostatics")
+
+
+@dataclass(frozen=True)
 class LoadCase:
     name: str
     role: str
@@ -196,6 +226,13 @@ class RunConfig:
                                                            "pitch, yaw [rad]")
     wave_table_dt_s: float | None = setting(None, "kinematics table step [s] (default: chosen for 1e-3 "
                                                   "interpolation error); must divide the repeat period", gt=0.0)
+    wetted_length: str = like(HydroOptions, "wetted_length")
+    load_directions: str = like(HydroOptions, "load_directions")
+    hydrostatics: str = like(HydroOptions, "hydrostatics")
+
+    @property
+    def hydro_options(self) -> HydroOptions:
+        return HydroOptions(**{name: getattr(self, name) for name in HYDRO_OPTION_NAMES})
 
     def __post_init__(self) -> None:
         _validate(self, "run")
@@ -206,6 +243,10 @@ def _validate(instance, where: str) -> None:
         validate(instance, where)
     except SettingError as exc:
         raise ConfigError(str(exc)) from None
+
+
+# HydroDyn v5's choices (WaveDisp 0, WaveStMod 0, member hydrostatics)
+HYDRODYN = HydroOptions(wetted_length="undisplaced", load_directions="fixed", hydrostatics="nonlinear")
 
 
 # --------------------------------------------------------------------------- validation

@@ -19,7 +19,15 @@ from numba import njit
 
 from fowt_hydro_sim.physics.drag_filters import band_velocities, drag_per_length, filter_rates
 from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, N_LOADS, ROW, component_loads
-from fowt_hydro_sim.physics.morison import end_plate_loads, relative_velocities, strip_loads
+from fowt_hydro_sim.physics.morison import (
+    added_mass_about,
+    end_plate_loads,
+    lever_arms,
+    relative_velocities,
+    strip_loads,
+    submerged_points,
+    wetted_fractions,
+)
 from fowt_hydro_sim.physics.rigid_body import (
     euler_rates,
     mass_matrix_and_bias,
@@ -48,7 +56,8 @@ class StripData(NamedTuple):
     length: np.ndarray
     inertia: np.ndarray
     added_mass: np.ndarray
-    added_mass_6x6: np.ndarray
+    added_mass_3x3: np.ndarray  # (n, 3, 3) per unit length, body axes
+    added_mass_6x6: np.ndarray  # (n, 6, 6) per unit length, body axes, about the reference point
     drag: np.ndarray  # (n, 2): 0.5 rho Cd b, constant Cd (unfiltered directions)
     band_drag: np.ndarray  # (n, n_bands, 2): 0.5 rho Cd_b b per drag band; no bands: constant Cd
     filtered: np.ndarray  # (n, 2) bool: the direction's drag is summed over the bands
@@ -61,8 +70,16 @@ class PlateData(NamedTuple):
     pressure_area: np.ndarray
     added_mass: np.ndarray
     drag: np.ndarray
+    added_mass_3x3: np.ndarray
     added_mass_6x6: np.ndarray
     point: np.ndarray
+
+
+class HydroFlags(NamedTuple):
+    """The kernel's form of ``config.HydroOptions`` (hydrostatics: the hydrostatic component's)."""
+
+    fixed_directions: bool  # load directions at the undisplaced axes (else rotating with the body)
+    undisplaced_wetting: bool  # wetted length of the undisplaced strips (else displaced)
 
 
 class FilterBank(NamedTuple):
@@ -90,6 +107,7 @@ class KernelData(NamedTuple):
     plates: PlateData
     filters: FilterBank
     body: RigidBody
+    options: HydroFlags
     component_params: tuple  # (params, ...) of the module components, registry order
     component_tables: tuple  # (table, ...)
 
@@ -107,12 +125,23 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
     kinematics = interpolate_table(d.waves.values, d.waves.step_s, t)
     s, plates, bank = d.strips, d.plates, d.filters
 
-    body = np.zeros((3, 6))  # drag, inertia, centripetal added mass, body axes
+    if d.options.fixed_directions:  # world axes, lever arms R c
+        frame = np.eye(3)
+        arm, plate_arm = lever_arms(rotation, s.centre), lever_arms(rotation, plates.centre)
+        strip_6x6 = added_mass_about(arm, s.added_mass_3x3)
+        plate_6x6 = added_mass_about(plate_arm, plates.added_mass_3x3)
+    else:  # body axes
+        frame, arm, plate_arm = rotation, s.centre, plates.centre
+        strip_6x6, plate_6x6 = s.added_mass_6x6, plates.added_mass_6x6
+    wet_pose, wet_z = (np.eye(3), 0.0) if d.options.undisplaced_wetting else (rotation, position[2])
+    body = np.zeros((3, 6))  # drag, inertia, centripetal added mass, frame axes
     added_mass_body = np.zeros((6, 6))
     n_strips = s.length.size
     wet, v_rel, a_fluid = np.empty(n_strips), np.empty((n_strips, 2)), np.empty((n_strips, 2))
-    relative_velocities(rotation, position, velocity, omega, kinematics, s.centre, s.axis, s.directions,
-                        s.length, s.point, wet, v_rel, a_fluid)
+    wetted_fractions(wet_pose, wet_z, s.centre, s.axis, s.length, wet)
+    submerged = np.empty(plates.centre.shape[0])
+    submerged_points(wet_pose, wet_z, plates.centre, submerged)
+    relative_velocities(frame, velocity, omega, kinematics, arm, s.directions, s.point, v_rel, a_fluid)
     filter_states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * n_strips))
     v_flat = v_rel.reshape(2 * n_strips)
     v_band = np.empty((bank.d.size, 2 * n_strips))
@@ -120,19 +149,19 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
     filter_rates(filter_states, v_flat, bank.a, bank.a_nonzero, bank.b, filter_rates_out.reshape(filter_states.shape))
     drag = np.empty((n_strips, 2))
     drag_per_length(v_rel, v_band, s.band_drag, s.drag, s.filtered, drag)
-    strip_loads(rotation, omega, wet, a_fluid, drag, s.centre, s.directions, s.length, s.inertia, s.added_mass,
-                s.added_mass_6x6, body[0], body[1], body[2], added_mass_body)
-    end_plate_loads(rotation, position, velocity, omega, kinematics, plates.centre, plates.normal,
-                    plates.pressure_area, plates.added_mass, plates.drag, plates.added_mass_6x6, plates.point,
-                    body[0], body[1], body[2], added_mass_body)
+    strip_loads(frame, omega, wet, a_fluid, drag, arm, s.directions, s.length, s.inertia, s.added_mass,
+                strip_6x6, body[0], body[1], body[2], added_mass_body)
+    end_plate_loads(frame, velocity, omega, kinematics, plate_arm, plates.normal, submerged, plates.pressure_area,
+                    plates.added_mass, plates.drag, plate_6x6, plates.point, body[0], body[1], body[2],
+                    added_mass_body)
     for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
-        loads[row, 0:3] = rotation @ body[c, 0:3]
-        loads[row, 3:6] = rotation @ body[c, 3:6]
+        loads[row, 0:3] = frame @ body[c, 0:3]
+        loads[row, 3:6] = frame @ body[c, 3:6]
     component_loads(t, y, rotation, d.component_params, d.component_tables, loads, masses)
     added_mass = np.empty((6, 6))
     for r in range(0, 6, 3):
         for c in range(0, 6, 3):
-            added_mass[r:r + 3, c:c + 3] = rotate_inertia(rotation, added_mass_body[r:r + 3, c:c + 3])
+            added_mass[r:r + 3, c:c + 3] = rotate_inertia(frame, added_mass_body[r:r + 3, c:c + 3])
     return added_mass
 
 

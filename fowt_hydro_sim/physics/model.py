@@ -14,7 +14,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from fowt_hydro_sim.physics import dynamics
-from fowt_hydro_sim.physics.config import DRAG_MODELS, ConfigError, Platform
+from fowt_hydro_sim.physics.config import DRAG_MODELS, ConfigError, HydroOptions, Platform
 from fowt_hydro_sim.physics.drag_filters import (
     StateSpace,
     band_velocities,
@@ -26,6 +26,7 @@ from fowt_hydro_sim.physics.dynamics import (
     N_BODY_STATES,
     N_MODULE_COMPONENTS,
     FilterBank,
+    HydroFlags,
     KernelData,
     PlateData,
     RigidBody,
@@ -35,7 +36,7 @@ from fowt_hydro_sim.physics.dynamics import (
 from fowt_hydro_sim.physics.loads import N_LOADS, ROW, ComponentInputs, component_data, external, params_of
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
-from fowt_hydro_sim.physics.morison import added_mass_matrices, relative_velocities
+from fowt_hydro_sim.physics.morison import added_mass_about, added_mass_tensors, lever_arms, relative_velocities
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_table
@@ -80,12 +81,15 @@ class PlatformModel:
     relative velocity into the platform's drag bands (drag_filters.py). ``extension`` adds
     loads beyond the Morison model (extension.py; the gap diagnosis's effects).
     ``kinematics``: the table of these waves at this platform's points, built before (replays
-    of one run share it).
+    of one run share it). ``options``: how the moving body's hydrodynamics are taken
+    (config.HydroOptions; default today's: displaced wetted length, rotating directions,
+    linear hydrostatics; config.HYDRODYN is HydroDyn's).
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
                  drag_model: str = "constant", wave_table_dt_s: float | None = None,
-                 extension: Extension | None = None, kinematics: KinematicsTable | None = None):
+                 extension: Extension | None = None, kinematics: KinematicsTable | None = None,
+                 options: HydroOptions | None = None):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
         if drag_model == "filtered" and not platform.drag_bands:
@@ -94,6 +98,7 @@ class PlatformModel:
         self.waves = waves
         self.dt_s = float(dt_s)
         self.drag_model = drag_model
+        self.options = options or HydroOptions()
         self.geometry: Discretisation = discretise(platform)
         bands = platform.drag_bands if drag_model == "filtered" else ()
         self.drag_bands = tuple(b.name for b in bands)
@@ -120,22 +125,24 @@ class PlatformModel:
     # ------------------------------------------------------------------ set-up
     def _kernel_data(self, table: np.ndarray, step: float) -> KernelData:
         s, plates = self.geometry.strips, self.geometry.plates
-        strip_6x6, plate_6x6 = added_mass_matrices(self.geometry)
+        strip_3x3, plate_3x3 = added_mass_tensors(self.geometry)
         filtered = self.drag_model == "filtered"
         bank = self.filter_bank
         mass = self.platform.mass
         params, tables = component_data(ComponentInputs(self.platform, self.geometry, self.hydrostatics,
-                                                        self.extension))
+                                                        self.extension, self.options))
         return KernelData(
             waves=WaveTable(table, step),
             strips=StripData(s.centre_m, s.axis, s.directions, s.length_m, s.inertia_kg_m, s.added_mass_kg_m,
-                             strip_6x6, s.drag_kg_m2,
+                             strip_3x3, added_mass_about(s.centre_m, strip_3x3), s.drag_kg_m2,
                              s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
                              s.filtered & filtered, s.kinematics_point.astype(np.int64)),
             plates=PlateData(plates.centre_m, plates.normal, plates.pressure_area_m2, plates.added_mass_kg,
-                             plates.drag_kg_m, plate_6x6, plates.kinematics_point.astype(np.int64)),
+                             plates.drag_kg_m, plate_3x3, added_mass_about(plates.centre_m, plate_3x3),
+                             plates.kinematics_point.astype(np.int64)),
             filters=FilterBank(bank.a, nonzero_entries(bank.a), bank.b, bank.c, nonzero_entries(bank.c), bank.d),
             body=RigidBody(mass.mass_kg, np.array(mass.cog_m), np.array(mass.inertia_about_cog_kg_m2)),
+            options=HydroFlags(self.options.load_directions == "fixed", self.options.wetted_length == "undisplaced"),
             component_params=params, component_tables=tables)
 
     @property
@@ -171,18 +178,24 @@ class PlatformModel:
                                           env.gravity_m_s2, env.water_density_kg_m3)[:, 0:3]
             response = state_response(bank, 2 * np.pi * self.waves.frequency_hz)  # (n_freq, n_states)
             at_points = np.einsum("pcf,fj->pcj", velocity, response).real  # (points, 3, n_states)
-            directions = s.directions @ rotation_matrix(*self._state[3:6]).T  # world axes
+            directions = s.directions @ self._frame().T  # world axes
             states += np.einsum("nkc,ncj->jnk", directions, at_points[s.kinematics_point])
         return states
+
+    def _frame(self) -> np.ndarray:
+        """The axes the strip loads are taken in at the current state (morison.py)."""
+        return np.eye(3) if self.options.load_directions == "fixed" else rotation_matrix(*self._state[3:6])
 
     def _relative_velocities(self, kinematics: np.ndarray) -> np.ndarray:
         """Transverse relative velocity (n_strips, 2) at the current state in the given point
         kinematics (points, 7)."""
         s = self.geometry.strips
-        wet, v_rel, a_fluid = np.empty(self.n_strips), np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
-        relative_velocities(rotation_matrix(*self._state[3:6]), self._state[0:3], self._state[6:9],
-                            self._state[9:12], kinematics, s.centre_m, s.axis, s.directions, s.length_m,
-                            s.kinematics_point, wet, v_rel, a_fluid)
+        frame = self._frame()
+        arm = lever_arms(rotation_matrix(*self._state[3:6]), s.centre_m) if self.options.load_directions == "fixed" \
+            else s.centre_m
+        v_rel, a_fluid = np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
+        relative_velocities(frame, self._state[6:9], self._state[9:12], kinematics, arm, s.directions,
+                            s.kinematics_point, v_rel, a_fluid)
         return v_rel
 
     def _restart_history(self) -> None:

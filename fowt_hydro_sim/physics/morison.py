@@ -1,19 +1,21 @@
 """Strip-theory Morison loads in the relative form (HydroDyn's conventions; see strips.py).
 
-Work is done in body axes, where the strip geometry is constant: fluid kinematics are
-rotated in, loads are summed about the reference point and rotated out once. The added
-mass acts on the body acceleration and is returned as a 6x6 matrix for the left-hand side;
-only its velocity-dependent (centripetal) part is a force here.
+Work is done in the axes of a ``frame``: the body axes when load directions rotate with the
+body (frame = R; the strip geometry is constant there, fluid kinematics are rotated in and
+loads rotated out once), the world axes when they stay at the undisplaced member and section
+axes (HydroDyn's choice; frame = I and each strip's lever arm is R c). The added mass acts on
+the body acceleration and is returned as a 6x6 matrix for the left-hand side; only its
+velocity-dependent (centripetal) part is a force here.
 
-A strip's loads act at its centre, scaled by its wetted fraction: the part of its
-displaced length below the still water line, continuous as the strip crosses it.
+A strip's loads act at its centre, scaled by its wetted fraction: the part of its displaced
+(or undisplaced: HydroDyn's) length below the still water line, continuous as the strip
+crosses it.
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.rigid_body import point_jacobian
 from fowt_hydro_sim.physics.strips import Discretisation
 
 
@@ -56,25 +58,67 @@ def _add_scaled(out: np.ndarray, scale: float, matrix: np.ndarray) -> None:
 
 
 @njit(cache=True)
-def relative_velocities(rotation: np.ndarray, position: np.ndarray, velocity: np.ndarray,
-                        omega: np.ndarray, kinematics: np.ndarray, centre: np.ndarray,
-                        axis: np.ndarray, directions: np.ndarray, length: np.ndarray,
-                        kinematics_point: np.ndarray, wet: np.ndarray, v_rel: np.ndarray,
-                        a_fluid: np.ndarray) -> None:
-    """Per strip: wetted fraction, transverse relative velocity (d1, d2) and transverse fluid
-    acceleration (d1, d2), written to ``wet``, ``v_rel`` and ``a_fluid``: the inputs of the
-    drag and inertia terms. Dry strips get them too (with the kinematics at the water line),
-    so that drag filters see a continuous input."""
-    v_body = _to_body(rotation, velocity[0], velocity[1], velocity[2])
-    w_body = _to_body(rotation, omega[0], omega[1], omega[2])
+def wetted_fractions(rotation: np.ndarray, position_z_m: float, centre: np.ndarray, axis: np.ndarray,
+                     length: np.ndarray, wet: np.ndarray) -> None:
+    """Each strip's wetted fraction at the pose (rotation, heave); identity and 0 give the
+    undisplaced wetted length."""
     for i in range(centre.shape[0]):
         c = centre[i]
-        z = position[2] + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2]
+        z = position_z_m + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2]
         axis_z = rotation[2, 0] * axis[i, 0] + rotation[2, 1] * axis[i, 1] + rotation[2, 2] * axis[i, 2]
         wet[i] = wetted_fraction(z, axis_z, length[i])
+
+
+@njit(cache=True)
+def submerged_points(rotation: np.ndarray, position_z_m: float, centre: np.ndarray, out: np.ndarray) -> None:
+    """1 where a point (end plate centre) is below z = 0 at the pose, else 0."""
+    for i in range(centre.shape[0]):
+        c = centre[i]
+        z = position_z_m + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2]
+        out[i] = 1.0 if z < 0.0 else 0.0
+
+
+@njit(cache=True)
+def lever_arms(rotation: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """R r of each body-frame point (n, 3): its world-axes offset from the reference point."""
+    out = np.empty(points.shape)
+    for i in range(points.shape[0]):
+        for r in range(3):
+            out[i, r] = rotation[r, 0] * points[i, 0] + rotation[r, 1] * points[i, 1] + rotation[r, 2] * points[i, 2]
+    return out
+
+
+@njit(cache=True)
+def added_mass_about(arm: np.ndarray, mass_3x3: np.ndarray) -> np.ndarray:
+    """6x6 added mass about the reference point of 3x3 added masses at points ``arm``:
+    J^T A J = [[A, -A S], [S A, -S A S]] with S = skew(arm)."""
+    out = np.zeros((arm.shape[0], 6, 6))
+    for i in range(arm.shape[0]):
+        r, a = arm[i], mass_3x3[i]
+        s = np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
+        sa = s @ a
+        out[i, 0:3, 0:3] = a
+        out[i, 0:3, 3:6] = -(a @ s)
+        out[i, 3:6, 0:3] = sa
+        out[i, 3:6, 3:6] = -(sa @ s)
+    return out
+
+
+@njit(cache=True)
+def relative_velocities(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, kinematics: np.ndarray,
+                        arm: np.ndarray, directions: np.ndarray, kinematics_point: np.ndarray,
+                        v_rel: np.ndarray, a_fluid: np.ndarray) -> None:
+    """Per strip: transverse relative velocity (d1, d2) and transverse fluid acceleration
+    (d1, d2) in the frame's axes, written to ``v_rel`` and ``a_fluid``: the inputs of the drag
+    and inertia terms. Dry strips get them too (with the kinematics at the water line), so
+    that drag filters see a continuous input. ``arm``: the strips' centres in the frame."""
+    v_body = _to_body(frame, velocity[0], velocity[1], velocity[2])
+    w_body = _to_body(frame, omega[0], omega[1], omega[2])
+    for i in range(arm.shape[0]):
+        c = arm[i]
         p = kinematics_point[i]
-        u = _to_body(rotation, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
-        a = _to_body(rotation, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+        u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+        a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
         spin = _cross(w_body, (c[0], c[1], c[2]))
         vr0 = u[0] - v_body[0] - spin[0]
         vr1 = u[1] - v_body[1] - spin[1]
@@ -86,23 +130,23 @@ def relative_velocities(rotation: np.ndarray, position: np.ndarray, velocity: np
 
 
 @njit(cache=True)
-def strip_loads(rotation: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: np.ndarray,
-                drag_per_length: np.ndarray, centre: np.ndarray,
+def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: np.ndarray,
+                drag_per_length: np.ndarray, arm: np.ndarray,
                 directions: np.ndarray, length: np.ndarray, inertia: np.ndarray,
                 added_mass: np.ndarray, added_mass_6x6: np.ndarray,
                 out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
                 out_added_mass: np.ndarray) -> None:
-    """Add the strips' drag, fluid-inertia and centripetal added-mass wrenches (body axes,
-    about the reference point) and their 6x6 added mass (body axes) to the outputs.
+    """Add the strips' drag, fluid-inertia and centripetal added-mass wrenches (frame axes,
+    about the reference point) and their 6x6 added mass (frame axes) to the outputs.
 
     ``drag_per_length`` (n, 2) is the transverse drag per unit wetted length of the drag
     model (drag_filters.drag_per_length).
     """
-    w_body = _to_body(rotation, omega[0], omega[1], omega[2])
-    for i in range(centre.shape[0]):
+    w_body = _to_body(frame, omega[0], omega[1], omega[2])
+    for i in range(arm.shape[0]):
         if wet[i] == 0.0:
             continue
-        c = centre[i]
+        c = arm[i]
         wet_length = wet[i] * length[i]
         centripetal = _cross(w_body, _cross(w_body, (c[0], c[1], c[2])))
         for k in range(2):
@@ -118,23 +162,22 @@ def strip_loads(rotation: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_flui
 
 
 @njit(cache=True)
-def end_plate_loads(rotation: np.ndarray, position: np.ndarray, velocity: np.ndarray,
-                    omega: np.ndarray, kinematics: np.ndarray, centre: np.ndarray,
-                    normal: np.ndarray, pressure_area: np.ndarray, added_mass: np.ndarray,
-                    drag: np.ndarray, added_mass_6x6: np.ndarray, kinematics_point: np.ndarray,
-                    out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
-                    out_added_mass: np.ndarray) -> None:
-    """Axial end-plate terms: dynamic pressure on the end area, added mass and scattering on
-    a hemisphere, drag 0.25 rho Cd A |w| w; only for submerged ends."""
-    v_body = _to_body(rotation, velocity[0], velocity[1], velocity[2])
-    w_body = _to_body(rotation, omega[0], omega[1], omega[2])
-    for i in range(centre.shape[0]):
-        c, n = centre[i], normal[i]
-        if position[2] + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2] >= 0.0:
+def end_plate_loads(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, kinematics: np.ndarray,
+                    arm: np.ndarray, normal: np.ndarray, submerged: np.ndarray, pressure_area: np.ndarray,
+                    added_mass: np.ndarray, drag: np.ndarray, added_mass_6x6: np.ndarray,
+                    kinematics_point: np.ndarray, out_drag: np.ndarray, out_inertia: np.ndarray,
+                    out_centripetal: np.ndarray, out_added_mass: np.ndarray) -> None:
+    """Axial end-plate terms (frame axes): dynamic pressure on the end area, added mass and
+    scattering on a hemisphere, drag 0.25 rho Cd A |w| w; only for submerged ends."""
+    v_body = _to_body(frame, velocity[0], velocity[1], velocity[2])
+    w_body = _to_body(frame, omega[0], omega[1], omega[2])
+    for i in range(arm.shape[0]):
+        c, n = arm[i], normal[i]
+        if submerged[i] == 0.0:
             continue
         p = kinematics_point[i]
-        u = _to_body(rotation, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
-        a = _to_body(rotation, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+        u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+        a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
         point = (c[0], c[1], c[2])
         spin = _cross(w_body, point)
         centripetal = _cross(w_body, spin)
@@ -151,17 +194,9 @@ def end_plate_loads(rotation: np.ndarray, position: np.ndarray, velocity: np.nda
         _add_scaled(out_added_mass, 1.0, added_mass_6x6[i])
 
 
-def added_mass_matrices(geometry: Discretisation) -> tuple[np.ndarray, np.ndarray]:
-    """Body-axes 6x6 added mass about the reference point of each strip per unit wetted
-    length, and of each end plate: J^T A J with A the 3x3 added mass at the point."""
+def added_mass_tensors(geometry: Discretisation) -> tuple[np.ndarray, np.ndarray]:
+    """Body-axes 3x3 added mass of each strip per unit wetted length and of each end plate."""
     s, plates = geometry.strips, geometry.plates
-    strip_6x6 = np.empty((len(s.length_m), 6, 6))
-    for i in range(len(s.length_m)):
-        a3 = sum(s.added_mass_kg_m[i, k] * np.outer(s.directions[i, k], s.directions[i, k]) for k in range(2))
-        jac = point_jacobian(s.centre_m[i])
-        strip_6x6[i] = jac.T @ a3 @ jac
-    plate_6x6 = np.empty((len(plates.added_mass_kg), 6, 6))
-    for i in range(len(plates.added_mass_kg)):
-        jac = point_jacobian(plates.centre_m[i])
-        plate_6x6[i] = jac.T @ (plates.added_mass_kg[i] * np.outer(plates.normal[i], plates.normal[i])) @ jac
-    return strip_6x6, plate_6x6
+    strip_3x3 = np.einsum("nk,nki,nkj->nij", s.added_mass_kg_m, s.directions, s.directions)
+    plate_3x3 = np.einsum("n,ni,nj->nij", plates.added_mass_kg, plates.normal, plates.normal)
+    return np.ascontiguousarray(strip_3x3), np.ascontiguousarray(plate_3x3.reshape(-1, 3, 3))

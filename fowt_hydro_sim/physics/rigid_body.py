@@ -102,10 +102,3 @@ def solve_spd(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         x[i] /= low[i, i]
     return x
 
-
-def point_jacobian(r: np.ndarray) -> np.ndarray:
-    """(3, 6) map from the reference point's [v, w] to the velocity of a point at offset r."""
-    out = np.zeros((3, 6))
-    out[:, :3] = np.eye(3)
-    out[:, 3:] = -skew(np.asarray(r, dtype=float))
-    return out

@@ -57,7 +57,7 @@ class Discretisation:
     points_m: np.ndarray  # (p, 3) undisplaced kinematics points, z <= 0
 
 
-def _transverse_directions(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def transverse_directions(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     d1 = np.cross([0.0, 0.0, 1.0], axis)
     if np.linalg.norm(d1) < 1e-9:  # a vertical member: width along x
         d1 = np.array([1.0, 0.0, 0.0])
@@ -94,7 +94,7 @@ def discretise(platform: Platform) -> Discretisation:
         a, b = np.array(member.end_a_m), np.array(member.end_b_m)
         length = float(np.linalg.norm(b - a))
         axis = (b - a) / length
-        d1, d2 = _transverse_directions(axis)
+        d1, d2 = transverse_directions(axis)
         area, am_area, width = _section(member)
         cuts = _cuts(member)
         for s0, s1 in zip(cuts[:-1], cuts[1:]):

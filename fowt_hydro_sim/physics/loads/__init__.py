@@ -27,7 +27,7 @@ import numpy as np
 from numba import literal_unroll, njit
 from numba.core.errors import NumbaExperimentalFeatureWarning
 
-from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.physics.loads import extension, external, gravity, hydrostatic, mooring
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics
@@ -78,6 +78,7 @@ class ComponentInputs(NamedTuple):
     geometry: Discretisation
     hydrostatics: Hydrostatics
     extension: Extension
+    options: HydroOptions
 
 
 def component_data(inputs: ComponentInputs) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:

@@ -1,8 +1,18 @@
-"""Hydrostatics: linear about the undisplaced position, from the member geometry.
+"""Hydrostatics from the member geometry, linear or nonlinear (``HydroOptions.hydrostatics``).
 
-The buoyancy wrench is W0 - C q: W0 the static buoyancy (rho g V at the centre of
+Linear: the buoyancy wrench is W0 - C q, W0 the static buoyancy (rho g V at the centre of
 buoyancy) and C the buoyancy part of the restoring matrix (waterplane and centre-of-
-buoyancy terms, WAMIT's convention); gravity acts separately at the centre of gravity.
+buoyancy terms, WAMIT's convention).
+
+Nonlinear (HydroDyn's member hydrostatics): rho g V_sub upward through the centroid of the
+displaced members' part below z = 0, every member a closed prism (end plates included).
+Each member's section is sampled by a quadrature (polar Gauss for a circle, tensor Gauss
+for a rectangle); along the axis line through each sample the submerged length is exact.
+The submerged length is linear over the section wherever the water plane cuts the side
+wall only, so volume and centroid are then exact (the quadrature integrates degree 2);
+where it also cuts an end, the error is the quadrature's on a kinked integrand.
+
+Gravity acts separately at the centre of gravity.
 """
 from __future__ import annotations
 
@@ -12,8 +22,11 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.config import ConfigError, Platform
-from fowt_hydro_sim.physics.strips import Strips
+from fowt_hydro_sim.physics.config import ConfigError, Member, Platform
+from fowt_hydro_sim.physics.rigid_body import cross
+from fowt_hydro_sim.physics.strips import Strips, transverse_directions
+
+N_RADIAL, N_ANGULAR, N_SIDE = 6, 24, 8  # section quadrature (circle: radial x angular; rectangle: side^2)
 
 
 @dataclass(frozen=True)
@@ -70,16 +83,88 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     return Hydrostatics(volume, centre, area, first, second, wrench, c)
 
 
+def section_quadrature(member: Member) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets (k, 3; body frame, from the member's axis) and area weights (k,) of the
+    section quadrature: exact for polynomials of degree 2 over the section."""
+    a, b = np.array(member.end_a_m), np.array(member.end_b_m)
+    d1, d2 = transverse_directions((b - a) / np.linalg.norm(b - a))
+    if member.section == "circular":
+        radius = member.width_m / 2
+        x, w = np.polynomial.legendre.leggauss(N_RADIAL)
+        r = radius * (x + 1) / 2
+        theta = 2 * np.pi * (np.arange(N_ANGULAR) + 0.5) / N_ANGULAR
+        u, v = np.outer(r, np.cos(theta)).ravel(), np.outer(r, np.sin(theta)).ravel()
+        weights = np.outer(w * r * radius / 2, np.full(N_ANGULAR, 2 * np.pi / N_ANGULAR)).ravel()
+    else:  # width along d1, height along d2 (strips.py)
+        x, w = np.polynomial.legendre.leggauss(N_SIDE)
+        u = np.repeat(x * member.width_m / 2, N_SIDE)
+        v = np.tile(x * member.height_m / 2, N_SIDE)
+        weights = np.outer(w * member.width_m / 2, w * member.height_m / 2).ravel()
+    return np.outer(u, d1) + np.outer(v, d2), weights
+
+
+def quadrature_lines(platform: Platform) -> np.ndarray:
+    """Every member's axis-parallel quadrature lines as rows [start (3), axis (3), length,
+    area weight], body frame: the nonlinear hydrostatics' table."""
+    rows = []
+    for m in platform.members:
+        a, b = np.array(m.end_a_m), np.array(m.end_b_m)
+        length = float(np.linalg.norm(b - a))
+        offsets, weights = section_quadrature(m)
+        for offset, weight in zip(offsets, weights):
+            rows.append([*(a + offset), *((b - a) / length), length, weight])
+    return np.array(rows)
+
+
+@njit(cache=True)
+def submerged_volume(rotation: np.ndarray, position_z_m: float, lines: np.ndarray) -> tuple[float, np.ndarray]:
+    """Volume below z = 0 of the members at the pose, and its first moment (body frame)."""
+    volume, moment = 0.0, np.zeros(3)
+    for q in range(lines.shape[0]):
+        line = lines[q]
+        z0 = position_z_m + rotation[2, 0] * line[0] + rotation[2, 1] * line[1] + rotation[2, 2] * line[2]
+        rise = rotation[2, 0] * line[3] + rotation[2, 1] * line[4] + rotation[2, 2] * line[5]
+        length = line[6]
+        if abs(rise) < 1e-12:
+            low, high = (0.0, length) if z0 < 0.0 else (0.0, 0.0)
+        elif rise > 0.0:
+            low, high = 0.0, min(length, max(0.0, -z0 / rise))
+        else:
+            low, high = min(length, max(0.0, -z0 / rise)), length
+        wet = line[7] * (high - low)
+        volume += wet
+        middle = 0.5 * (low + high)
+        for k in range(3):
+            moment[k] += wet * (line[k] + middle * line[3 + k])
+    return volume, moment
+
+
 # --------------------------------------------------------------------------- load component
+MODES = {"linear": 0.0, "nonlinear": 1.0}
+
+
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
-    """[W0 (6), C (36)]."""
-    h = inputs.hydrostatics
-    return np.concatenate([h.buoyancy_wrench, h.stiffness.ravel()]), np.zeros((1, 1))
+    """[mode (0 linear, 1 nonlinear), rho g, W0 (6), C (36)] and, nonlinear, the quadrature
+    lines (quadrature_lines)."""
+    h, env = inputs.hydrostatics, inputs.platform.environment
+    mode = inputs.options.hydrostatics
+    params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], h.buoyancy_wrench,
+                             h.stiffness.ravel()])
+    return params, quadrature_lines(inputs.platform) if mode == "nonlinear" else np.zeros((1, 1))
 
 
 @njit(cache=True)
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
-    """W0 - C q, linear about the undisplaced position."""
-    stiffness = params[6:42].reshape((6, 6))
-    out += params[0:6] - stiffness @ y[0:6]
+    """Linear: W0 - C q about the undisplaced position. Nonlinear: rho g V_sub through the
+    displaced centre of buoyancy, about the displaced reference point."""
+    if params[0] == 0.0:
+        stiffness = params[8:44].reshape((6, 6))
+        out += params[2:8] - stiffness @ y[0:6]
+        return
+    volume, moment = submerged_volume(rotation, y[2], table)
+    if volume <= 0.0:
+        return
+    force = np.array([0.0, 0.0, params[1] * volume])
+    out[0:3] += force
+    out[3:6] += cross(rotation @ (moment / volume), force)
