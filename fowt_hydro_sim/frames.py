@@ -43,6 +43,19 @@ def angular_velocity_from_euler_rates(angles: np.ndarray, rates: np.ndarray) -> 
                      -roll_rate * sp + yaw_rate], axis=-1)
 
 
+def angular_acceleration_from_euler_rates(angles: np.ndarray, rates: np.ndarray,
+                                          rate_derivatives: np.ndarray) -> np.ndarray:
+    """World-axes angular acceleration (n, 3): the time derivative of
+    ``angular_velocity_from_euler_rates`` for angle rates and their derivatives (n, 3)."""
+    _, pitch, yaw = np.moveaxis(np.asarray(angles, dtype=float), -1, 0)
+    r, p, y = np.moveaxis(np.asarray(rates, dtype=float), -1, 0)
+    rr, pp, yy = np.moveaxis(np.asarray(rate_derivatives, dtype=float), -1, 0)
+    cp, sp, cy, sy = np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
+    return np.stack([rr * cp * cy - r * (sp * cy * p + cp * sy * y) - pp * sy - p * cy * y,
+                     rr * cp * sy + r * (cp * cy * y - sp * sy * p) + pp * cy - p * sy * y,
+                     -rr * sp - r * cp * p + yy], axis=-1)
+
+
 def quaternion_from_euler(roll, pitch, yaw) -> np.ndarray:
     """Unit quaternion (x, y, z, w), w >= 0, of R = Rz(yaw) Ry(pitch) Rx(roll); the angles
     may be arrays (of one shape), giving quaternions in the last axis."""

@@ -7,12 +7,12 @@ import sys
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
-from fowt_hydro_sim.physics.config import RunConfig, load_case, load_platform, load_run_file
+from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, RunConfig, load_case, load_platform, load_run_file
 from fowt_hydro_sim.studies import simulate as study
 from fowt_hydro_sim.studies.load_case_study import STUDY_CASES, run_study
 
 RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",
-               "initial_state")
+               "initial_state", *HYDRO_OPTION_NAMES)
 
 
 def simulate(args: argparse.Namespace) -> int:

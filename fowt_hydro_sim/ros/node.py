@@ -32,6 +32,7 @@ from rosgraph_msgs.msg import Clock
 import msg_adapters as adapt
 from fowt_hydro_sim.physics.config import (
     ConfigError,
+    HydroOptions,
     InputError,
     RunConfig,
     SeaState,
@@ -69,6 +70,9 @@ class NodeSettings:
 
     platform: str = like(RunConfig, "platform")
     drag_model: str = like(RunConfig, "drag_model", default="filtered")
+    wetted_length: str = like(RunConfig, "wetted_length")
+    load_directions: str = like(RunConfig, "load_directions")
+    hydrostatics: str = like(RunConfig, "hydrostatics")
     load_case: str = setting("lc5.3", "load case giving the sea state (lc5.0 .. lc6.5); hs_m/tp_s > 0 override it")
     hs_m: float = like(SeaState, "hs_m", default=0.0, unset=0.0, note="; 0 = the load case's")
     tp_s: float = like(SeaState, "tp_s", default=0.0, unset=0.0, note="; 0 = the load case's")
@@ -135,7 +139,8 @@ class SimulatorNode(Node):
         waves = None
         if s.wave_source == "internal":
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
-        self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model)
+        options = HydroOptions(s.wetted_length, s.load_directions, s.hydrostatics)
+        self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model, options=options)
         self._feed: WaveFeed | None = None
         self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
         if s.wave_source != "internal":

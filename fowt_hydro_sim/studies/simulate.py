@@ -86,7 +86,7 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
     platform = load_platform(run.platform)
     start = time.perf_counter()
     model = PlatformModel(platform, waves, dt_s=run.dt_s, drag_model=run.drag_model,
-                          wave_table_dt_s=run.wave_table_dt_s)
+                          wave_table_dt_s=run.wave_table_dt_s, options=run.hydro_options)
     built = time.perf_counter()
     model.reset(motion=np.array(run.initial_state))
     result = model.run(run.duration_s, output_interval_s=run.output_interval_s)

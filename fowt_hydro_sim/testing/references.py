@@ -1,21 +1,20 @@
-"""Reference results of other codes for the physics tests (OpenFAST HydroDyn driver outputs)."""
+"""Reference results of other codes for the physics tests (OpenFAST HydroDyn driver outputs),
+kept in the repository's test data (test/data/openfast_hydrodyn, with their README)."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from fowt_hydro_sim.testing import REPO
 
-SHARED = REPO.parent / "shared"
-HYDRODYN = SHARED / "reference" / "openfast_hydrodyn"
+HYDRODYN = REPO / "test" / "data" / "openfast_hydrodyn"
 
 
 def hydrodyn_case(name: str) -> Path:
     folder = HYDRODYN / name
     if not folder.is_dir():
-        pytest.skip(f"reference case {folder} is not present")
+        raise FileNotFoundError(f"reference case {folder} is missing from the repository's test data")
     return folder
 
 

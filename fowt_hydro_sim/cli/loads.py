@@ -1,0 +1,57 @@
+"""``fowt-sim loads``: loads for a prescribed motion (HydroDyn driver PRP file) to CSV."""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+from pathlib import Path
+
+from fowt_hydro_sim.cli import options
+from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, HYDRODYN, ConfigError, HydroOptions, load_platform
+from fowt_hydro_sim.studies import loads as study
+from fowt_hydro_sim.studies.simulate import comp_file_waves, sea_state_waves
+
+
+def loads(args: argparse.Namespace) -> int:
+    out = Path(args.output)
+    if out.exists() and not args.overwrite:
+        raise ConfigError(f"{out}: exists (pass --overwrite to replace it)")
+    base = HYDRODYN if args.hydrodyn else HydroOptions()
+    given = {k: v for k, v in options.values(args, HydroOptions, HYDRO_OPTION_NAMES).items() if v is not None}
+    hydro = dataclasses.replace(base, **given)
+    platform = load_platform(args.platform)
+    motion = study.read_prp_motion(args.motion)
+    if args.still_water:
+        waves = None
+    elif args.waves_comp:
+        waves, _ = comp_file_waves(args.waves_comp)
+    else:
+        sea, case = options.sea_state(args)
+        waves, _ = sea_state_waves(sea, float(motion.time_s[-1]), case)
+    result = study.prescribed_loads(platform, waves, motion, hydro, args.wave_table_dt)
+    study.write_loads_csv(out, motion.time_s, result)
+    sys.stdout.write(f"wrote {out}: {len(motion.time_s)} rows, {hydro}\n")
+    return 0
+
+
+def add_parsers(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("loads", help="loads for a prescribed motion (the HydroDyn driver's job), to CSV",
+                       description="Loads along a prescribed 6-DOF motion of the platform reference point "
+                                   "(HydroDyn driver PRP file, 19 columns), written as CSV with Time, "
+                                   "HydroFxi .. HydroMzi (global axes, about the displaced reference point) "
+                                   "and one column per load component and axis.")
+    p.add_argument("--platform", default="windmoor12", help="packaged platform name or platform YAML file")
+    p.add_argument("--motion", required=True, type=Path, help="HydroDyn driver PRP motion file (19 columns)")
+    p.add_argument("-o", "--output", required=True, type=Path, help="CSV file to write")
+    p.add_argument("--overwrite", action="store_true", help="replace the output file")
+    waves = p.add_mutually_exclusive_group()
+    waves.add_argument("--still-water", action="store_true", help="no waves")
+    waves.add_argument("--waves-comp", type=Path, help="OpenFAST wave components file (.Comp)")
+    options.add_sea_state(p)
+    p.add_argument("--wave-table-dt", type=float, default=None,
+                   help="kinematics table step [s] (default: chosen for 1e-3 interpolation error)")
+    p.add_argument("--hydrodyn", action="store_true",
+                   help="HydroDyn's choices: undisplaced wetted length, fixed directions, nonlinear hydrostatics")
+    options.add(p, HydroOptions, HYDRO_OPTION_NAMES, defaults={name: None for name in HYDRO_OPTION_NAMES},
+                notes={name: " (default: the model's, or HydroDyn's with --hydrodyn)" for name in HYDRO_OPTION_NAMES})
+    p.set_defaults(func=loads)
