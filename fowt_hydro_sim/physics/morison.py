@@ -91,16 +91,24 @@ def lever_arms(rotation: np.ndarray, points: np.ndarray) -> np.ndarray:
 @njit(cache=True)
 def added_mass_about(arm: np.ndarray, mass_3x3: np.ndarray) -> np.ndarray:
     """6x6 added mass about the reference point of 3x3 added masses at points ``arm``:
-    J^T A J = [[A, -A S], [S A, -S A S]] with S = skew(arm)."""
-    out = np.zeros((arm.shape[0], 6, 6))
+    J^T A J = [[A, -A S], [S A, -S A S]] with S = skew(arm) (written out: no small-matrix
+    products in the step loop)."""
+    out = np.empty((arm.shape[0], 6, 6))
+    sa, skew = np.empty((3, 3)), np.empty((3, 3))
     for i in range(arm.shape[0]):
         r, a = arm[i], mass_3x3[i]
-        s = np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
-        sa = s @ a
-        out[i, 0:3, 0:3] = a
-        out[i, 0:3, 3:6] = -(a @ s)
-        out[i, 3:6, 0:3] = sa
-        out[i, 3:6, 3:6] = -(sa @ s)
+        skew[0, 0], skew[0, 1], skew[0, 2] = 0.0, -r[2], r[1]
+        skew[1, 0], skew[1, 1], skew[1, 2] = r[2], 0.0, -r[0]
+        skew[2, 0], skew[2, 1], skew[2, 2] = -r[1], r[0], 0.0
+        for j in range(3):
+            for k in range(3):
+                sa[j, k] = skew[j, 0] * a[0, k] + skew[j, 1] * a[1, k] + skew[j, 2] * a[2, k]
+        for j in range(3):
+            for k in range(3):
+                out[i, j, k] = a[j, k]
+                out[i, 3 + j, k] = sa[j, k]
+                out[i, k, 3 + j] = sa[j, k]  # -(A S) = (S A)^T, A symmetric
+                out[i, 3 + j, 3 + k] = -(sa[j, 0] * skew[0, k] + sa[j, 1] * skew[1, k] + sa[j, 2] * skew[2, k])
     return out
 
 
