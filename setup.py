@@ -58,7 +58,9 @@ setup(
     extras_require={
         'ros': ROS_WHEELS,
         # independent bag readers, to check the bags we write
-        'test': ['pytest', 'mcap-ros2-support', 'rosbags'],
+        'test': ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0'],
+        # fowt-sim platform import (OpenFAST HydroDyn decks)
+        'hydrodyn': ['openfast-io>=5.0'],
     },
     zip_safe=False,
     entry_points={

@@ -136,3 +136,59 @@ def test_pitched_column_buoyancy_acts_at_the_metacentric_centre_of_buoyancy(pitc
     assert loads[2] == pytest.approx(RHO_G * volume, rel=1e-12)
     assert loads[4] == pytest.approx(-x_world * RHO_G * volume, rel=1e-9)
     assert np.allclose(loads[[0, 1, 3, 5]], 0.0, atol=1e-6 * loads[2])
+
+
+# ---------------------------------------------------------------------- HydroDyn decks as platforms
+def _import(deck, tmp_path) -> str:
+    out = tmp_path / "imported.yaml"
+    assert main(["platform", "import", str(deck), "-o", str(out)]) == 0
+    return str(out)
+
+
+def test_imported_deck_moving_in_still_water_matches_hydrodyn(tmp_path):
+    """The reference's own HydroDyn.dat, imported, then moved along its motion by ``fowt-sim
+    loads``: the same channels as HydroDyn's within the targets."""
+    platform_file = _import(hydrodyn_case(CASE) / "HydroDyn.dat", tmp_path)
+    motion_file, out = tmp_path / "prp.dat", tmp_path / "loads.csv"
+    np.savetxt(motion_file, reference_motion()[::4], fmt="%.6f" + " %.12e" * 18)  # every 0.2 s
+    assert main(["loads", "--platform", platform_file, "--motion", str(motion_file), "--still-water", "--hydrodyn",
+                 "-o", str(out)]) == 0
+    ref = read_hydrodyn_out(hydrodyn_case(CASE) / "wm12_prescribed_still.out")
+    table = np.genfromtxt(out, delimiter=",", names=True)
+    errors = {c: relative_rms(table[c], ref[c][::4]) for c in CHANNELS}
+    assert all(errors[c] < 5e-3 for c in ("HydroFxi", "HydroFzi", "HydroMxi", "HydroMyi")), errors
+    assert errors["HydroFyi"] < 2e-2 and errors["HydroMzi"] < 2e-2, errors
+
+
+def test_imported_deck_held_fixed_in_waves_matches_hydrodyn(tmp_path):
+    """The fixed-hull reference's deck, imported, held at rest in its wave components."""
+    case = hydrodyn_case("windmoor12_fixed_waves")
+    platform_file = _import(case / "HydroDyn.dat", tmp_path)
+    ref = read_hydrodyn_out(case / "wm12_waves_fixed.out")
+    rest = np.zeros((ref["Time"].size, 19))
+    rest[:, 0] = ref["Time"]
+    motion_file, out = tmp_path / "rest.dat", tmp_path / "loads.csv"
+    np.savetxt(motion_file, rest)
+    assert main(["loads", "--platform", platform_file, "--motion", str(motion_file), "--hydrodyn", "--waves-comp",
+                 str(case / "waves_jonswap_Hs11_Tp12_g4.9.Comp"), "--wave-table-dt", "0.05", "-o", str(out)]) == 0
+    table = np.genfromtxt(out, delimiter=",", names=True)
+    errors = {c: relative_rms(table[c], ref[c]) for c in ("HydroFxi", "HydroFzi", "HydroMyi")}
+    assert all(e < 2e-3 for e in errors.values()), errors
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda text: text.replace("             0   PotMod", "             1   PotMod", 1), "potential-flow"),
+    (lambda text: text.replace("    1        15.0000        0.0500", "    1        15.0000        0.0500\n"
+                               "    2        12.0000        0.0500", 1).replace(
+        "1   NPropSetsCyl", "2   NPropSetsCyl", 1).replace(
+        "   1          1          2           1            1          1", "   1          1          2           1"
+                                                                          "            2          1", 1), "tapered"),
+    (lambda text: text.replace("0.5         1         2        FALSE", "0.5         2         2        FALSE", 1),
+     "depth-based"),
+])
+def test_platform_import_refuses_what_the_model_cannot_represent(tmp_path, capsys, edit, message):
+    deck = tmp_path / "HydroDyn.dat"
+    deck.write_text(edit((hydrodyn_case(CASE) / "HydroDyn.dat").read_text()))
+    assert main(["platform", "import", str(deck), "-o", str(tmp_path / "out.yaml")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and len(err.splitlines()) == 1 and "Traceback" not in err

@@ -1,0 +1,175 @@
+"""OpenFAST HydroDyn v5 input files as platforms: the strip-theory members of a HydroDyn deck
+(joints, circular and rectangular sections, simple or member-based coefficient tables, joint
+axial coefficients, MDivSize) as a platform YAML document.
+
+The deck is read with ``openfast-io`` (``InputReader_OpenFAST().read_HydroDyn``), which reads
+the file line by line by position: a deck of another layout is misread, not refused (its
+SeaState reader misreads newer files silently the same way). So the values read here are
+checked for what they must be (finite, known switches, joints that exist) and what the model
+cannot represent is refused with one line naming the member: potential-flow bodies and
+members, marine growth, filled members, tapered members, depth-based coefficient tables
+(HydroDyn interpolates in depth, the model's zones are piecewise constant), Cp or Cb other
+than 1, rectangular members spun about their axis or with different side-A and side-B
+coefficients (which side the model's horizontal direction is has not been checked against
+HydroDyn).
+
+A HydroDyn deck has no structural mass and no mooring: the platform written floats freely
+(mass = rho V at the centre of buoyancy; one mooring line without stiffness or
+pretension), which is what ``fowt-sim loads``
+needs; give it real mass properties before simulating it.
+"""
+from __future__ import annotations
+
+import logging
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
+
+log = logging.getLogger(__name__)
+
+
+def read_deck(path: str | Path) -> dict[str, Any]:
+    """The deck as openfast-io reads it; ConfigError if it cannot be read."""
+    try:
+        from openfast_io.FAST_reader import InputReader_OpenFAST
+    except ImportError:
+        raise ConfigError("platform import needs the package openfast-io (pip install 'fowt_hydro_sim[hydrodyn]')") \
+            from None
+    reader = InputReader_OpenFAST()
+    try:
+        reader.read_HydroDyn(str(path))
+    except (OSError, ValueError, IndexError, KeyError) as exc:
+        raise ConfigError(f"{path}: cannot be read as a HydroDyn v5 input file ({type(exc).__name__}: {exc})") from None
+    return reader.fst_vt["HydroDyn"]
+
+
+def _refuse_unsupported(hd: dict, source: str) -> None:
+    if hd["PotMod"] != 0:
+        raise ConfigError(f"{source}: PotMod {hd['PotMod']}: potential-flow bodies are not supported (strip theory only)")
+    if any(hd["PropPot"]):
+        raise ConfigError(f"{source}: members {[m for m, p in zip(hd['MemberID'], hd['PropPot']) if p]} use potential "
+                          "flow (PropPot): not supported")
+    if hd["NMGDepths"] > 0:
+        raise ConfigError(f"{source}: marine growth (NMGDepths {hd['NMGDepths']}) is not supported")
+    if hd["NFillGroups"] > 0:
+        raise ConfigError(f"{source}: filled members (NFillGroups {hd['NFillGroups']}) are not supported")
+
+
+def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str, float]:
+    """Cd, Ca per direction (d1, d2) of member ``index`` from its coefficient table."""
+    member = hd["MemberID"][index]
+    mode = hd["MCoefMod"][index]
+    kind = "Cyl" if circular else "Rec"
+    if mode == 1:
+        get = {name: hd[f"{kind}Simpl{name}"] for name in
+               (("Cd", "Ca", "Cp", "Cb") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb"))}
+    elif mode == 3:
+        ids = hd[f"MemberID_HydC{kind}"]
+        if member not in ids:
+            raise ConfigError(f"{source}: member {member}: MCoefMod 3 but no row in the member-based table")
+        row = ids.index(member)
+        get = {}
+        for name in (("Cd", "Ca", "Cp", "Cb") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb")):
+            ends = hd[f"{kind}Member{name}1"][row], hd[f"{kind}Member{name}2"][row]
+            if ends[0] != ends[1]:
+                raise ConfigError(f"{source}: member {member}: {name} varies along the member ({ends[0]:g} to "
+                                  f"{ends[1]:g}): not supported")
+            get[name] = ends[0]
+    else:
+        raise ConfigError(f"{source}: member {member}: MCoefMod {mode} (depth-based coefficients) is not supported")
+    if get["Cp"] != 1.0 or get["Cb"] != 1.0:
+        raise ConfigError(f"{source}: member {member}: Cp {get['Cp']:g}, Cb {get['Cb']:g}: only 1 is supported")
+    if circular:
+        return {"cd": get["Cd"], "ca": get["Ca"]}
+    if get["CdA"] != get["CdB"] or get["CaA"] != get["CaB"]:
+        raise ConfigError(f"{source}: member {member}: side A and side B coefficients differ: not supported")
+    return {"cd_horizontal": get["CdA"], "cd_vertical": get["CdB"], "ca_horizontal": get["CaA"],
+            "ca_vertical": get["CaB"]}
+
+
+def _end_plate(hd: dict, joint: int, circular: bool) -> dict | None:
+    """The joint's axial coefficients as an end plate, or None if they are all zero."""
+    row = hd["AxCoefID"].index(hd["JointAxID"][hd["JointID"].index(joint)])
+    cd, ca, cp = hd["AxCd"][row], hd["AxCa"][row], hd["AxCp"][row]
+    if cd == ca == cp == 0.0:
+        return None
+    if not circular:
+        raise ConfigError(f"joint {joint}: axial coefficients on a rectangular member end are not supported")
+    return {"ca": ca, "cp": cp, "cd": cd}
+
+
+def _member(hd: dict, index: int, source: str) -> dict:
+    member = hd["MemberID"][index]
+    circular = hd["MSecGeom"][index] == 1
+    if hd["MSecGeom"][index] not in (1, 2):
+        raise ConfigError(f"{source}: member {member}: MSecGeom {hd['MSecGeom'][index]} is not 1 or 2")
+    ends = []
+    for key in ("MJointID1", "MJointID2"):
+        joint = hd[key][index]
+        if joint not in hd["JointID"]:
+            raise ConfigError(f"{source}: member {member}: joint {joint} is not in the joint table")
+        j = hd["JointID"].index(joint)
+        ends.append([float(hd["Jointxi"][j]), float(hd["Jointyi"][j]), float(hd["Jointzi"][j])])
+    sets = [hd["MPropSetID1"][index], hd["MPropSetID2"][index]]
+    if circular:
+        d = [hd["CylPropD"][hd["CylPropSetID"].index(s)] for s in sets]
+        if d[0] != d[1]:
+            raise ConfigError(f"{source}: member {member}: tapered ({d[0]:g} m to {d[1]:g} m): not supported")
+        size = {"diameter_m": float(d[0])}
+    else:
+        a = [hd["RecPropA"][hd["RecPropSetID"].index(s)] for s in sets]
+        b = [hd["RecPropB"][hd["RecPropSetID"].index(s)] for s in sets]
+        if a[0] != a[1] or b[0] != b[1]:
+            raise ConfigError(f"{source}: member {member}: tapered rectangular section: not supported")
+        if hd["MSpinOrient"][index] != 0.0:
+            raise ConfigError(f"{source}: member {member}: MSpinOrient {hd['MSpinOrient'][index]:g}: only 0 is "
+                              "supported")
+        size = {"width_m": float(a[0]), "height_m": float(b[0])}
+    out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
+           "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),
+           "zones": [{"name": "all", **_coefficients(hd, index, circular, source)}]}
+    for key, end in (("MJointID1", "end_a_plate"), ("MJointID2", "end_b_plate")):
+        plate = _end_plate(hd, hd[key][index], circular)
+        if plate is not None:
+            out[end] = plate
+    return out
+
+
+def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: float = 1025.0,
+                       gravity_m_s2: float = 9.80665, water_depth_m: float = 150.0) -> dict:
+    """The platform YAML document of a deck read by ``read_deck``; ConfigError for what the
+    model cannot represent."""
+    _refuse_unsupported(hd, source)
+    members = [_member(hd, i, source) for i in range(hd["NMembers"])]
+    document = {"name": name, "description": f"imported from the HydroDyn deck {source}: strip-theory members only; "
+                                             "placeholder mass (floating freely), no mooring",
+                "environment": {"water_density_kg_m3": water_density_kg_m3, "gravity_m_s2": gravity_m_s2,
+                                "water_depth_m": water_depth_m},
+                "mass": {"mass_kg": 1.0, "cog_m": [0.0, 0.0, 0.0], "inertia_about_cog_kg_m2":
+                         {"ixx": 1.0, "iyy": 1.0, "izz": 1.0}},
+                "hub_point_m": [0.0, 0.0, 0.0], "members": members,
+                "mooring": {"stiffness_n_m": 0.0, "pretension_n": 0.0, "unstretched_length_m": 1.0,  # no load
+                            "lines": [{"fairlead_m": [0.0, 0.0, 0.0], "anchor_m": [1.0, 0.0, 0.0]}]}}
+    return _floating_mass(document)
+
+
+def _floating_mass(document: dict) -> dict:
+    """The document with mass rho V at its centre of buoyancy and the inertia of that mass
+    spread as the displaced volume (a placeholder that floats in equilibrium)."""
+    from fowt_hydro_sim.physics.loads.hydrostatic import hydrostatics
+    from fowt_hydro_sim.physics.strips import discretise
+
+    platform = platform_from_dict(document, "imported deck")
+    h = hydrostatics(platform, discretise(platform).strips)
+    mass = platform.environment.water_density_kg_m3 * h.displaced_volume_m3
+    if not math.isfinite(mass) or mass <= 0:
+        raise ConfigError("imported deck: no member is below the still water line")
+    radius = max(float(np.linalg.norm(np.array(m["end_a_m"]) - h.centre_of_buoyancy_m)) for m in document["members"])
+    inertia = mass * max(radius, 1.0) ** 2 / 4
+    document["mass"] = {"mass_kg": float(mass), "cog_m": [float(x) for x in h.centre_of_buoyancy_m],
+                        "inertia_about_cog_kg_m2": {"ixx": inertia, "iyy": inertia, "izz": inertia}}
+    return document
