@@ -192,3 +192,15 @@ def test_platform_import_refuses_what_the_model_cannot_represent(tmp_path, capsy
     assert main(["platform", "import", str(deck), "-o", str(tmp_path / "out.yaml")]) == 2
     err = capsys.readouterr().err.strip()
     assert message in err and len(err.splitlines()) == 1 and "Traceback" not in err
+
+
+@pytest.mark.parametrize("content, message", [("0 1 2 3\n1 1 2 3\n", "expected 19 columns"),
+                                              ("not a number\n", "cannot be read"),
+                                              (" ".join(["0"] * 19) + "\n" + " ".join(["0"] * 19) + "\n",
+                                               "increasing time")])
+def test_loads_refuses_a_bad_motion_file_in_one_line(tmp_path, capsys, content, message):
+    motion = tmp_path / "prp.dat"
+    motion.write_text(content)
+    assert main(["loads", "--motion", str(motion), "--still-water", "-o", str(tmp_path / "out.csv")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and len(err.splitlines()) == 1
