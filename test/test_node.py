@@ -63,6 +63,25 @@ def test_internal_waves_match_the_offline_model_bit_for_bit():
     assert clock and max(clock) == pytest.approx(30.0)  # simulation time, not the wall clock
 
 
+def test_hydro_option_parameters_reach_the_model():
+    """HydroDyn's hydro options as node parameters: the node's motion is the offline model's
+    with the same options, bit for bit."""
+    from fowt_hydro_sim.physics.config import HYDRODYN
+
+    listener, output = run_node(20.0, real_time_factor=0.0, load_case="lc5.2", seed=3, drag_model="constant",
+                                wetted_length="undisplaced", load_directions="fixed", hydrostatics="nonlinear")
+    assert "duration 20 s reached" in output, output
+    t, motion = poses(listener)
+    sea = load_case("lc5.2").sea_state
+    sea = type(sea)(sea.hs_m, sea.tp_s, sea.gamma, seed=3)
+    model = PlatformModel(load_platform(), synthesize(sea, repeat_period(sea, 20.0)), dt_s=0.05, options=HYDRODYN)
+    offline = model.run(20.0, output_interval_s=0.05)
+    index = np.rint(t / 0.05).astype(int)
+    np.testing.assert_array_equal(motion[:, :3], offline.motion[index, :3])
+    default = PlatformModel(load_platform(), synthesize(sea, repeat_period(sea, 20.0)), dt_s=0.05).run(20.0, 0.05)
+    assert np.abs(default.motion[index, 2] - motion[:, 2]).max() > 1e-6  # the options change the motion
+
+
 def _controlled_run(duration_s: float, real_time_factor: float, damping: float, publish_rate_hz: float,
                     load_case: str = "lc5.0") -> tuple[np.ndarray, np.ndarray, str]:
     listener = Listener({"/platform/pose": PoseStamped})
@@ -191,6 +210,7 @@ def test_a_diverging_state_stops_the_stepping():
     ({"platform": "nowhere.yaml"}, "platform 'nowhere.yaml': no such file"),
     ({"publish_rate_hz": 7.0}, "parameter publish_rate_hz"),
     ({"load_case": "lc9.9"}, "load case 'lc9.9': unknown"),
+    ({"hydrostatics": "exact"}, "parameter hydrostatics: must be one of linear, nonlinear"),
 ])
 def test_bad_parameters_end_with_one_line(args: dict, message: str):
     node = start("node", **args)
