@@ -93,7 +93,8 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
     end = time.perf_counter()
     summary = {
         "software": {"name": "fowt_hydro_sim", "version": __version__},
-        "platform": platform.name, "drag_model": run.drag_model, "waves": wave_info,
+        "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
+        "waves": wave_info,
         "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
                 "initial_state": list(run.initial_state), "wave_table_step_s": model.wave_table_step_s,
                 "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
