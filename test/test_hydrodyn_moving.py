@@ -204,3 +204,29 @@ def test_loads_refuses_a_bad_motion_file_in_one_line(tmp_path, capsys, content, 
     assert main(["loads", "--motion", str(motion), "--still-water", "-o", str(tmp_path / "out.csv")]) == 2
     err = capsys.readouterr().err.strip()
     assert message in err and len(err.splitlines()) == 1
+
+
+@pytest.mark.parametrize("wetted_length", ["displaced", "undisplaced"])
+def test_mean_surge_force_of_surge_and_heave_motion_is_the_wetted_length_product(wetted_length):
+    """A column (Cd 0) surging X sin(wt) and heaving Z sin(wt + phi) in still water: its added
+    mass force -rho Ca A l(t) x'' has the mean rho Ca A <z x''> = -rho Ca A X Z w^2 cos(phi) / 2
+    when the wetted length l = draft - z follows the body (a second-order force from the body
+    motion alone: the part of Pinkster's decomposition these options add), and none when it
+    stays undisplaced."""
+    column = _column()
+    column = dataclasses.replace(column, members=(uniform_drag(column.members[0], 0.0, 0.0),))
+    amplitude_x, amplitude_z, omega, phase = 2.0, 0.3, 0.6, 0.4
+    t = np.arange(0.0, 20 * 2 * np.pi / omega, 2 * np.pi / omega / 64)
+    motion, velocity, acceleration = (np.zeros((t.size, 6)) for _ in range(3))
+    for j, amp, ph in ((0, amplitude_x, 0.0), (2, amplitude_z, phase)):
+        motion[:, j] = amp * np.sin(omega * t + ph)
+        velocity[:, j] = amp * omega * np.cos(omega * t + ph)
+        acceleration[:, j] = -amp * omega**2 * np.sin(omega * t + ph)
+    options = HydroOptions(wetted_length=wetted_length)
+    loads = PlatformModel(column, options=options).prescribed_motion_loads(t, motion, velocity, acceleration)
+    mean_fx = loads[:, ROW["added_mass"], 0].mean()
+    expected = -1025.0 * 1.0 * math.pi * 7.5**2 * amplitude_x * amplitude_z * omega**2 * math.cos(phase) / 2
+    if wetted_length == "displaced":
+        assert mean_fx == pytest.approx(expected, rel=1e-6)
+    else:
+        assert abs(mean_fx) < 1e-6 * abs(expected)
