@@ -20,7 +20,6 @@ needs; give it real mass properties before simulating it.
 """
 from __future__ import annotations
 
-import logging
 import math
 from pathlib import Path
 from typing import Any
@@ -28,8 +27,6 @@ from typing import Any
 import numpy as np
 
 from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
-
-log = logging.getLogger(__name__)
 
 
 def read_deck(path: str | Path) -> dict[str, Any]:
