@@ -230,3 +230,16 @@ def test_mean_surge_force_of_surge_and_heave_motion_is_the_wetted_length_product
         assert mean_fx == pytest.approx(expected, rel=1e-6)
     else:
         assert abs(mean_fx) < 1e-6 * abs(expected)
+
+
+def test_run_files_take_the_hydro_options(tmp_path):
+    from fowt_hydro_sim.physics.config import ConfigError, load_run_file
+
+    good = tmp_path / "run.yaml"
+    good.write_text("platform: windmoor12\nrun: {wetted_length: undisplaced, load_directions: fixed, "
+                    "hydrostatics: nonlinear}\n")
+    assert load_run_file(good).run.hydro_options == HYDRODYN
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("platform: windmoor12\nrun: {load_directions: sideways}\n")
+    with pytest.raises(ConfigError, match="load_directions: must be one of rotating, fixed"):
+        load_run_file(bad)
