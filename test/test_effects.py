@@ -211,3 +211,29 @@ def test_block_lag_is_the_cross_correlation_peak():
     x = np.sin(2 * np.pi * 0.1 * t) + 0.5 * np.sin(2 * np.pi * 0.13 * t + 1)
     late = np.sin(2 * np.pi * 0.1 * (t - 0.8)) + 0.5 * np.sin(2 * np.pi * 0.13 * (t - 0.8) + 1)
     assert block_lag_s(late, x) == pytest.approx(0.8, abs=0.03)
+
+
+def test_a_gross_gap_in_a_band_the_measurement_hardly_has_is_judged():
+    """The model's low-frequency heave 12 times the measured one, in a band holding under 15 %
+    of the measured heave: judged, flagged and reported as gross, with its sign."""
+    from fowt_hydro_sim.studies.diagnosis.gap import NEGLIGIBLE_BAND, band_passed
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(1)
+    low = band_passed(x[:, HEAVE], settings.bands_hz["low_frequency"])
+    assert low.std() < NEGLIGIBLE_BAND * x[:, HEAVE].std()  # the measurement hardly has it
+    for factor in (12.0, 1.0 / 12.0):
+        y = x.copy()
+        y[:, HEAVE] += (factor - 1.0) * low
+        g = gap("lively", (t, x), (t, y), settings)
+        i = settings.cells().index(("heave", "std.low_frequency"))
+        assert np.isfinite(g.tolerance[i]) and g.flagged[i] and g.gross(settings)[i]
+        assert g.value[i] == pytest.approx(factor - 1.0, rel=0.02)
+    assert not gap("same", (t, x), (t, x), settings).gross(settings).any()
+
+
+@pytest.mark.parametrize("deficit, words", [(0.3, "clearly positive"), (-0.3, "clearly negative"),
+                                            (-0.02, "about as coherent"), (0.05, "about as coherent")])
+def test_the_coherence_sentence_is_worded_from_its_value(deficit, words):
+    from fowt_hydro_sim.studies.diagnosis.report import coherence_sentence
+    sentence = coherence_sentence(deficit, "surge")
+    assert words in sentence and f"{deficit:+.2f}" in sentence

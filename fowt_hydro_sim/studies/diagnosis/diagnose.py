@@ -299,28 +299,13 @@ def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settin
     return evaluate
 
 
-def summary_lines(diagnosis: Diagnosis) -> list[str]:
-    """The diagnosis in a few lines: flagged cells, candidates, verdict, blind closure."""
-    lines = [f"gap: {len(diagnosis.flagged_cells(diagnosis.tuning_before))} flagged cells on the tuning runs"]
-    lines += [f"  {run}: {dof} {metric}" for run, dof, metric in diagnosis.flagged_cells(diagnosis.tuning_before)]
-    if diagnosis.candidates:
-        lines.append(f"{'candidate':<26}{'score':>9}{'closure':>9}  parameters")
-        lines += [f"{c.effect:<26}{c.score:>9.1f}{100 * c.closure:>8.0f}%  "
-                  + ", ".join(f"{k} {v:.4g}" for k, v in c.values.items()) for c in diagnosis.candidates]
-    lines.append(f"verdict: {diagnosis.verdict}" + (f": {diagnosis.chosen}" if diagnosis.chosen else "")
-                 + f" ({diagnosis.reason})")
-    if diagnosis.blind_after:
-        lines.append(f"blind runs (not refitted): {100 * diagnosis.blind_closure:.0f} % of the gap closed")
-    return lines
-
-
 def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, settings: GapSettings,
                   effects: dict[str, Effect], output: str, heading_deg: float = 0.0, max_evaluations: int = 4,
                   dt_s: float = REPLAY_DT_S, scheduler: str | None = None, workers: int | None = None) -> list[str]:
     """``fowt-sim diagnose``: measured bags diagnosed on a Dask cluster, the report written to
     ``output``; returns the summary's lines."""
     from fowt_hydro_sim.studies.cluster import dask_client
-    from fowt_hydro_sim.studies.diagnosis.report import write_report
+    from fowt_hydro_sim.studies.diagnosis.report import summary_lines, write_report
     from fowt_hydro_sim.studies.replay import measured_run
     tuning_runs = [measured_run(p, heading_deg) for p in tuning]
     blind_runs = [measured_run(p, heading_deg) for p in blind]
