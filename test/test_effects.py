@@ -237,3 +237,65 @@ def test_the_coherence_sentence_is_worded_from_its_value(deficit, words):
     from fowt_hydro_sim.studies.diagnosis.report import coherence_sentence
     sentence = coherence_sentence(deficit, "surge")
     assert words in sentence and f"{deficit:+.2f}" in sentence
+
+
+# ---------------------------------------------------------------------- plausibility rules of the diagnosis
+def _gap(settings, run: str, values: dict[tuple[str, str], float]):
+    """A gap with the given cells (tight intervals, flagged where beyond tolerance), others 0."""
+    from fowt_hydro_sim.studies.diagnosis.gap import Gap
+    value = np.array([values.get(cell, 0.0) for cell in settings.cells()])
+    tolerance = np.array([settings.tolerance(metric) for _, metric in settings.cells()])
+    return Gap(run, value, value - 1e-3, value + 1e-3, tolerance)
+
+
+def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
+    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    settings = GapSettings()
+    before = [_gap(settings, "r", {("surge", "frequency.low_frequency"): -0.2})]
+    mooring = CATALOGUE["mooring_stiffness"]
+    assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3}, before, settings) == []
+    stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3}, before, settings)
+    assert len(stiff) == 1 and "line_stiffness_scale = 1.52 lies outside its plausible 0.7 to 1.3" in stiff[0]
+    edge = concerns(CATALOGUE["linear_damping"], {"surge_damping_ratio": 0.0, "heave_damping_ratio": 0.05,
+                                                  "pitch_damping_ratio": 0.05}, before, settings)
+    assert len(edge) == 1 and "surge_damping_ratio = 0 sits at the edge" in edge[0]
+
+
+def test_an_effect_that_moves_the_model_the_wrong_way_is_a_concern():
+    """The model's low-frequency surge 11 times the measured one: more slow drift can only
+    raise it (wrong way); damping lowers it (right way)."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    settings = GapSettings()
+    before = [_gap(settings, r, {("surge", "std.low_frequency"): 10.0}) for r in ("a", "b")]
+    drift = concerns(CATALOGUE["slow_drift"], {"drift_coefficient_n_m2": 2e5}, before, settings)
+    assert len(drift) == 1 and "raises surge.std.low_frequency" in drift[0] and "wrong way" in drift[0]
+    damping = {"surge_damping_ratio": 0.05, "heave_damping_ratio": 0.02, "pitch_damping_ratio": 0.02}
+    assert concerns(CATALOGUE["linear_damping"], damping, before, settings) == []
+    below = [_gap(settings, "a", {("surge", "std.low_frequency"): -0.4})]
+    assert concerns(CATALOGUE["slow_drift"], {"drift_coefficient_n_m2": 2e5}, below, settings) == []
+
+
+def test_an_effect_that_closes_the_tuning_gap_but_not_the_blind_one_is_not_named():
+    """Two candidates close the tuning gap alike (the one-parameter one scores better); on the
+    blind run it closes nothing: it is demoted, with the reason, and the other, which closes
+    the blind gap, is named."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(2, duration_s=1200.0)
+    runs = [MeasuredRun(name, t, np.sin(0.6 * t), (0.0, 0.0), t, x) for name in ("tune1", "tune2", "blind")]
+    baseline = _gap(settings, "", {("surge", "std.low_frequency"): -0.3, ("pitch", "std.low_frequency"): -0.2})
+    spectra = [measured_spectra(r, settings) for r in runs]
+
+    def evaluate(jobs, description=""):
+        out = []
+        for name, values, index, with_spectra in jobs:
+            closes = name is not None and (index < 2 or name == "mooring_stiffness")
+            out.append((baseline if not closes else _gap(settings, runs[index].name, {}),
+                        spectra[index] if with_spectra else None))
+        return out
+
+    effects = {n: CATALOGUE[n] for n in ("mooring_stiffness", "added_mass_error")}
+    diagnosis = diagnose(runs[:2], runs[2:], evaluate, settings, effects, max_evaluations=2)
+    assert diagnosis.chosen == "mooring_stiffness" and diagnosis.blind_closure == pytest.approx(1.0)
+    added_mass = diagnosis.candidate("added_mass_error")
+    assert not added_mass.fits and any("blind closure, 0%" in c for c in added_mass.concerns)

@@ -8,8 +8,11 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    squares on the cells' residuals in tolerance units; one parameter set for every sea
    state, so how the gap scales with Hs is part of the fit). Its score is a BIC,
    n ln(mean r^2 + floor^2) + p ln n, which charges every extra parameter.
-3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE`` and
-   closes at least ``MIN_CLOSURE`` of the gap; otherwise the gap is "unexplained".
+3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE``,
+   closes at least ``MIN_CLOSURE`` of the gap and raises no concern (``concerns``: values
+   outside their plausible range or at the edge of the fit's bounds, a signature that moves
+   the model the wrong way, a blind closure below ``BLIND_SHARE`` of the tuning closure);
+   candidates with a concern rank after the others. Otherwise the gap is "unexplained".
    Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
@@ -40,6 +43,8 @@ MIN_CLOSURE = 0.5  # share of the gap an effect must close to be named
 TIE = 2.0  # BIC difference below which two candidates both fit
 COHERENCE_DEFICIT = 0.1  # measured low-frequency coherence this far below the model's: incoherent load
 FD_STEP = 0.1  # forward-difference step, in units of each parameter's scale
+EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) sits at the edge
+BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
 
 Job = tuple  # (effect name or None, parameter values, run index, with spectra)
 
@@ -75,11 +80,12 @@ class CandidateFit:
     score: float
     closure: float  # share of the tuning gap closed
     model_runs: int
-    fits: bool = False  # beats the plain model and closes enough
+    fits: bool = False  # beats the plain model, closes enough, and raises no concern
+    concerns: list[str] = field(default_factory=list)  # why the fit is not physically plausible
 
     def as_dict(self, settings: GapSettings) -> dict:
         return {"effect": self.effect, "values": self.values, "score": self.score, "closure": self.closure,
-                "fits": self.fits, "model_runs": self.model_runs,
+                "fits": self.fits, "concerns": self.concerns, "model_runs": self.model_runs,
                 "gaps": [g.as_dict(settings) for g in self.gaps]}
 
 
@@ -98,6 +104,32 @@ def closure(before: list[Gap], after: list[Gap]) -> float:
         num += float(np.sum(a.residual[cells] ** 2))
         den += float(np.sum(b.residual[cells] ** 2))
     return 1.0 - num / den if den > 0 else 0.0
+
+
+def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings) -> list[str]:
+    """Why a fitted effect is implausible: a parameter outside the range a real platform's
+    lies in, or at the edge of the fit's bounds (it absorbs something else); or a gap it
+    cannot close, because its signature moves the model the wrong way in the cells that
+    carry most of the flagged gap."""
+    out = []
+    for p in effect.parameters:
+        value, (low, high) = values[p.name], p.plausible_range
+        if not low <= value <= high:
+            out.append(f"{p.name} = {value:.4g} lies outside its plausible {low:g} to {high:g} ({p.why})")
+        elif min(value - p.low, p.high - value) <= EDGE * (p.high - p.low):
+            out.append(f"{p.name} = {value:.4g} sits at the edge of the fitted range {p.low:g} to {p.high:g}")
+    cells = [f"{dof}.{metric}" for dof, metric in settings.cells()]
+    right = wrong = 0.0
+    for g in before:
+        for i in np.flatnonzero(g.flagged):
+            sign = effect.signature.get(cells[i])
+            if sign is not None:
+                weight = float(g.residual[i] ** 2)
+                right, wrong = (right + weight, wrong) if np.sign(g.value[i]) == -sign else (right, wrong + weight)
+    if wrong > right:
+        moved = ", ".join(f"{'raises' if s > 0 else 'lowers'} {cell}" for cell, s in effect.signature.items())
+        out.append(f"it {moved}, the wrong way for most of the flagged gap")
+    return out
 
 
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
@@ -249,18 +281,43 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                             closure(diagnosis.tuning_before, gaps), count)
 
     with ThreadPoolExecutor(max_workers=len(effects)) as pool:
-        candidates = sorted(pool.map(fit, effects.values()), key=lambda c: c.score)
+        candidates = list(pool.map(fit, effects.values()))
     for c in candidates:
-        c.fits = c.score < diagnosis.baseline_score - MIN_EVIDENCE and c.closure >= MIN_CLOSURE
+        c.concerns = concerns(effects[c.effect], c.values, diagnosis.tuning_before, settings)
+        c.fits = (c.score < diagnosis.baseline_score - MIN_EVIDENCE and c.closure >= MIN_CLOSURE
+                  and not c.concerns)
+    candidates.sort(key=lambda c: (bool(c.concerns), c.score))  # a plausible fit ranks before any other
     diagnosis.candidates = candidates
     diagnosis.model_runs += sum(c.model_runs for c in candidates)
-    fitting = [c for c in candidates if c.fits]
-    if not fitting:
-        best = candidates[0]
-        diagnosis.verdict = "unexplained"
-        diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence; the nearest, "
-                            f"{best.effect}, closes {best.closure:.0%}")
-        return diagnosis
+    while True:
+        fitting = [c for c in candidates if c.fits]
+        if not fitting:
+            best = candidates[0]
+            diagnosis.verdict, diagnosis.chosen = "unexplained", None
+            diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence and plausible "
+                                f"values; the nearest, {best.effect}, closes {best.closure:.0%}"
+                                + (f" ({'; '.join(best.concerns)})" if best.concerns else ""))
+            return diagnosis
+        chosen, reason = _choose(fitting, effects, deficit, settings)
+        diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
+        jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
+        after = evaluate(jobs, f"{chosen.effect}: all runs")
+        diagnosis.model_runs += len(jobs)
+        diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
+        for r, (_, s) in zip(tuning, after[:n_tuning]):
+            diagnosis.spectra[r.name]["model + effect"] = s
+        if not blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
+            return diagnosis
+        chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} of its "
+                               f"tuning closure, {chosen.closure:.0%}")
+        chosen.fits = False
+        diagnosis.blind_after = []
+        candidates.sort(key=lambda c: (bool(c.concerns), c.score))
+
+
+def _choose(fitting: list[CandidateFit], effects: dict[str, Effect], deficit: float,
+            settings: GapSettings) -> tuple[CandidateFit, str]:
+    """The best fitting candidate; within TIE of it, the wave-response coherence decides."""
     tied = [c for c in fitting if c.score <= fitting[0].score + TIE]
     chosen, reason = fitting[0], f"best score, closes {fitting[0].closure:.0%} of the tuning gap"
     if len(tied) > 1:
@@ -273,14 +330,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                       f"(deficit {deficit:.2f}), which points to a {'wave-incoherent' if incoherent else 'wave-coherent'} load")
         else:
             reason += f"; also fit: {', '.join(c.effect for c in tied if c is not chosen)}"
-    diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
-    jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
-    after = evaluate(jobs, f"{chosen.effect}: all runs")
-    diagnosis.model_runs += len(jobs)
-    diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
-    for r, (_, s) in zip(tuning, after[:n_tuning]):
-        diagnosis.spectra[r.name]["model + effect"] = s
-    return diagnosis
+    return chosen, reason
 
 
 def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,

@@ -192,13 +192,17 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
     if d.candidates:
         lines += ["## Which effect", "",
                   f"Each candidate fitted to all tuning runs at once; score = BIC (lower is better; the plain "
-                  f"model's is {d.baseline_score:.1f}). Named only if it beats the plain model by 6 and closes "
-                  "half the gap.", "",
-                  "| effect | fitted parameters | score | closure (tuning) | fits |", "|---|---|---|---|---|"]
+                  f"model's is {d.baseline_score:.1f}). Named only if it beats the plain model by 6, closes "
+                  "half the gap, its values are plausible (within the range a real platform's lie in, not at the "
+                  "edge of the fit's bounds), its signature can close the flagged gap's sign, and on blind runs it "
+                  "closes at least half of what it closes on the tuning runs; a candidate with a concern ranks "
+                  "after every one without.", "",
+                  "| effect | fitted parameters | score | closure (tuning) | fits | concerns |",
+                  "|---|---|---|---|---|---|"]
         for c in d.candidates:
             values = ", ".join(f"{k} = {v:.4g}" for k, v in c.values.items())
             lines.append(f"| {c.effect} | {values} | {c.score:.1f} | {100 * c.closure:.0f} % | "
-                         f"{'yes' if c.fits else 'no'} |")
+                         f"{'yes' if c.fits else 'no'} | {'; '.join(c.concerns) or '-'} |")
         lines.append("")
     if d.chosen:
         chosen = d.candidate(d.chosen)
