@@ -299,3 +299,34 @@ def test_an_effect_that_closes_the_tuning_gap_but_not_the_blind_one_is_not_named
     assert diagnosis.chosen == "mooring_stiffness" and diagnosis.blind_closure == pytest.approx(1.0)
     added_mass = diagnosis.candidate("added_mass_error")
     assert not added_mass.fits and any("blind closure, 0%" in c for c in added_mass.concerns)
+
+
+def test_a_mismatch_in_every_run_is_reported_as_the_baselines_before_any_effect():
+    """The model's low-frequency surge 11 times the measured one in every tuning run, which
+    no candidate closes, and a pitch frequency gap that added mass closes: the verdict is a
+    baseline mismatch naming the surge cell, with added mass 'additionally'."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(3, duration_s=1200.0)
+    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
+    spectra = [measured_spectra(r, settings) for r in runs]
+    surge, pitch = ("surge", "std.low_frequency"), ("pitch", "frequency.low_frequency")
+
+    def evaluate(jobs, description=""):
+        out = []
+        for name, values, index, with_spectra in jobs:
+            cells = {surge: 10.0 + index}
+            if name != "added_mass_error":
+                cells[pitch] = 0.2
+            out.append((_gap(settings, runs[index].name, cells), spectra[index] if with_spectra else None))
+        return out
+
+    effects = {n: CATALOGUE[n] for n in ("added_mass_error", "wave_measurement_delay")}
+    diagnosis = diagnose(runs, [], evaluate, settings, effects, max_evaluations=2)
+    assert [(m.dof, m.metric, m.sign) for m in diagnosis.mismatches] == [("surge", "std.low_frequency", 1),
+                                                                          ("pitch", "frequency.low_frequency", 1)]
+    assert diagnosis.verdict == "baseline mismatch" and diagnosis.chosen == "added_mass_error"
+    assert "surge std.low_frequency: model above the measurement in every run (11x to 13x" in diagnosis.reason
+    assert "not explained by any catalogue effect" in diagnosis.reason and "additionally added_mass_error" in diagnosis.reason
+    assert diagnosis.mismatches[1].explained_by == "added_mass_error"
+    assert diagnosis.mismatches[0].slope([1.0, 2.0, 3.0]) == pytest.approx(1.0)

@@ -183,7 +183,7 @@ def score_scenario(scenario: Scenario, diagnosis: Diagnosis, cells: list[tuple[s
     elif scenario.kind == "null":
         correct = diagnosis.verdict == "no significant gap"
     else:
-        correct = diagnosis.verdict == "unexplained"
+        correct = diagnosis.chosen is None and diagnosis.verdict in ("unexplained", "baseline mismatch")
     chosen = diagnosis.candidate(diagnosis.chosen) if diagnosis.chosen else None
     return Score(scenario.name, scenario.kind, scenario.effect, detected, diagnosis.verdict, diagnosis.chosen,
                  correct, cells, (cells[0] in flagged) if cells else None,

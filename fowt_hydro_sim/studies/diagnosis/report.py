@@ -184,6 +184,9 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
                          f"{_value_text(metric, g.tolerance[i]).lstrip('+')} |")
     if not d.flagged_cells(d.baseline):
         lines.append("| (none) | | | | | |")
+    if d.mismatches:
+        lines += ["", "Baseline mismatches (flagged with one sign in every tuning run):", ""]
+        lines += [f"- {m.text()}" for m in d.mismatches]
     gross = gross_lines(d)
     if gross:
         lines += ["", f"Gross differences (a band STD ratio outside {GROSS_RATIO[0]:g}-{GROSS_RATIO[1]:g}x), "
