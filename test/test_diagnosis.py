@@ -87,7 +87,7 @@ def test_diagnose_benchmark_small(tmp_path):
     out = tmp_path / "bench"
     result = fowt_sim("diagnose-benchmark", "--inject", "wave_measurement_delay", "--strengths", "1", "--nulls", "1",
                       "--out-of-catalogue", "1", "--effects", *CANDIDATES, "--duration", str(RECORD_S),
-                      "--workers", "2", "-o", str(out), timeout=900)
+                      "--workers", "2", "-o", str(out), timeout=1800)
     assert result.returncode == 0, result.stderr
     data = json.loads((out / "benchmark.json").read_text())
     summary = data["summary"]

@@ -23,7 +23,7 @@ from fowt_hydro_sim.physics.waves.components import WaveComponents, from_elevati
 from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, table_step
 
 OUTPUT_INTERVAL_S = 0.25  # motion samples of a replayed run
-PREROLL_S = 900.0  # model time before the record: several decay times of the surge resonance
+PREROLL_S = 600.0  # model time before the record: with the 300 s transient, three decay times of the surge resonance
 WAVE_F_MAX_HZ = 0.5  # elevation components kept
 TABLES_KEPT = 6  # kinematics tables kept for further replays of the same runs
 _tables: OrderedDict[bytes, KinematicsTable] = OrderedDict()
