@@ -211,3 +211,122 @@ def test_block_lag_is_the_cross_correlation_peak():
     x = np.sin(2 * np.pi * 0.1 * t) + 0.5 * np.sin(2 * np.pi * 0.13 * t + 1)
     late = np.sin(2 * np.pi * 0.1 * (t - 0.8)) + 0.5 * np.sin(2 * np.pi * 0.13 * (t - 0.8) + 1)
     assert block_lag_s(late, x) == pytest.approx(0.8, abs=0.03)
+
+
+def test_a_gross_gap_in_a_band_the_measurement_hardly_has_is_judged():
+    """The model's low-frequency heave 12 times the measured one, in a band holding under 15 %
+    of the measured heave: judged, flagged and reported as gross, with its sign."""
+    from fowt_hydro_sim.studies.diagnosis.gap import NEGLIGIBLE_BAND, band_passed
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(1)
+    low = band_passed(x[:, HEAVE], settings.bands_hz["low_frequency"])
+    assert low.std() < NEGLIGIBLE_BAND * x[:, HEAVE].std()  # the measurement hardly has it
+    for factor in (12.0, 1.0 / 12.0):
+        y = x.copy()
+        y[:, HEAVE] += (factor - 1.0) * low
+        g = gap("lively", (t, x), (t, y), settings)
+        i = settings.cells().index(("heave", "std.low_frequency"))
+        assert np.isfinite(g.tolerance[i]) and g.flagged[i] and g.gross(settings)[i]
+        assert g.value[i] == pytest.approx(factor - 1.0, rel=0.02)
+    assert not gap("same", (t, x), (t, x), settings).gross(settings).any()
+
+
+@pytest.mark.parametrize("deficit, words", [(0.3, "clearly positive"), (-0.3, "clearly negative"),
+                                            (-0.02, "about as coherent"), (0.05, "about as coherent")])
+def test_the_coherence_sentence_is_worded_from_its_value(deficit, words):
+    from fowt_hydro_sim.studies.diagnosis.report import coherence_sentence
+    sentence = coherence_sentence(deficit, "surge")
+    assert words in sentence and f"{deficit:+.2f}" in sentence
+
+
+# ---------------------------------------------------------------------- plausibility rules of the diagnosis
+def _gap(settings, run: str, values: dict[tuple[str, str], float]):
+    """A gap with the given cells (tight intervals, flagged where beyond tolerance), others 0."""
+    from fowt_hydro_sim.studies.diagnosis.gap import Gap
+    value = np.array([values.get(cell, 0.0) for cell in settings.cells()])
+    tolerance = np.array([settings.tolerance(metric) for _, metric in settings.cells()])
+    return Gap(run, value, value - 1e-3, value + 1e-3, tolerance)
+
+
+def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
+    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    settings = GapSettings()
+    before = [_gap(settings, "r", {("surge", "frequency.low_frequency"): -0.2})]
+    mooring = CATALOGUE["mooring_stiffness"]
+    assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3}, before, settings) == []
+    stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3}, before, settings)
+    assert len(stiff) == 1 and "line_stiffness_scale = 1.52 lies outside its plausible 0.7 to 1.3" in stiff[0]
+    edge = concerns(CATALOGUE["linear_damping"], {"surge_damping_ratio": 0.0, "heave_damping_ratio": 0.05,
+                                                  "pitch_damping_ratio": 0.05}, before, settings)
+    assert len(edge) == 1 and "surge_damping_ratio = 0 sits at the edge" in edge[0]
+
+
+def test_an_effect_that_moves_the_model_the_wrong_way_is_a_concern():
+    """The model's low-frequency surge 11 times the measured one: more slow drift can only
+    raise it (wrong way); damping lowers it (right way)."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    settings = GapSettings()
+    before = [_gap(settings, r, {("surge", "std.low_frequency"): 10.0}) for r in ("a", "b")]
+    drift = concerns(CATALOGUE["slow_drift"], {"drift_coefficient_n_m2": 2e5}, before, settings)
+    assert len(drift) == 1 and "raises surge.std.low_frequency" in drift[0] and "wrong way" in drift[0]
+    damping = {"surge_damping_ratio": 0.05, "heave_damping_ratio": 0.02, "pitch_damping_ratio": 0.02}
+    assert concerns(CATALOGUE["linear_damping"], damping, before, settings) == []
+    below = [_gap(settings, "a", {("surge", "std.low_frequency"): -0.4})]
+    assert concerns(CATALOGUE["slow_drift"], {"drift_coefficient_n_m2": 2e5}, below, settings) == []
+
+
+def test_an_effect_that_closes_the_tuning_gap_but_not_the_blind_one_is_not_named():
+    """Two candidates close the tuning gap alike (the one-parameter one scores better); on the
+    blind run it closes nothing: it is demoted, with the reason, and the other, which closes
+    the blind gap, is named."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(2, duration_s=1200.0)
+    runs = [MeasuredRun(name, t, np.sin(0.6 * t), (0.0, 0.0), t, x) for name in ("tune1", "tune2", "blind")]
+    baseline = _gap(settings, "", {("surge", "std.low_frequency"): -0.3, ("pitch", "std.low_frequency"): -0.2})
+    spectra = [measured_spectra(r, settings) for r in runs]
+
+    def evaluate(jobs, description=""):
+        out = []
+        for name, values, index, with_spectra in jobs:
+            closes = name is not None and (index < 2 or name == "mooring_stiffness")
+            out.append((baseline if not closes else _gap(settings, runs[index].name, {}),
+                        spectra[index] if with_spectra else None))
+        return out
+
+    effects = {n: CATALOGUE[n] for n in ("mooring_stiffness", "added_mass_error")}
+    diagnosis = diagnose(runs[:2], runs[2:], evaluate, settings, effects, max_evaluations=2)
+    assert diagnosis.chosen == "mooring_stiffness" and diagnosis.blind_closure == pytest.approx(1.0)
+    added_mass = diagnosis.candidate("added_mass_error")
+    assert not added_mass.fits and any("blind closure, 0%" in c for c in added_mass.concerns)
+
+
+def test_a_mismatch_in_every_run_is_reported_as_the_baselines_before_any_effect():
+    """The model's low-frequency surge 11 times the measured one in every tuning run, which
+    no candidate closes, and a pitch frequency gap that added mass closes: the verdict is a
+    baseline mismatch naming the surge cell, with added mass 'additionally'."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(3, duration_s=1200.0)
+    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
+    spectra = [measured_spectra(r, settings) for r in runs]
+    surge, pitch = ("surge", "std.low_frequency"), ("pitch", "frequency.low_frequency")
+
+    def evaluate(jobs, description=""):
+        out = []
+        for name, values, index, with_spectra in jobs:
+            cells = {surge: 10.0 + index}
+            if name != "added_mass_error":
+                cells[pitch] = 0.2
+            out.append((_gap(settings, runs[index].name, cells), spectra[index] if with_spectra else None))
+        return out
+
+    effects = {n: CATALOGUE[n] for n in ("added_mass_error", "wave_measurement_delay")}
+    diagnosis = diagnose(runs, [], evaluate, settings, effects, max_evaluations=2)
+    assert [(m.dof, m.metric, m.sign) for m in diagnosis.mismatches] == [("surge", "std.low_frequency", 1),
+                                                                          ("pitch", "frequency.low_frequency", 1)]
+    assert diagnosis.verdict == "baseline mismatch" and diagnosis.chosen == "added_mass_error"
+    assert "surge std.low_frequency: model above the measurement in every run (11x to 13x" in diagnosis.reason
+    assert "not explained by any catalogue effect" in diagnosis.reason and "additionally added_mass_error" in diagnosis.reason
+    assert diagnosis.mismatches[1].explained_by == "added_mass_error"
+    assert diagnosis.mismatches[0].slope([1.0, 2.0, 3.0]) == pytest.approx(1.0)

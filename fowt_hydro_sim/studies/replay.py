@@ -23,6 +23,7 @@ from fowt_hydro_sim.physics.waves.components import WaveComponents, from_elevati
 from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, table_step
 
 OUTPUT_INTERVAL_S = 0.25  # motion samples of a replayed run
+PREROLL_S = 600.0  # model time before the record: with the 300 s transient, three decay times of the surge resonance
 WAVE_F_MAX_HZ = 0.5  # elevation components kept
 TABLES_KEPT = 6  # kinematics tables kept for further replays of the same runs
 _tables: OrderedDict[bytes, KinematicsTable] = OrderedDict()
@@ -75,21 +76,28 @@ class Variant:
     elevation_shift_s: float = 0.0
 
 
-def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: float | None = None,
+           preroll_s: float = PREROLL_S) -> tuple[np.ndarray, np.ndarray]:
     """Time and 6-DOF motion of the variant driven by the run's elevation record, on the
-    record's clock (model time 0 = the record's first sample, shifted), until the run's
-    last motion sample (or for ``duration_s``)."""
+    record's clock (time 0 = the record's first sample, shifted), until the run's last
+    motion sample (or for ``duration_s``).
+
+    The model starts ``preroll_s`` before the record, in the record's periodic extension
+    (the decomposition makes the sea periodic), so that it is past its start-up transient
+    when the record begins: a model starting from rest inside the compared window would
+    show a decaying low-frequency response that the measurement does not have."""
     platform = variant.platform
     env = platform.environment
     waves = from_elevation_record(run.elevation_time_s - run.elevation_time_s[0], run.elevation_m,
                                   *run.point_xy_m, run.heading_deg, env.water_depth_m, env.gravity_m_s2,
-                                  f_max_hz=WAVE_F_MAX_HZ)
-    model = PlatformModel(platform, waves, dt_s=dt_s, drag_model=variant.drag_model, extension=variant.extension,
-                          kinematics=kinematics_table(platform, waves))
+                                  f_max_hz=WAVE_F_MAX_HZ).delayed(preroll_s)
+    model = PlatformModel(platform, waves, dt_s=dt_s, drag_model=variant.drag_model,
+                          extension=variant.extension.delayed(preroll_s), kinematics=kinematics_table(platform, waves))
     start = run.elevation_time_s[0] + variant.elevation_shift_s
     duration = duration_s if duration_s is not None else float(run.motion_time_s[-1] - start)
-    result = model.run(duration, output_interval_s=OUTPUT_INTERVAL_S)
-    return result.time_s + start, result.motion
+    result = model.run(preroll_s + duration, output_interval_s=OUTPUT_INTERVAL_S)
+    keep = result.time_s >= preroll_s - 1e-9
+    return result.time_s[keep] - preroll_s + start, result.motion[keep]
 
 
 def kinematics_table(platform: Platform, waves: WaveComponents) -> KinematicsTable:

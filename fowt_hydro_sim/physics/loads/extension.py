@@ -59,6 +59,16 @@ class Extension:
                   for f in fields(self) if f.name not in ("force_n", "force_step_s")}
         return replace(self, force_n=force, force_step_s=step, **summed)
 
+    def delayed(self, delay_s: float) -> Extension:
+        """The same terms with the force series arriving ``delay_s`` later (periodic)."""
+        if not self.has_force or delay_s == 0.0:
+            return self
+        n = len(self.force_n)
+        spectrum = np.fft.rfft(self.force_n, axis=0)
+        frequency_hz = np.fft.rfftfreq(n, self.force_step_s)
+        shifted = np.fft.irfft(spectrum * np.exp(-2j * np.pi * frequency_hz * delay_s)[:, None], n, axis=0)
+        return replace(self, force_n=shifted)
+
     @property
     def has_force(self) -> bool:
         return bool(np.any(self.force_n))

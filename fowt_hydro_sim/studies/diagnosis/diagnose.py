@@ -8,8 +8,11 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    squares on the cells' residuals in tolerance units; one parameter set for every sea
    state, so how the gap scales with Hs is part of the fit). Its score is a BIC,
    n ln(mean r^2 + floor^2) + p ln n, which charges every extra parameter.
-3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE`` and
-   closes at least ``MIN_CLOSURE`` of the gap; otherwise the gap is "unexplained".
+3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE``,
+   closes at least ``MIN_CLOSURE`` of the gap and raises no concern (``concerns``: values
+   outside their plausible range or at the edge of the fit's bounds, a signature that moves
+   the model the wrong way, a blind closure below ``BLIND_SHARE`` of the tuning closure);
+   candidates with a concern rank after the others. Otherwise the gap is "unexplained".
    Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
@@ -40,6 +43,8 @@ MIN_CLOSURE = 0.5  # share of the gap an effect must close to be named
 TIE = 2.0  # BIC difference below which two candidates both fit
 COHERENCE_DEFICIT = 0.1  # measured low-frequency coherence this far below the model's: incoherent load
 FD_STEP = 0.1  # forward-difference step, in units of each parameter's scale
+EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) sits at the edge
+BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
 
 Job = tuple  # (effect name or None, parameter values, run index, with spectra)
 
@@ -75,34 +80,65 @@ class CandidateFit:
     score: float
     closure: float  # share of the tuning gap closed
     model_runs: int
-    fits: bool = False  # beats the plain model and closes enough
+    fits: bool = False  # beats the plain model, closes enough, and raises no concern
+    concerns: list[str] = field(default_factory=list)  # why the fit is not physically plausible
 
     def as_dict(self, settings: GapSettings) -> dict:
         return {"effect": self.effect, "values": self.values, "score": self.score, "closure": self.closure,
-                "fits": self.fits, "model_runs": self.model_runs,
+                "fits": self.fits, "concerns": self.concerns, "model_runs": self.model_runs,
                 "gaps": [g.as_dict(settings) for g in self.gaps]}
 
 
-def score(gaps: list[Gap], n_parameters: int) -> float:
-    """BIC of a model's residuals: n ln(mean r^2 + floor^2) + p ln n."""
-    r = np.concatenate([g.residual for g in gaps])
+def score(gaps: list[Gap], n_parameters: int, mask: np.ndarray | None = None) -> float:
+    """BIC of a model's residuals (over the cells of ``mask``): n ln(mean r^2 + floor^2) + p ln n."""
+    r = np.concatenate([g.residual[mask] if mask is not None else g.residual for g in gaps])
     return float(r.size * math.log(np.mean(r ** 2) + FLOOR ** 2) + n_parameters * math.log(r.size))
 
 
-def closure(before: list[Gap], after: list[Gap]) -> float:
+def closure(before: list[Gap], after: list[Gap], mask: np.ndarray | None = None) -> float:
     """Share of the gap closed: 1 - sum r_after^2 / sum r_before^2 over the cells flagged
-    before or beyond tolerance after (an effect that opens new gaps is charged for them)."""
+    before or beyond tolerance after (an effect that opens new gaps is charged for them),
+    among the cells of ``mask`` (default all)."""
     num = den = 0.0
     for b, a in zip(before, after):
-        cells = b.flagged | a.material
+        cells = (b.flagged | a.material) & (mask if mask is not None else True)
         num += float(np.sum(a.residual[cells] ** 2))
         den += float(np.sum(b.residual[cells] ** 2))
     return 1.0 - num / den if den > 0 else 0.0
 
 
+def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
+             mask: np.ndarray | None = None) -> list[str]:
+    """Why a fitted effect is implausible: a parameter outside the range a real platform's
+    lies in, or at the edge of the fit's bounds (it absorbs something else); or a gap it
+    cannot close, because its signature moves the model the wrong way in the cells that
+    carry most of the flagged gap."""
+    out = []
+    for p in effect.parameters:
+        value, (low, high) = values[p.name], p.plausible_range
+        if not low <= value <= high:
+            out.append(f"{p.name} = {value:.4g} lies outside its plausible {low:g} to {high:g} ({p.why})")
+        elif min(value - p.low, p.high - value) <= EDGE * (p.high - p.low):
+            out.append(f"{p.name} = {value:.4g} sits at the edge of the fitted range {p.low:g} to {p.high:g}")
+    cells = [f"{dof}.{metric}" for dof, metric in settings.cells()]
+    right = wrong = 0.0
+    for g in before:
+        for i in np.flatnonzero(g.flagged & (mask if mask is not None else True)):
+            sign = effect.signature.get(cells[i])
+            if sign is not None:
+                weight = float(g.residual[i] ** 2)
+                right, wrong = (right + weight, wrong) if np.sign(g.value[i]) == -sign else (right, wrong + weight)
+    if wrong > right:
+        moved = ", ".join(f"{'raises' if s > 0 else 'lowers'} {cell}" for cell, s in effect.signature.items())
+        out.append(f"it {moved}, the wrong way for most of the flagged gap")
+    return out
+
+
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
-               description: str = "") -> tuple[dict[str, float], list[Gap], int]:
-    """Fit the effect's parameters to the tuning runs: (values, gaps at them, model runs)."""
+               description: str = "", mask: np.ndarray | None = None) -> tuple[dict[str, float], list[Gap], int]:
+    """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all):
+    (values, gaps at them, model runs)."""
+    keep = slice(None) if mask is None else mask
     params = effect.parameters
     off = np.array([p.off for p in params])
     scale = np.array([p.scale for p in params])
@@ -122,24 +158,53 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
         return [cache[u.tobytes()] for u in us]
 
     def residual(u: np.ndarray) -> np.ndarray:
-        return np.concatenate([g.residual for g in gaps_at([u])[0]])
+        return np.concatenate([g.residual[keep] for g in gaps_at([u])[0]])
 
     def jacobian(u: np.ndarray) -> np.ndarray:
         steps = [np.clip(u + FD_STEP * e, *bounds) for e in np.eye(len(u))]
         steps = [s if np.any(s != u) else u - FD_STEP * e for s, e in zip(steps, np.eye(len(u)))]
         base, *shifted = gaps_at([u, *steps])
-        r0 = np.concatenate([g.residual for g in base])
-        return np.column_stack([(np.concatenate([g.residual for g in gs]) - r0) / (s - u).sum()
+        r0 = np.concatenate([g.residual[keep] for g in base])
+        return np.column_stack([(np.concatenate([g.residual[keep] for g in gs]) - r0) / (s - u).sum()
                                 for gs, s in zip(shifted, steps)])
 
     scipy.optimize.least_squares(residual, u0, jac=jacobian, bounds=bounds, method="trf",
                                  max_nfev=max_evaluations, xtol=1e-3, ftol=1e-3)
     # the best point evaluated (the solver's, or a step of its last Jacobian)
-    best = min(cache, key=lambda k: float(np.sum(np.concatenate([g.residual for g in cache[k]]) ** 2)))
+    best = min(cache, key=lambda k: float(np.sum(np.concatenate([g.residual[keep] for g in cache[k]]) ** 2)))
     return values(np.frombuffer(best)), cache[best], len(cache) * len(tuning)
 
 
 # ---------------------------------------------------------------------- the diagnosis
+@dataclass
+class Mismatch:
+    """A cell the plain model misses in the same direction in every tuning run: a baseline
+    mismatch (coefficients, conventions, a missing physics term) rather than noise; with
+    how it scales with the sea state (a least-squares slope of the value against Hs and Tp)."""
+
+    dof: str
+    metric: str
+    values: list[float]  # per tuning run
+    hs_m: list[float]
+    tp_s: list[float]
+    explained_by: str | None = None  # the named effect, if it closes the cell in every run
+
+    @property
+    def sign(self) -> int:
+        return 1 if self.values[0] > 0 else -1
+
+    def slope(self, x: list[float]) -> float:
+        return float(np.polyfit(x, self.values, 1)[0]) if len(set(x)) > 1 else float("nan")
+
+    def text(self) -> str:
+        lo, hi = min(self.values), max(self.values)
+        ratio = self.metric.startswith(("std.", "frequency."))
+        size = (f"{1 + lo:.2g}x to {1 + hi:.2g}x the measured" if ratio else f"{lo:+.3g} to {hi:+.3g}")
+        return (f"{self.dof} {self.metric}: model {'above' if self.sign > 0 else 'below'} the measurement in every "
+                f"run ({size}; change per m of Hs {self.slope(self.hs_m):+.3g}, per s of Tp {self.slope(self.tp_s):+.3g})"
+                + (f", closed by {self.explained_by}" if self.explained_by else ", not explained by any catalogue effect"))
+
+
 @dataclass
 class Diagnosis:
     """Where the gap lies, what explains it and how far it shrinks."""
@@ -149,7 +214,7 @@ class Diagnosis:
     blind: list[str]
     baseline: list[Gap]  # tuning then blind runs, plain model
     candidates: list[CandidateFit]  # best score first
-    verdict: str  # "no significant gap", "explained", "unexplained"
+    verdict: str  # "no significant gap", "explained", "unexplained", "baseline mismatch"
     chosen: str | None
     reason: str
     blind_after: list[Gap] = field(default_factory=list)  # blind runs with the chosen effect, not refitted
@@ -157,6 +222,8 @@ class Diagnosis:
     coherence_deficit: float = float("nan")
     spectra: dict = field(default_factory=dict)  # run -> {"measured"|"model"|"model+effect": spectra}
     model_runs: int = 0
+    mismatches: list[Mismatch] = field(default_factory=list)  # the baseline's, found before any effect
+    fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but mismatches)
 
     @property
     def tuning_before(self) -> list[Gap]:
@@ -171,7 +238,7 @@ class Diagnosis:
 
     @property
     def blind_closure(self) -> float:
-        return closure(self.blind_before, self.blind_after) if self.blind_after else float("nan")
+        return closure(self.blind_before, self.blind_after, self.fit_cells) if self.blind_after else float("nan")
 
     def flagged_cells(self, gaps: list[Gap]) -> list[tuple[str, str, str]]:
         """(run, DOF, metric) of every flagged cell."""
@@ -186,11 +253,31 @@ class Diagnosis:
                 "tuning_closure": chosen.closure if chosen else None,
                 "blind_closure": None if math.isnan(self.blind_closure) else self.blind_closure,
                 "baseline_score": self.baseline_score, "coherence_deficit": self.coherence_deficit,
+                "baseline_mismatches": [{**m.__dict__, "text": m.text()} for m in self.mismatches],
                 "flagged": [list(c) for c in self.flagged_cells(self.baseline)],
                 "baseline": [g.as_dict(self.settings) for g in self.baseline],
                 "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
                 "candidates": [c.as_dict(self.settings) for c in self.candidates],
                 "model_runs": self.model_runs}
+
+
+def peak_period_s(run: MeasuredRun) -> float:
+    """Tp of a run's elevation record: the period of its spectral peak (Welch, 10 min segments)."""
+    import scipy.signal
+    step = run.elevation_step_s
+    f, psd = scipy.signal.welch(run.elevation_m, fs=1.0 / step, nperseg=min(run.elevation_m.size, int(600 / step)))
+    return float(1.0 / f[1:][np.argmax(psd[1:])])
+
+
+def baseline_mismatches(tuning: list[MeasuredRun], gaps: list[Gap], settings: GapSettings) -> list[Mismatch]:
+    """Cells flagged in every tuning run (at least two), all with the same sign."""
+    if len(gaps) < 2:
+        return []
+    flagged = np.all([g.flagged for g in gaps], axis=0)
+    same_sign = np.abs(np.sum([np.sign(g.value) for g in gaps], axis=0)) == len(gaps)
+    hs, tp = [r.hs_m for r in tuning], [peak_period_s(r) for r in tuning]
+    return [Mismatch(*settings.cells()[i], [float(g.value[i]) for g in gaps], hs, tp)
+            for i in np.flatnonzero(flagged & same_sign)]
 
 
 def coherence_deficit(measured: list[dict], model: list[dict], dof: str, band_hz: tuple[float, float]) -> float:
@@ -239,28 +326,92 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                           "no significant gap", None, "", baseline_score=score(baseline[:n_tuning], 0),
                           coherence_deficit=deficit, model_runs=len(runs))
     diagnosis.spectra = {r.name: {"measured": m, "model": s} for r, m, s in zip(tuning, measured, model_spectra)}
+    diagnosis.mismatches = baseline_mismatches(tuning, diagnosis.tuning_before, settings)
     if not any(g.flagged.any() for g in diagnosis.tuning_before):
         diagnosis.reason = "no cell of the tuning runs is both significant and beyond its tolerance"
         return diagnosis
 
-    def fit(effect: Effect) -> CandidateFit:
-        values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name)
-        return CandidateFit(effect.name, values, gaps, score(gaps, len(effect.parameters)),
-                            closure(diagnosis.tuning_before, gaps), count)
+    def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
+        def fit(effect: Effect) -> CandidateFit:
+            values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
+                                             mask)
+            return CandidateFit(effect.name, values, gaps, score(gaps, len(effect.parameters), mask),
+                                closure(diagnosis.tuning_before, gaps, mask), count)
 
-    with ThreadPoolExecutor(max_workers=len(effects)) as pool:
-        candidates = sorted(pool.map(fit, effects.values()), key=lambda c: c.score)
-    for c in candidates:
-        c.fits = c.score < diagnosis.baseline_score - MIN_EVIDENCE and c.closure >= MIN_CLOSURE
+        with ThreadPoolExecutor(max_workers=len(effects)) as pool:
+            fitted = list(pool.map(fit, effects.values()))
+        base = score(diagnosis.tuning_before, 0, mask)
+        for c in fitted:
+            c.concerns = concerns(effects[c.effect], c.values, diagnosis.tuning_before, settings, mask)
+            c.fits = c.score < base - MIN_EVIDENCE and c.closure >= MIN_CLOSURE and not c.concerns
+        diagnosis.model_runs += sum(c.model_runs for c in fitted)
+        return sorted(fitted, key=lambda c: (bool(c.concerns), c.score))  # plausible fits rank first
+
+    candidates = fit_all(None)
+    # mismatches in every run that no candidate closes are the baseline's own: set them aside
+    # and test the effects on what remains
+    cells = settings.cells()
+    unexplained = np.zeros(len(cells), dtype=bool)
+    for m in diagnosis.mismatches:
+        i = cells.index((m.dof, m.metric))
+        unexplained[i] = all(any(g.material[i] for g in c.gaps) for c in candidates)
+    if unexplained.any():
+        remaining = ~unexplained
+        diagnosis.fit_cells = remaining
+        diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining)
+        if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
+            candidates = fit_all(remaining)
+        else:
+            for c in candidates:
+                c.fits = False
     diagnosis.candidates = candidates
-    diagnosis.model_runs += sum(c.model_runs for c in candidates)
-    fitting = [c for c in candidates if c.fits]
-    if not fitting:
-        best = candidates[0]
-        diagnosis.verdict = "unexplained"
-        diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence; the nearest, "
-                            f"{best.effect}, closes {best.closure:.0%}")
-        return diagnosis
+    while True:
+        fitting = [c for c in candidates if c.fits]
+        if not fitting:
+            best = candidates[0]
+            diagnosis.verdict, diagnosis.chosen = "unexplained", None
+            diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence and plausible "
+                                f"values; the nearest, {best.effect}, closes {best.closure:.0%}"
+                                + (f" ({'; '.join(best.concerns)})" if best.concerns else ""))
+            return _with_mismatches(diagnosis, None)
+        chosen, reason = _choose(fitting, effects, deficit, settings)
+        diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
+        jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
+        after = evaluate(jobs, f"{chosen.effect}: all runs")
+        diagnosis.model_runs += len(jobs)
+        diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
+        for r, (_, s) in zip(tuning, after[:n_tuning]):
+            diagnosis.spectra[r.name]["model + effect"] = s
+        if not blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
+            return _with_mismatches(diagnosis, chosen)
+        chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} of its "
+                               f"tuning closure, {chosen.closure:.0%}")
+        chosen.fits = False
+        diagnosis.blind_after = []
+        candidates.sort(key=lambda c: (bool(c.concerns), c.score))
+
+
+def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagnosis:
+    """Mark the baseline mismatches the named effect closes (within tolerance in every tuning
+    run); any left make the verdict 'baseline mismatch', the effect (if any) coming
+    'additionally'."""
+    cells = diagnosis.settings.cells()
+    for m in diagnosis.mismatches:
+        i = cells.index((m.dof, m.metric))
+        if chosen is not None and all(not g.material[i] for g in chosen.gaps):
+            m.explained_by = chosen.effect
+    left = [m for m in diagnosis.mismatches if m.explained_by is None]
+    if left:
+        effect = (f"; additionally {chosen.effect} explains part of the gap ({diagnosis.reason})" if chosen
+                  else f"; no effect explains the rest ({diagnosis.reason})")
+        diagnosis.verdict = "baseline mismatch"
+        diagnosis.reason = "baseline: " + "; ".join(m.text() for m in left) + effect
+    return diagnosis
+
+
+def _choose(fitting: list[CandidateFit], effects: dict[str, Effect], deficit: float,
+            settings: GapSettings) -> tuple[CandidateFit, str]:
+    """The best fitting candidate; within TIE of it, the wave-response coherence decides."""
     tied = [c for c in fitting if c.score <= fitting[0].score + TIE]
     chosen, reason = fitting[0], f"best score, closes {fitting[0].closure:.0%} of the tuning gap"
     if len(tied) > 1:
@@ -273,14 +424,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                       f"(deficit {deficit:.2f}), which points to a {'wave-incoherent' if incoherent else 'wave-coherent'} load")
         else:
             reason += f"; also fit: {', '.join(c.effect for c in tied if c is not chosen)}"
-    diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
-    jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
-    after = evaluate(jobs, f"{chosen.effect}: all runs")
-    diagnosis.model_runs += len(jobs)
-    diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
-    for r, (_, s) in zip(tuning, after[:n_tuning]):
-        diagnosis.spectra[r.name]["model + effect"] = s
-    return diagnosis
+    return chosen, reason
 
 
 def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
@@ -299,28 +443,13 @@ def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settin
     return evaluate
 
 
-def summary_lines(diagnosis: Diagnosis) -> list[str]:
-    """The diagnosis in a few lines: flagged cells, candidates, verdict, blind closure."""
-    lines = [f"gap: {len(diagnosis.flagged_cells(diagnosis.tuning_before))} flagged cells on the tuning runs"]
-    lines += [f"  {run}: {dof} {metric}" for run, dof, metric in diagnosis.flagged_cells(diagnosis.tuning_before)]
-    if diagnosis.candidates:
-        lines.append(f"{'candidate':<26}{'score':>9}{'closure':>9}  parameters")
-        lines += [f"{c.effect:<26}{c.score:>9.1f}{100 * c.closure:>8.0f}%  "
-                  + ", ".join(f"{k} {v:.4g}" for k, v in c.values.items()) for c in diagnosis.candidates]
-    lines.append(f"verdict: {diagnosis.verdict}" + (f": {diagnosis.chosen}" if diagnosis.chosen else "")
-                 + f" ({diagnosis.reason})")
-    if diagnosis.blind_after:
-        lines.append(f"blind runs (not refitted): {100 * diagnosis.blind_closure:.0f} % of the gap closed")
-    return lines
-
-
 def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, settings: GapSettings,
                   effects: dict[str, Effect], output: str, heading_deg: float = 0.0, max_evaluations: int = 4,
                   dt_s: float = REPLAY_DT_S, scheduler: str | None = None, workers: int | None = None) -> list[str]:
     """``fowt-sim diagnose``: measured bags diagnosed on a Dask cluster, the report written to
     ``output``; returns the summary's lines."""
     from fowt_hydro_sim.studies.cluster import dask_client
-    from fowt_hydro_sim.studies.diagnosis.report import write_report
+    from fowt_hydro_sim.studies.diagnosis.report import summary_lines, write_report
     from fowt_hydro_sim.studies.replay import measured_run
     tuning_runs = [measured_run(p, heading_deg) for p in tuning]
     blind_runs = [measured_run(p, heading_deg) for p in blind]

@@ -13,8 +13,10 @@ Because both runs see the same waves, sampling noise largely cancels in their ra
 record is cut into blocks, the metric's log ratio (or difference) is taken per block,
 and its mean gets a Student-t interval. A cell is flagged when that interval excludes
 zero (significant) and the value exceeds its tolerance (material). A band holding less
-than ``NEGLIGIBLE_BAND`` of its DOF's measured STD is not judged (e.g. heave below the
-wave band, which sensor noise and small property errors swing by tens of percent).
+than ``NEGLIGIBLE_BAND`` of its DOF's STD in the measurement and in the model is not judged
+(e.g. heave below the wave band, which sensor noise and small property errors swing by
+tens of percent), unless the two differ by more than a factor ``GROSS_RATIO``: a model ten
+times too lively in a band the measurement hardly has is a gap.
 """
 from __future__ import annotations
 
@@ -33,7 +35,8 @@ MAX_LAG_S = 10.0
 TOLERANCES = {"std": 0.05, "frequency": 0.03, "offset": 0.2, "lag": 0.25}  # materiality, per metric kind
 COHERENCE_SEGMENT_S = 300.0
 MIN_BLOCK_S = 180.0  # a block spans nearly two surge periods: shorter blocks are not independent
-NEGLIGIBLE_BAND = 0.15  # share of the DOF's STD below which a band's cells are not judged
+NEGLIGIBLE_BAND = 0.15  # share of the DOF's STD below which a band's cells are not judged (on both sides)
+GROSS_RATIO = (0.5, 2.0)  # a band STD ratio outside this is always judged and reported
 
 
 @dataclass(frozen=True)
@@ -80,6 +83,12 @@ class Gap:
     @property
     def flagged(self) -> np.ndarray:
         return self.significant & self.material
+
+    def gross(self, settings: GapSettings) -> np.ndarray:
+        """STD cells whose model/measurement ratio lies outside GROSS_RATIO (reported always)."""
+        is_std = np.array([metric.startswith("std.") for _, metric in settings.cells()])
+        ratio = 1.0 + self.value
+        return is_std & ((ratio < GROSS_RATIO[0]) | (ratio > GROSS_RATIO[1]))
 
     @property
     def residual(self) -> np.ndarray:
@@ -130,6 +139,16 @@ def block_lag_s(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_ST
     return float((lags[i] + shift) * step_s)
 
 
+def judged_band(measured_band: np.ndarray, model_band: np.ndarray, measured: np.ndarray, model: np.ndarray) -> bool:
+    """A band's cells are judged where either side has energy there (its share of that side's
+    STD at least NEGLIGIBLE_BAND), or where the two differ grossly (a ratio beyond 2 or below
+    1/2), whatever the shares."""
+    m_std, s_std = measured_band.std(), model_band.std()
+    shares = (m_std / (measured.std() or 1.0), s_std / (model.std() or 1.0))
+    ratio = s_std / m_std if m_std > 0 else np.inf
+    return max(shares) >= NEGLIGIBLE_BAND or not GROSS_RATIO[0] <= ratio <= GROSS_RATIO[1]
+
+
 def mean_frequency(x: np.ndarray) -> float:
     """sqrt(m2 / m0) of a zero-mean record [rad per sample]."""
     return float(np.diff(x).std() / x[:-1].std())
@@ -154,7 +173,7 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         m, s = x_measured[:, j], x_model[:, j]
         scale = float(m.std()) or 1.0
         passed = {name: (band_passed(m, band), band_passed(s, band)) for name, band in settings.bands_hz.items()}
-        band_judged = [mb.std() >= NEGLIGIBLE_BAND * scale for mb, _ in passed.values()]
+        band_judged = [judged_band(mb, sb, m, s) for mb, sb in passed.values()]
         judged += band_judged * 2 + [True, True]
         for mb, sb in passed.values():  # std.BAND
             per_block = np.array([0.5 * math.log(sb[b].var() / mb[b].var()) for b in blocks])

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fowt_hydro_sim.studies.diagnosis.diagnose import Diagnosis
-from fowt_hydro_sim.studies.diagnosis.gap import Gap
+from fowt_hydro_sim.studies.diagnosis.diagnose import COHERENCE_DEFICIT, Diagnosis
+from fowt_hydro_sim.studies.diagnosis.gap import GROSS_RATIO, Gap
 
 SPECTRA_F_MAX_HZ = 0.3  # the figures' and JSON's frequency range
 
@@ -121,6 +121,50 @@ def _rms_flagged(before: list[Gap], after: list[Gap]) -> tuple[float, float]:
     return rms(b), rms(a)
 
 
+def gross_lines(diagnosis: Diagnosis) -> list[str]:
+    """One line per STD cell of the plain model whose ratio to the measurement is gross, with
+    its direction: 'lc5.3: surge std.low_frequency: model 12.0x the measured (too high)'."""
+    out = []
+    for g in diagnosis.baseline:
+        for i in np.flatnonzero(g.gross(diagnosis.settings)):
+            dof, metric = diagnosis.settings.cells()[i]
+            ratio = 1.0 + g.value[i]
+            out.append(f"{g.run}: {dof} {metric}: model {ratio:.2g}x the measured "
+                       f"({'too high' if ratio > 1 else 'too low'})")
+    return out
+
+
+def summary_lines(diagnosis: Diagnosis) -> list[str]:
+    """The diagnosis in a few lines: flagged cells, candidates, verdict, blind closure."""
+    lines = [f"gap: {len(diagnosis.flagged_cells(diagnosis.tuning_before))} flagged cells on the tuning runs"]
+    lines += [f"  {run}: {dof} {metric}" for run, dof, metric in diagnosis.flagged_cells(diagnosis.tuning_before)]
+    lines += [f"gross: {line}" for line in gross_lines(diagnosis)]
+    if diagnosis.candidates:
+        lines.append(f"{'candidate':<26}{'score':>9}{'closure':>9}  parameters")
+        lines += [f"{c.effect:<26}{c.score:>9.1f}{100 * c.closure:>8.0f}%  "
+                  + ", ".join(f"{k} {v:.4g}" for k, v in c.values.items()) for c in diagnosis.candidates]
+    lines.append(f"verdict: {diagnosis.verdict}" + (f": {diagnosis.chosen}" if diagnosis.chosen else "")
+                 + f" ({diagnosis.reason})")
+    if diagnosis.blind_after:
+        lines.append(f"blind runs (not refitted): {100 * diagnosis.blind_closure:.0f} % of the gap closed")
+    return lines
+
+
+def coherence_sentence(deficit: float, dof: str) -> str:
+    """What the low-frequency wave-response coherence says, worded from its value."""
+    head = (f"Wave-response coherence, low-frequency {dof}: the model's exceeds the measured runs' by "
+            f"{deficit:+.2f} on average")
+    if not np.isfinite(deficit):
+        return f"Wave-response coherence, low-frequency {dof}: not estimated."
+    if deficit > COHERENCE_DEFICIT:
+        return head + " (clearly positive: part of the measured response is not explained linearly by the waves)."
+    if deficit < -COHERENCE_DEFICIT:
+        return head + (" (clearly negative: the measured response is more coherent with the waves than the "
+                       "model's; the model's has a part the waves do not explain).")
+    return head + (f" (within +-{COHERENCE_DEFICIT:g}: measured and modelled responses are about as coherent with "
+                   "the waves).")
+
+
 def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
     d, cells = diagnosis, diagnosis.settings.cells()
     lines = ["# Sim-to-real gap diagnosis", "",
@@ -140,19 +184,28 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
                          f"{_value_text(metric, g.tolerance[i]).lstrip('+')} |")
     if not d.flagged_cells(d.baseline):
         lines.append("| (none) | | | | | |")
-    lines += ["", f"Wave-response coherence, low-frequency {d.settings.dofs[0]}: the model's exceeds the measured "
-              f"runs' by {d.coherence_deficit:+.2f} on average (clearly positive: part of the measured response is "
-              "not explained linearly by the waves).", ""]
+    if d.mismatches:
+        lines += ["", "Baseline mismatches (flagged with one sign in every tuning run):", ""]
+        lines += [f"- {m.text()}" for m in d.mismatches]
+    gross = gross_lines(d)
+    if gross:
+        lines += ["", f"Gross differences (a band STD ratio outside {GROSS_RATIO[0]:g}-{GROSS_RATIO[1]:g}x), "
+                      "whether flagged or not:", ""] + [f"- {line}" for line in gross]
+    lines += ["", coherence_sentence(d.coherence_deficit, d.settings.dofs[0]), ""]
     if d.candidates:
         lines += ["## Which effect", "",
                   f"Each candidate fitted to all tuning runs at once; score = BIC (lower is better; the plain "
-                  f"model's is {d.baseline_score:.1f}). Named only if it beats the plain model by 6 and closes "
-                  "half the gap.", "",
-                  "| effect | fitted parameters | score | closure (tuning) | fits |", "|---|---|---|---|---|"]
+                  f"model's is {d.baseline_score:.1f}). Named only if it beats the plain model by 6, closes "
+                  "half the gap, its values are plausible (within the range a real platform's lie in, not at the "
+                  "edge of the fit's bounds), its signature can close the flagged gap's sign, and on blind runs it "
+                  "closes at least half of what it closes on the tuning runs; a candidate with a concern ranks "
+                  "after every one without.", "",
+                  "| effect | fitted parameters | score | closure (tuning) | fits | concerns |",
+                  "|---|---|---|---|---|---|"]
         for c in d.candidates:
             values = ", ".join(f"{k} = {v:.4g}" for k, v in c.values.items())
             lines.append(f"| {c.effect} | {values} | {c.score:.1f} | {100 * c.closure:.0f} % | "
-                         f"{'yes' if c.fits else 'no'} |")
+                         f"{'yes' if c.fits else 'no'} | {'; '.join(c.concerns) or '-'} |")
         lines.append("")
     if d.chosen:
         chosen = d.candidate(d.chosen)

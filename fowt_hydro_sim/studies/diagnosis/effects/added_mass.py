@@ -16,5 +16,6 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
 EFFECT = Effect(
     "added_mass_error",
     "added mass (Ca) and with it the inertia force's diffraction part in error",
-    (Parameter("added_mass_scale", "-", start=1.1, low=0.3, high=2.0, off=1.0),),
+    (Parameter("added_mass_scale", "-", start=1.1, low=0.3, high=2.0, off=1.0, plausible=(0.7, 1.3),
+               why="strip-theory Ca of columns and pontoons lies within about 30 % of a BEM added mass"),),
     apply)

@@ -2,7 +2,7 @@
 effect is off, and a pure function that turns a model variant into one with the effect."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
@@ -15,7 +15,9 @@ from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 @dataclass(frozen=True)
 class Parameter:
     """One parameter: the fit starts at ``start`` within [low, high]; at ``off`` the
-    effect is switched off."""
+    effect is switched off. ``plausible`` (default: [low, high]) is the range a real
+    platform's value lies in, ``why`` says where that range comes from; a fit outside it, or
+    at the edge of [low, high], is a sign that the parameter absorbs something else."""
 
     name: str
     unit: str
@@ -23,6 +25,12 @@ class Parameter:
     low: float
     high: float
     off: float = 0.0
+    plausible: tuple[float, float] | None = None
+    why: str = ""
+
+    @property
+    def plausible_range(self) -> tuple[float, float]:
+        return self.plausible or (self.low, self.high)
 
     @property
     def scale(self) -> float:
@@ -36,13 +44,18 @@ class Effect:
     returns the variant with the effect at ``values`` (parameter name -> value) for
     ``run`` (effects may depend on the run's sea state or its elevation record).
     ``wave_coherent``: whether the loads it adds are linear in the waves (False for loads
-    quadratic in the elevation, whose low-frequency part is not coherent with it)."""
+    quadratic in the elevation, whose low-frequency part is not coherent with it).
+    ``signature``: the direction in which switching the effect on (within its plausible
+    range) moves the model's value of a gap metric ("std.low_frequency": -1, damping lowers
+    the resonant response); it can close only gaps of the other sign. Metrics it can move
+    either way are left out."""
 
     name: str
     summary: str
     parameters: tuple[Parameter, ...]
     apply: Callable[[Variant, MeasuredRun, dict[str, float]], Variant]
     wave_coherent: bool = True
+    signature: dict[str, int] = field(default_factory=dict)
 
     def values(self, which: str = "start") -> dict[str, float]:
         return {p.name: getattr(p, which) for p in self.parameters}
@@ -55,4 +68,6 @@ def linear_modes(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
     return np.diag(model.mass_matrix()), np.diag(model.restoring_matrix())
 
 
+# damping lowers the resonant responses: surge and pitch below 0.05 Hz, heave in the wave band
+DAMPED = {"surge.std.low_frequency": -1, "pitch.std.low_frequency": -1, "heave.std.wave": -1}
 ANALYSED = (0, 2, 4)  # surge, heave, pitch: the DOFs whose per-DOF terms the effects fit

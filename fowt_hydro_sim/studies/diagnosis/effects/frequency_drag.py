@@ -17,5 +17,6 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
 EFFECT = Effect(
     "frequency_dependent_drag",
     "the low-frequency band's Cd differs from the wave band's (Butterworth band split)",
-    (Parameter("low_frequency_cd_ratio", "-", start=0.6, low=0.05, high=4.0, off=1.0),),
+    (Parameter("low_frequency_cd_ratio", "-", start=0.6, low=0.05, high=4.0, off=1.0, plausible=(0.2, 2.0),
+               why="the seed paper's tuned low-frequency Cds are 0.3 to 1.5 times the wave-band ones"),),
     apply)

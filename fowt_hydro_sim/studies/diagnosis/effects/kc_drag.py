@@ -27,5 +27,6 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
 EFFECT = Effect(
     "kc_dependent_drag",
     "drag coefficients that change with the sea state (Keulegan-Carpenter number)",
-    (Parameter("kc_exponent", "-", start=0.3, low=-2.0, high=2.0),),
+    (Parameter("kc_exponent", "-", start=0.3, low=-2.0, high=2.0, plausible=(-1.0, 1.0),
+               why="measured Cd(KC) of cylinders varies at most about as KC to the power +-1 over these seas"),),
     apply)

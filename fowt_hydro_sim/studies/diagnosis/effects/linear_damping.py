@@ -7,7 +7,7 @@ from dataclasses import replace
 import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.studies.diagnosis.effects.base import ANALYSED, Effect, Parameter, linear_modes
+from fowt_hydro_sim.studies.diagnosis.effects.base import ANALYSED, DAMPED, Effect, Parameter, linear_modes
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 NAMES = ("surge_damping_ratio", "heave_damping_ratio", "pitch_damping_ratio")
@@ -26,9 +26,11 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
     damping = damping_matrix(mass, stiffness, {dof: values[name] for dof, name in zip(ANALYSED, NAMES)})
     return replace(variant, extension=variant.extension.plus(Extension(linear_damping=damping)))
 
+WHY = "radiation and viscous damping beyond the strips' drag: a few percent of critical"
 
 EFFECT = Effect(
     "linear_damping",
     "additional linear damping per DOF (e.g. radiation or viscous damping the strips miss)",
-    tuple(Parameter(name, "of critical", start=0.02, low=0.0, high=0.5) for name in NAMES),
-    apply)
+    tuple(Parameter(name, "of critical", start=0.02, low=0.0, high=0.5, plausible=(0.0, 0.1),
+                    why=WHY) for name in NAMES),
+    apply, signature=DAMPED)

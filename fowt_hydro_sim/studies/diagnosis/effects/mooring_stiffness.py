@@ -26,6 +26,8 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
 EFFECT = Effect(
     "mooring_stiffness",
     "mooring line stiffness error and a hardening (cubic) horizontal restoring",
-    (Parameter("line_stiffness_scale", "-", start=1.15, low=0.3, high=3.0, off=1.0),
-     Parameter("hardening", "-", start=0.2, low=-0.5, high=5.0)),
+    (Parameter("line_stiffness_scale", "-", start=1.15, low=0.3, high=3.0, off=1.0, plausible=(0.7, 1.3),
+               why="a mooring's axial stiffness is known within about 30 %"),
+     Parameter("hardening", "-", start=0.2, low=-0.5, high=5.0, plausible=(0.0, 2.0),
+               why="catenary lines stiffen with offset: at 5 m by up to about twice, never soften")),
     apply)

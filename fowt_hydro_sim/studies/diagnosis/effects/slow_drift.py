@@ -35,5 +35,7 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
 EFFECT = Effect(
     "slow_drift",
     "second-order difference-frequency wave loads (Newman's approximation)",
-    (Parameter("drift_coefficient_n_m2", "N/m^2", start=2.0e5, low=0.0, high=5.0e6),),
-    apply, wave_coherent=False)
+    (Parameter("drift_coefficient_n_m2", "N/m^2", start=2.0e5, low=0.0, high=5.0e6, plausible=(0.0, 1.0e6),
+               why="Newman drift of a 15 m column semisubmersible: a mean drift force of order 1 MN in an 11 m sea"),),
+    apply, wave_coherent=False,
+    signature={"surge.std.low_frequency": +1, "surge.offset": +1})

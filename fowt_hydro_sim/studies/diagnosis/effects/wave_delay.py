@@ -16,5 +16,6 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
 EFFECT = Effect(
     "wave_measurement_delay",
     "the wave elevation's time stamps are late or early (probe clock, filtering)",
-    (Parameter("delay_s", "s", start=0.5, low=-10.0, high=10.0),),
+    (Parameter("delay_s", "s", start=0.5, low=-10.0, high=10.0, plausible=(-3.0, 3.0),
+               why="a wave probe's and a motion tracker's clocks agree to a few seconds"),),
     apply)
