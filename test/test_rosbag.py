@@ -226,6 +226,16 @@ def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
         assert sum(1 for _ in reader.messages()) == recovered.message_count
 
 
+def test_recover_leaves_an_intact_bag_alone(wave_bag, tmp_path):
+    bag = tmp_path / "intact"
+    shutil.copytree(wave_bag, bag)
+    before = {f.name: f.read_bytes() for f in bag.iterdir()}
+    result = run_cli("recover", str(bag))
+    assert result.returncode == 0, result.stderr
+    assert "intact" in result.stderr and "recovered" not in result.stderr
+    assert {f.name: f.read_bytes() for f in bag.iterdir()} == before  # no *.damaged, nothing rewritten
+
+
 def _bad_bags(root: Path, good: Path) -> dict[str, tuple[Path, str]]:
     truncated = root / "truncated"
     shutil.copytree(good, truncated)
