@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import csv
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -53,6 +54,47 @@ def test_bad_input_is_one_clear_line(tmp_path: Path):
         done = fowt_sim("simulate", *args, "-o", str(tmp_path / "o"))
         assert done.returncode == 2
         assert expected in done.stderr and "Traceback" not in done.stderr
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--hs", "-3", "--tp", "10"), "--hs: must be 0 to 30, got -3"),
+    (("--hs", "4", "--tp", "10", "--dt", "0"), "--dt: must be a positive number, got 0"),
+    (("--duration", "-5"), "--duration: must be a positive number, got -5"),
+    (("--hs", "4", "--tp", "-10"), "--tp: must be a positive number, got -10"),
+    (("--load-case", "5.3", "--seed", "-1"), "--seed: must not be negative, got -1"),
+])
+def test_out_of_range_options_are_named_with_their_range(tmp_path: Path, args: tuple, message: str):
+    """Each value outside its setting's range ends the run with one line naming the option
+    and what is allowed, before anything is written."""
+    out = tmp_path / "o"
+    done = fowt_sim("simulate", *args, "-o", str(out))
+    assert done.returncode == 2, done.stdout
+    assert done.stderr.strip().splitlines() == [f"fowt-sim simulate: error: {message}"]
+    assert not (out / "summary.json").exists()
+
+
+def test_a_load_case_given_by_its_number_is_recorded_by_its_name(tmp_path: Path):
+    done = fowt_sim("simulate", "--load-case", "5.3", "--duration", "5", "-o", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    waves = json.loads((tmp_path / "summary.json").read_text())["waves"]
+    assert (waves["load_case"], waves["hs_m"], waves["tp_s"], waves["gamma"]) == ("lc5.3", 11.0, 12.0, 4.9)
+
+
+def test_help_lists_every_command_and_every_option_says_its_default():
+    import argparse
+
+    from fowt_hydro_sim.cli import parser
+    done = fowt_sim("--help")
+    listed = {line.split()[0] for line in done.stdout.splitlines() if line.startswith("    ") and line.split()}
+    assert {"simulate", "load-cases", "waves", "recover", "info", "analyze", "calibrate", "diagnose",
+            "node", "controller", "play", "record"} <= listed, done.stdout
+    commands = next(a for a in parser()._actions if isinstance(a, argparse._SubParsersAction)).choices
+    for name, command in commands.items():
+        for action in command._actions:
+            if action.option_strings and not isinstance(action, argparse._HelpAction):
+                assert re.search(r"default|required", action.help or ""), (name, action.option_strings)
+    simulate_help = fowt_sim("simulate", "--help").stdout
+    assert "(default: none" in simulate_help and "(default off)" in simulate_help
 
 
 def test_simulate_from_a_run_file(tmp_path: Path):

@@ -38,12 +38,31 @@ def _ros_command(name: str, argv: list[str]) -> int:
     return record(argv)
 
 
+def _default_text(action: argparse.Action) -> str:
+    """What an option's help says when it does not name its default itself."""
+    if action.required:
+        return "required"
+    if isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction)):
+        return "default off" if action.default is False else "default on"
+    return "default: none" if action.default is None else f"default {action.default}"
+
+
+def say_defaults(parser: argparse.ArgumentParser) -> None:
+    """Every option's help names its default (or says it has none, or is required)."""
+    for action in parser._actions:
+        if action.option_strings and action.help not in (None, argparse.SUPPRESS) and "default" not in action.help \
+                and not isinstance(action, argparse._HelpAction):
+            action.help += f" ({_default_text(action)})"
+
+
 def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
     top.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for module in (simulate, bags, analyze, calibrate, diagnose):
         module.add_parsers(sub)
+    for command in sub.choices.values():
+        say_defaults(command)
     for name, text in ROS_COMMANDS.items():
         sub.add_parser(name, help=text.split(": ", 1)[0], add_help=False)
     return top
