@@ -6,6 +6,7 @@ source against the offline model; bad bags with clear errors.
 Real nodes in child processes over DDS on loopback, real files."""
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import signal
@@ -206,6 +207,43 @@ def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
     assert counts[topics.POSE].message_count > 20, log
     with AnyReader([bag]) as reader:
         assert sum(1 for _ in reader.messages()) == sum(t.message_count for t in counts.values())
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A 1 MiB tmpfs: a disk that fills up within seconds of recording (needs root)."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root")
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(disk)], check=True)
+    try:
+        yield disk
+    finally:
+        subprocess.run(["umount", str(disk)], check=True)
+
+
+@pytest.mark.ros
+@pytest.mark.parametrize("on_failure", ["stop", "continue"])
+def test_a_full_disk_ends_the_recording_with_one_line_and_a_readable_bag(small_disk, on_failure):
+    """The disk fills up: one error line, no traceback; the bag is closed with what was written
+    (both readers open it, every message readable); stepping stops or goes on as
+    record_failure says; the exit code says the recording is incomplete."""
+    bag = small_disk / "run"
+    process = start("node", real_time_factor=0.0, duration_s=600.0, record=str(bag), record_failure=on_failure)
+    log = finish(process, timeout_s=300)
+    assert process.returncode == 1 and "Traceback" not in log and "OSError" not in log, log
+    failures = [line for line in log.splitlines() if "recording stopped at a failed write" in line]
+    assert len(failures) == 1 and "No space left on device" in failures[0], log
+    ended = float(re.search(r"stepping ended at t = ([\d.]+) s", log).group(1))
+    assert (ended < 590.0) if on_failure == "stop" else (ended == 600.0 and "duration 600 s reached" in log), log
+    recorded = Bag(bag)
+    assert recorded.topics[topics.POSE].message_count > 100, log
+    assert int(re.search(r"closed with the (\d+) messages", failures[0]).group(1)) == recorded.message_count
+    with AnyReader([bag]) as reader:
+        assert sum(1 for _ in reader.messages()) == recorded.message_count
+    pose = recorded.series(topics.POSE)
+    assert np.all(np.diff(pose.time_s) > 0) and pose.time_s[-1] < 600.0
 
 
 @pytest.mark.ros

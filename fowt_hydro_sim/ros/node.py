@@ -48,7 +48,7 @@ from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.run_config import run_config
 from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.rosbag.writer import BagWriter
+from fowt_hydro_sim.rosbag.writer import BagWriter, RecordingStopped
 from fowt_hydro_sim.settings import like, setting
 from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds
@@ -99,6 +99,9 @@ class NodeSettings:
                                         gt=0.0)
     record: str = setting("", "bag directory recording every input and output of the run; empty = no recording")
     record_overwrite: bool = setting(False, "replace an existing bag at the record path")
+    record_failure: str = setting("stop", "when the recording cannot be written (disk full): the bag is closed "
+                                          "readable, then stepping stops, or continues unrecorded",
+                                  choices=("stop", "continue"))
 
     def __post_init__(self) -> None:
         """The rules between parameters (each one's own range is checked as it is read)."""
@@ -205,7 +208,19 @@ class SimulatorNode(Node):
     # ------------------------------------------------------------------ inputs
     def _record_input(self, topic: str, data: bytes) -> None:
         if self._recorder is not None:
-            self._recorder.write(self._input_channel[topic], nanoseconds(self.model.time_s), data)
+            try:
+                self._recorder.write(self._input_channel[topic], nanoseconds(self.model.time_s), data)
+            except RecordingStopped as exc:
+                self._recording_stopped(exc)
+
+    def _recording_stopped(self, exc: RecordingStopped) -> None:
+        """The bag could not be written (disk full): it is closed and readable; said in one
+        line; stepping stops or goes on as record_failure says."""
+        stop = self.settings.record_failure == "stop"
+        self.get_logger().error(f"{exc}; {'stepping stopped' if stop else 'stepping goes on unrecorded'} "
+                                f"(record_failure {self.settings.record_failure})")
+        if stop:
+            self._stop.set()
 
     def _on_wrench(self, data: bytes) -> None:
         self._record_input(topics.EXTERNAL_WRENCH, data)
@@ -317,6 +332,11 @@ class SimulatorNode(Node):
         self._publisher.shutdown(wait=True)
         if self._recorder is not None:
             self._recorder.close()
+
+    @property
+    def recording_failed(self) -> bool:
+        """Whether the recording stopped early (its bag is closed, with what was written)."""
+        return self._recorder is not None and self._recorder.failure is not None
 
     @property
     def finished(self) -> bool:
@@ -443,8 +463,11 @@ class SimulatorNode(Node):
         self.published += len(samples) * len(names)
         if self._recorder is not None:
             channels = self._output_channels
-            self._recorder.write_rows((nanoseconds(t), zip(channels, messages))
-                                      for t, messages in zip(time_s.tolist(), samples))
+            try:
+                self._recorder.write_rows((nanoseconds(t), zip(channels, messages))
+                                          for t, messages in zip(time_s.tolist(), samples))
+            except RecordingStopped as exc:
+                self._recording_stopped(exc)
 
     def _send(self, name: str, data: bytes) -> None:
         """Publish; a reliable subscriber too slow for an accelerated run makes DDS refuse the
@@ -482,4 +505,4 @@ def main(args: list[str] | None = None) -> int:
         node.stop()
         node.destroy_node()
         rclpy.try_shutdown()
-    return 0
+    return 1 if node.recording_failed else 0
