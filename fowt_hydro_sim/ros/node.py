@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import math
+import re
 import threading
 import time
 from collections import deque
@@ -61,6 +62,36 @@ WAVE_SOURCES = ("internal", "topic", "bag")
 BATCH_S = 1.0  # simulated seconds stepped per compiled call when running as fast as possible
 MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
+WARNING_INTERVAL_S = 5.0  # refused inputs of one kind: at most one warning line per this many wall seconds
+
+
+class WarningLimiter:
+    """Warnings about refused inputs, rate-limited per kind (the text without its numbers):
+    the first of a kind at once, then at most one line per ``interval_s`` with a count of
+    those not shown; ``flush`` reports what is still counted."""
+
+    def __init__(self, warn, interval_s: float = WARNING_INTERVAL_S):
+        self._warn, self.interval_s = warn, interval_s
+        self._kinds: dict[str, list] = {}  # kind: [wall time of the last line, not shown, last text]
+
+    @staticmethod
+    def kind(text: str) -> str:
+        return re.sub(r"[-+]?\d[\d.e+-]*", "#", text)
+
+    def __call__(self, text: str) -> None:
+        now = time.monotonic()
+        entry = self._kinds.setdefault(self.kind(text), [-math.inf, 0, text])
+        if now - entry[0] < self.interval_s:
+            entry[1], entry[2] = entry[1] + 1, text
+            return
+        self._warn(text + (f" (and {entry[1]} more like it not shown)" if entry[1] else ""))
+        entry[:] = [now, 0, text]
+
+    def flush(self) -> None:
+        for entry in self._kinds.values():
+            if entry[1]:
+                self._warn(f"{entry[1]} more refused like: {entry[2]}")
+                entry[1] = 0
 
 @dataclass(frozen=True)
 class NodeSettings:
@@ -158,6 +189,7 @@ class SimulatorNode(Node):
         self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
         self.dropped = 0  # messages DDS refused (a subscriber too slow for the pace)
         self.published = 0  # messages published (each also recorded when recording)
+        self._refused = WarningLimiter(self.get_logger().warning)
         self._publisher = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fowt_publish")
         self._published: Future | None = None  # the batch being published
         self._make_interface()
@@ -228,7 +260,7 @@ class SimulatorNode(Node):
         try:
             wrench = check_wrench(wrench, frame)
         except InputError as exc:
-            self.get_logger().warning(f"{exc}; keeping the last good wrench")
+            self._refused(f"{exc}; keeping the last good wrench")
             return
         with self._lock:
             self._wrench = (wrench, frame, t)
@@ -246,7 +278,7 @@ class SimulatorNode(Node):
         try:
             made = feed.accept(t, x, y, eta, frame)
         except InputError as exc:
-            self.get_logger().warning(f"{exc}; sample ignored")
+            self._refused(f"{exc}; sample ignored")
             return
         if feed.resampler.gap_s > 2.5 * feed.resampler.sample_dt_s and not self._still_water:
             self.get_logger().warning(f"wave elevation: {feed.resampler.gap_s:.2f} s gap before t = {t:.3f} s, "
@@ -330,6 +362,7 @@ class SimulatorNode(Node):
         if self._thread.is_alive():
             self._thread.join(timeout=10)
         self._publisher.shutdown(wait=True)
+        self._refused.flush()
         if self._recorder is not None:
             self._recorder.close()
 
