@@ -4,8 +4,10 @@ from __future__ import annotations
 import csv
 import json
 import re
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -143,3 +145,59 @@ def test_filtered_simulate_and_the_load_case_study_agree(tmp_path: Path):
             change = 100 * (float(row[f"{band}_case2"]) / float(row[f"{band}_case1"]) - 1)
             assert float(row[f"{band}_change_percent"]) == pytest.approx(change)
     assert "| lc5.0 | surge [m] |" in (study / "band_stds.md").read_text()
+    assert "2/2 runs |" in done.stderr and "left" in done.stderr  # the progress bar, with the time left
+    assert done.stdout.count("fowt-sim") == 0 and "x real time" not in done.stderr  # no line per run
+
+
+def test_an_interrupted_load_case_study_keeps_the_table_of_the_cases_done(tmp_path: Path):
+    study = tmp_path / "study"
+    process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "load-cases", "--cases", "lc5.0",
+                                "lc5.1", "lc5.2", "lc5.3", "--duration", "1500", "--transient", "60", "-o",
+                                str(study)], cwd=Path(__file__).resolve().parents[1], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 240
+        while not (study / "psd_lc5.0.png").exists() and process.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+        time.sleep(0.3)  # the table is written just after the figure
+        process.send_signal(signal.SIGINT)
+        _, stderr = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 130 and "interrupted" in stderr and "Traceback" not in stderr, stderr
+    rows = list(csv.DictReader(open(study / "band_stds.csv")))
+    done = list(dict.fromkeys(r["load_case"] for r in rows))
+    assert done and done == ["lc5.0", "lc5.1", "lc5.2"][:len(done)]
+    assert f"(partial: {len(done)} of 4 load cases)" in (study / "band_stds.md").read_text()
+
+
+def test_load_case_figures_have_a_log_frequency_axis_the_sea_state_and_the_marks():
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.studies.analysis import natural_frequencies_hz
+    from fowt_hydro_sim.studies.load_case_study import CaseRun, case_labels, plot_case
+    frequency = np.fft.rfftfreq(8192, 0.25)
+    runs = [CaseRun("lc5.3", drag, frequency, {d: 1 / (1e-3 + frequency) for d in ("surge", "heave", "pitch")},
+                    {}, 100.0) for drag in ("constant", "filtered")]
+    natural = natural_frequencies_hz(load_platform())
+    labels = case_labels("windmoor12", "lc5.3", runs, 12000.0, natural)
+    assert labels["title"].startswith("windmoor12, lc5.3: Hs 11 m, Tp 12 s, gamma 4.9\n")
+    assert "12000 s analysed, df 0.0005 Hz" in labels["title"]
+    assert labels["marks"]["Tp 12 s"] == pytest.approx(1 / 12) and "surge 97 s" in labels["marks"]
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    shown = []
+    original = plt.Figure.savefig
+
+    def keep(fig, *args, **kwargs):
+        shown.append([(ax.get_xscale(), ax.get_xlim()) for ax in fig.axes])
+        return original(fig, *args, **kwargs)
+
+    plt.Figure.savefig = keep
+    try:
+        plot_case("lc5.3", runs, Path("/dev/null"), labels)
+    finally:
+        plt.Figure.savefig = original
+    assert all(scale == "log" and lim[0] < 0.005 < 0.25 < lim[1] for scale, lim in shown[0])

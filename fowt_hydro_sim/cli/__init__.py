@@ -80,3 +80,6 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:  # ConfigError, BagError, SettingError...: the user's input
         sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
         return 2
+    except KeyboardInterrupt:
+        sys.stderr.write(f"fowt-sim {args.command}: interrupted\n")
+        return 130
