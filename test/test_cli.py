@@ -201,3 +201,36 @@ def test_load_case_figures_have_a_log_frequency_axis_the_sea_state_and_the_marks
     finally:
         plt.Figure.savefig = original
     assert all(scale == "log" and lim[0] < 0.005 < 0.25 < lim[1] for scale, lim in shown[0])
+
+
+@pytest.mark.parametrize("dof, j, offset", [("surge", 0, 8.0), ("heave", 2, 2.0), ("pitch", 4, 0.05)])
+def test_a_free_decay_run_reports_its_fitted_period_and_damping(tmp_path: Path, dof: str, j: int, offset: float):
+    """Still water and an initial offset: the fitted period is the linearised model's natural
+    period (within 1 %), and the damping ratio agrees with the log decrement of the record's
+    peaks over the same first cycles (within 10 %)."""
+    from fowt_hydro_sim.studies.simulate import DECAY_CYCLES
+    import scipy.signal
+
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.physics.model import PlatformModel
+    initial = ["0"] * 6
+    initial[j] = str(offset)
+    done = fowt_sim("simulate", "--still-water", "--initial", *initial, "--duration", "600", "--output-interval",
+                    "0.05", "-o", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    fits = json.loads((tmp_path / "summary.json").read_text())["free_decay"]
+    assert list(fits) == [dof] and f"free decay {dof}: period" in done.stdout
+    fit = fits[dof]
+    natural = PlatformModel(load_platform(), None).natural_periods_s()
+    assert np.min(np.abs(natural - fit["natural_period_s"])) < 0.01 * fit["natural_period_s"], (natural, fit)
+    columns = read_run(tmp_path)
+    x = columns[("surge_m", "sway_m", "heave_m", "roll_rad", "pitch_rad", "yaw_rad")[j]]
+    peaks, _ = scipy.signal.find_peaks(x)
+    peaks = peaks[x[peaks] > 0]
+    n = min(DECAY_CYCLES, len(peaks) - 1)
+    assert fit["cycles"] == pytest.approx(n, abs=1.0)
+    decrement = np.log(x[peaks[0]] / x[peaks[n]]) / n
+    zeta = decrement / np.sqrt(4 * np.pi**2 + decrement**2)
+    period = np.diff(columns["time_s"][peaks[:n + 1]]).mean()
+    assert fit["damping_ratio"] == pytest.approx(zeta, rel=0.10), (fit, zeta)
+    assert fit["period_s"] == pytest.approx(period, rel=0.01)
