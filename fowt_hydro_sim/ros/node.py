@@ -1,5 +1,5 @@
 """The ``fowt_hydro_sim`` ROS 2 node: steps the platform model in real or accelerated time and
-publishes its motion and loads (contract: shared/spec/ros_interface.md).
+publishes its motion and loads (contract: docs/ros_interface.md).
 
 The node stays thin: parameters become a ``PlatformModel``; messages go in and out through
 ``msg_adapters``; input checks live in ``inputs.py``. The simulator owns time: ``/clock`` and

@@ -1,4 +1,4 @@
-"""Writing rosbag2 bags with MCAP storage (contract: shared/spec/ros_interface.md).
+"""Writing rosbag2 bags with MCAP storage (contract: docs/ros_interface.md).
 
 A bag is a directory holding ``metadata.yaml`` and one ``.mcap`` file: profile ``ros2``,
 ``cdr`` messages, ``ros2msg`` schemas with every dependency, ``offered_qos_profiles`` in
