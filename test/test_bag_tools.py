@@ -217,8 +217,10 @@ def test_record_what_play_publishes(source: Path, tmp_path: Path):
     recorder = launch("record", "-o", out, "--topics", ELEVATION, WRENCH, CLOCK, *REMAP_CLOCK)
     try:
         seen = wait_for_line(recorder, "until stopped", 30)  # its node is up: it finds the player's topics
-        player = launch("play", source, "--rate", 10, "--clock", "--start-delay", START_DELAY, *REMAP_CLOCK)
-        play_code, play_output = wait_exit(player, 60)
+        # rate 2: a clock step is 50 ms of wall time, so that a busy machine delaying the recorder's
+        # callbacks by a few ms does not make a message's log time lag its stamp by two steps
+        player = launch("play", source, "--rate", 2, "--clock", "--start-delay", START_DELAY, *REMAP_CLOCK)
+        play_code, play_output = wait_exit(player, 90)
         time.sleep(0.5)
     finally:
         code, output = stop(recorder, signal.SIGINT)
