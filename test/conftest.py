@@ -11,6 +11,7 @@ unless FOWT_REQUIRE_ROS=1 (set by .ci/run), where a missing rclpy fails the sess
 """
 import importlib.util
 import os
+import subprocess
 import zlib
 from pathlib import Path
 
@@ -44,3 +45,17 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.get_closest_marker("ros"):
             item.add_marker(skip)
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A 1 MiB tmpfs: a disk that fills up within seconds of recording (mounting needs root)."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root")
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(disk)], check=True)
+    try:
+        yield disk
+    finally:
+        subprocess.run(["umount", str(disk)], check=True)

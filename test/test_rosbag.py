@@ -6,7 +6,6 @@ source against the offline model; bad bags with clear errors.
 Real nodes in child processes over DDS on loopback, real files."""
 from __future__ import annotations
 
-import os
 import re
 import shutil
 import signal
@@ -207,20 +206,6 @@ def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
     assert counts[topics.POSE].message_count > 20, log
     with AnyReader([bag]) as reader:
         assert sum(1 for _ in reader.messages()) == sum(t.message_count for t in counts.values())
-
-
-@pytest.fixture
-def small_disk(tmp_path):
-    """A 1 MiB tmpfs: a disk that fills up within seconds of recording (needs root)."""
-    if os.geteuid() != 0:
-        pytest.skip("mounting a small tmpfs needs root")
-    disk = tmp_path / "disk"
-    disk.mkdir()
-    subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(disk)], check=True)
-    try:
-        yield disk
-    finally:
-        subprocess.run(["umount", str(disk)], check=True)
 
 
 @pytest.mark.ros
