@@ -234,3 +234,15 @@ def test_a_free_decay_run_reports_its_fitted_period_and_damping(tmp_path: Path, 
     period = np.diff(columns["time_s"][peaks[:n + 1]]).mean()
     assert fit["damping_ratio"] == pytest.approx(zeta, rel=0.10), (fit, zeta)
     assert fit["period_s"] == pytest.approx(period, rel=0.01)
+
+
+def test_node_help_lists_every_parameter_with_its_default():
+    pytest.importorskip("rclpy")
+    from fowt_hydro_sim.ros.node import NodeSettings
+    from fowt_hydro_sim.settings import described
+    done = fowt_sim("node", "--help")
+    assert done.returncode == 0, done.stderr
+    listed = {line.split()[0]: line for line in done.stdout.splitlines() if line.startswith("  ")}
+    assert set(listed) == set(described(NodeSettings))
+    assert "(default 'stop'; one of stop, continue)" in listed["record_failure"]
+    assert all("(default " in line for line in listed.values())

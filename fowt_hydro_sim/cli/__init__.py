@@ -21,9 +21,22 @@ ROS_COMMANDS = {
 }
 
 
+def node_help() -> str:
+    """The node's parameters with their defaults, meanings and ranges (from its settings)."""
+    from fowt_hydro_sim.ros.node import NodeSettings
+    from fowt_hydro_sim.settings import described
+    lines = ["", "parameters (-p name:=value):"]
+    for name, item in described(NodeSettings).items():
+        default = list(item.default) if isinstance(item.default, tuple) else item.default
+        limits = item.setting.range_text()
+        lines.append(f"  {name} (default {default!r}{'; ' + limits if limits else ''}): {item.setting.description}")
+    return "\n".join(lines)
+
+
 def _ros_command(name: str, argv: list[str]) -> int:
     if name in ("node", "controller") and any(a in ("-h", "--help") for a in argv[:1]):
-        sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n")
+        sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n" + (node_help() + "\n" if name == "node"
+                                                                                else ""))
         return 0
     if name == "node":
         from fowt_hydro_sim.ros.node import main as run
