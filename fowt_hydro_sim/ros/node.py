@@ -93,6 +93,7 @@ class WarningLimiter:
                 self._warn(f"{entry[1]} more refused like: {entry[2]}")
                 entry[1] = 0
 
+
 @dataclass(frozen=True)
 class NodeSettings:
     """The node's parameters: run and sea-state settings (their defaults, meanings and ranges
