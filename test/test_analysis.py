@@ -127,3 +127,52 @@ def test_analyze_refuses_bad_options_in_one_line(tmp_path, args, message):
     result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(tmp_path / "run"), *args,
                              "-o", str(tmp_path / "out")], cwd=REPO, capture_output=True, text=True, timeout=60)
     assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr
+
+
+def test_analyze_reads_what_simulate_writes_into_a_default_report_folder(tmp_path):
+    """An offline run is analysed like a recorded one; without -o the report goes beside it."""
+    run = tmp_path / "run1"
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "simulate", "--load-case", "lc5.2",
+                           "--duration", "900", "-o", str(run)], cwd=REPO, capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(run), "--transient", "100"],
+                          cwd=REPO, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    report = json.loads((tmp_path / "run1_report" / "analysis.json").read_text())
+    from fowt_hydro_sim.studies.psd import band_std, psd
+    from fowt_hydro_sim.studies.simulate import read_run
+    columns = read_run(run)
+    keep = columns["time_s"] >= 100.0
+    f, s = psd(columns["heave_m"][keep], 0.25, 2048.0)
+    heave = {r["band"]: r["std"] for r in report["band_stds"] if r["dof"] == "heave"}
+    assert heave["wave"] == pytest.approx(band_std(f, s, BANDS["wave"]), rel=1e-9)
+    assert (tmp_path / "run1_report" / "psd_run1.png").stat().st_size > 1000
+
+
+def test_the_psd_figure_says_the_sea_the_drag_the_record_and_whether_resonance_is_resolved():
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.physics.model import PlatformModel
+    from fowt_hydro_sim.studies.analysis import RunContext, natural_frequencies_hz, psd_labels
+    platform = load_platform()
+    natural = natural_frequencies_hz(platform)
+    model = PlatformModel(platform, None)
+    assert sorted(natural.values()) == pytest.approx(sorted(set(np.round(1 / model.natural_periods_s(), 9))),
+                                                     rel=1e-6)
+    heave_hz = np.sqrt(model.restoring_matrix()[2, 2] / model.mass_matrix()[2, 2]) / (2 * np.pi)
+    assert natural["heave"] == pytest.approx(heave_hz, rel=1e-6)  # heave is uncoupled: its own mode
+    assert 0.009 < natural["surge"] < 0.012  # the 97 s surge resonance
+    context = RunContext(11.0, 12.0, 4.9, "filtered", natural)
+    rng = np.random.default_rng(3)
+    settings = AnalysisSettings(transient_s=0.0, dofs=("surge", "pitch"))
+    short = analyse("model", *as_motion(gaussian_record(rng, 1200.0)), settings, context)
+    long = analyse("model", *as_motion(gaussian_record(rng, 3 * 3600.0)), settings, context)
+    reference = analyse("model", *as_motion(gaussian_record(rng, 1200.0)), settings)
+    labels = psd_labels(short, reference, settings.dofs)
+    assert labels["title"][0] == "PSD: model vs reference model"
+    assert labels["title"][1] == "Hs 11 m, Tp 12 s, gamma 4.9, drag filtered, 1200 s analysed, df 0.0033 Hz"
+    assert labels["title"][2].startswith("resonance NOT RESOLVED (surge 0.0103 Hz")
+    assert (labels["run"], labels["reference"]) == ("run: model", "reference: model")
+    assert set(labels["marks"]) == {"surge 97 s", f"pitch {1 / natural['pitch']:.0f} s", "Tp 12 s"}
+    long_labels = psd_labels(long, None, settings.dofs)
+    assert len(long_labels["title"]) == 2 and "10800 s analysed, df 0.0005 Hz" in long_labels["title"][1]

@@ -217,8 +217,10 @@ def test_record_what_play_publishes(source: Path, tmp_path: Path):
     recorder = launch("record", "-o", out, "--topics", ELEVATION, WRENCH, CLOCK, *REMAP_CLOCK)
     try:
         seen = wait_for_line(recorder, "until stopped", 30)  # its node is up: it finds the player's topics
-        player = launch("play", source, "--rate", 10, "--clock", "--start-delay", START_DELAY, *REMAP_CLOCK)
-        play_code, play_output = wait_exit(player, 60)
+        # rate 2: a clock step is 50 ms of wall time, so that a busy machine delaying the recorder's
+        # callbacks by a few ms does not make a message's log time lag its stamp by two steps
+        player = launch("play", source, "--rate", 2, "--clock", "--start-delay", START_DELAY, *REMAP_CLOCK)
+        play_code, play_output = wait_exit(player, 90)
         time.sleep(0.5)
     finally:
         code, output = stop(recorder, signal.SIGINT)
@@ -243,6 +245,31 @@ def test_record_what_play_publishes(source: Path, tmp_path: Path):
     assert [m.point.z for m in rosbags[ELEVATION]] == [elevation_z(i) for i in range(N_ELEVATION)]
     assert len(rosbags[WRENCH]) == N_WRENCH and rosbags[WRENCH][-1].wrench.torque.y == 3e6 + 196
     assert [m.clock.sec * 10**9 + m.clock.nanosec for m in rosbags[CLOCK]][-1] == SPAN_NS
+
+
+def test_record_on_a_full_disk_ends_in_one_line_with_a_readable_bag(small_disk):
+    """``fowt-sim record`` of an accelerated node until its 1 MiB disk is full: one error
+    line, exit 1, and a closed bag that both readers read to the end."""
+    from fowt_hydro_sim.testing.ros import start
+    out = small_disk / "graph"
+    recorder = launch("record", "-o", out, "--topics", "/platform/pose", "/platform/odom", "/platform/loads/total")
+    node = None
+    try:
+        seen = wait_for_line(recorder, "until stopped", 30)
+        node = start("node", real_time_factor=0.0, duration_s=0.0)  # until stopped
+        code, output = wait_exit(recorder, 240)
+    finally:
+        if node is not None:
+            node.terminate()
+            finish(node, 10)
+        if recorder.poll() is None:
+            stop(recorder, signal.SIGINT)
+    output = "".join(seen) + output
+    assert code == 1 and "Traceback" not in output, output
+    assert sum("recording stopped at a failed write" in line for line in output.splitlines()) == 1, output
+    bag = Bag(out)
+    assert bag.topics["/platform/pose"].message_count > 100
+    assert len(read_with_rosbags(out)["/platform/pose"]) == bag.topics["/platform/pose"].message_count
 
 
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])

@@ -3,8 +3,11 @@ from __future__ import annotations
 
 import csv
 import json
+import re
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -55,6 +58,47 @@ def test_bad_input_is_one_clear_line(tmp_path: Path):
         assert expected in done.stderr and "Traceback" not in done.stderr
 
 
+@pytest.mark.parametrize("args, message", [
+    (("--hs", "-3", "--tp", "10"), "--hs: must be 0 to 30, got -3"),
+    (("--hs", "4", "--tp", "10", "--dt", "0"), "--dt: must be a positive number, got 0"),
+    (("--duration", "-5"), "--duration: must be a positive number, got -5"),
+    (("--hs", "4", "--tp", "-10"), "--tp: must be a positive number, got -10"),
+    (("--load-case", "5.3", "--seed", "-1"), "--seed: must not be negative, got -1"),
+])
+def test_out_of_range_options_are_named_with_their_range(tmp_path: Path, args: tuple, message: str):
+    """Each value outside its setting's range ends the run with one line naming the option
+    and what is allowed, before anything is written."""
+    out = tmp_path / "o"
+    done = fowt_sim("simulate", *args, "-o", str(out))
+    assert done.returncode == 2, done.stdout
+    assert done.stderr.strip().splitlines() == [f"fowt-sim simulate: error: {message}"]
+    assert not (out / "summary.json").exists()
+
+
+def test_a_load_case_given_by_its_number_is_recorded_by_its_name(tmp_path: Path):
+    done = fowt_sim("simulate", "--load-case", "5.3", "--duration", "5", "-o", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    waves = json.loads((tmp_path / "summary.json").read_text())["waves"]
+    assert (waves["load_case"], waves["hs_m"], waves["tp_s"], waves["gamma"]) == ("lc5.3", 11.0, 12.0, 4.9)
+
+
+def test_help_lists_every_command_and_every_option_says_its_default():
+    import argparse
+
+    from fowt_hydro_sim.cli import parser
+    done = fowt_sim("--help")
+    listed = {line.split()[0] for line in done.stdout.splitlines() if line.startswith("    ") and line.split()}
+    assert {"simulate", "load-cases", "waves", "recover", "info", "analyze", "calibrate", "diagnose",
+            "node", "controller", "play", "record"} <= listed, done.stdout
+    commands = next(a for a in parser()._actions if isinstance(a, argparse._SubParsersAction)).choices
+    for name, command in commands.items():
+        for action in command._actions:
+            if action.option_strings and not isinstance(action, argparse._HelpAction):
+                assert re.search(r"default|required", action.help or ""), (name, action.option_strings)
+    simulate_help = fowt_sim("simulate", "--help").stdout
+    assert "(default: none" in simulate_help and "(default off)" in simulate_help
+
+
 def test_simulate_from_a_run_file(tmp_path: Path):
     """Platform, sea state and run from one YAML file; a bad field is named."""
     run_file = tmp_path / "run.yaml"
@@ -101,3 +145,104 @@ def test_filtered_simulate_and_the_load_case_study_agree(tmp_path: Path):
             change = 100 * (float(row[f"{band}_case2"]) / float(row[f"{band}_case1"]) - 1)
             assert float(row[f"{band}_change_percent"]) == pytest.approx(change)
     assert "| lc5.0 | surge [m] |" in (study / "band_stds.md").read_text()
+    assert "2/2 runs |" in done.stderr and "left" in done.stderr  # the progress bar, with the time left
+    assert done.stdout.count("fowt-sim") == 0 and "x real time" not in done.stderr  # no line per run
+
+
+def test_an_interrupted_load_case_study_keeps_the_table_of_the_cases_done(tmp_path: Path):
+    study = tmp_path / "study"
+    process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "load-cases", "--cases", "lc5.0",
+                                "lc5.1", "lc5.2", "lc5.3", "--duration", "1500", "--transient", "60", "-o",
+                                str(study)], cwd=Path(__file__).resolve().parents[1], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 240
+        while not (study / "psd_lc5.0.png").exists() and process.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+        time.sleep(0.3)  # the table is written just after the figure
+        process.send_signal(signal.SIGINT)
+        _, stderr = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 130 and "interrupted" in stderr and "Traceback" not in stderr, stderr
+    rows = list(csv.DictReader(open(study / "band_stds.csv")))
+    done = list(dict.fromkeys(r["load_case"] for r in rows))
+    assert done and done == ["lc5.0", "lc5.1", "lc5.2"][:len(done)]
+    assert f"(partial: {len(done)} of 4 load cases)" in (study / "band_stds.md").read_text()
+
+
+def test_load_case_figures_have_a_log_frequency_axis_the_sea_state_and_the_marks():
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.studies.analysis import natural_frequencies_hz
+    from fowt_hydro_sim.studies.load_case_study import CaseRun, case_labels, plot_case
+    frequency = np.fft.rfftfreq(8192, 0.25)
+    runs = [CaseRun("lc5.3", drag, frequency, {d: 1 / (1e-3 + frequency) for d in ("surge", "heave", "pitch")},
+                    {}, 100.0) for drag in ("constant", "filtered")]
+    natural = natural_frequencies_hz(load_platform())
+    labels = case_labels("windmoor12", "lc5.3", runs, 12000.0, natural)
+    assert labels["title"].startswith("windmoor12, lc5.3: Hs 11 m, Tp 12 s, gamma 4.9\n")
+    assert "12000 s analysed, df 0.0005 Hz" in labels["title"]
+    assert labels["marks"]["Tp 12 s"] == pytest.approx(1 / 12) and "surge 97 s" in labels["marks"]
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    shown = []
+    original = plt.Figure.savefig
+
+    def keep(fig, *args, **kwargs):
+        shown.append([(ax.get_xscale(), ax.get_xlim()) for ax in fig.axes])
+        return original(fig, *args, **kwargs)
+
+    plt.Figure.savefig = keep
+    try:
+        plot_case("lc5.3", runs, Path("/dev/null"), labels)
+    finally:
+        plt.Figure.savefig = original
+    assert all(scale == "log" and lim[0] < 0.005 < 0.25 < lim[1] for scale, lim in shown[0])
+
+
+@pytest.mark.parametrize("dof, j, offset", [("surge", 0, 8.0), ("heave", 2, 2.0), ("pitch", 4, 0.05)])
+def test_a_free_decay_run_reports_its_fitted_period_and_damping(tmp_path: Path, dof: str, j: int, offset: float):
+    """Still water and an initial offset: the fitted period is the linearised model's natural
+    period (within 1 %), and the damping ratio agrees with the log decrement of the record's
+    peaks over the same first cycles (within 10 %)."""
+    from fowt_hydro_sim.studies.simulate import DECAY_CYCLES
+    import scipy.signal
+
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.physics.model import PlatformModel
+    initial = ["0"] * 6
+    initial[j] = str(offset)
+    done = fowt_sim("simulate", "--still-water", "--initial", *initial, "--duration", "600", "--output-interval",
+                    "0.05", "-o", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    fits = json.loads((tmp_path / "summary.json").read_text())["free_decay"]
+    assert list(fits) == [dof] and f"free decay {dof}: period" in done.stdout
+    fit = fits[dof]
+    natural = PlatformModel(load_platform(), None).natural_periods_s()
+    assert np.min(np.abs(natural - fit["natural_period_s"])) < 0.01 * fit["natural_period_s"], (natural, fit)
+    columns = read_run(tmp_path)
+    x = columns[("surge_m", "sway_m", "heave_m", "roll_rad", "pitch_rad", "yaw_rad")[j]]
+    peaks, _ = scipy.signal.find_peaks(x)
+    peaks = peaks[x[peaks] > 0]
+    n = min(DECAY_CYCLES, len(peaks) - 1)
+    assert fit["cycles"] == pytest.approx(n, abs=1.0)
+    decrement = np.log(x[peaks[0]] / x[peaks[n]]) / n
+    zeta = decrement / np.sqrt(4 * np.pi**2 + decrement**2)
+    period = np.diff(columns["time_s"][peaks[:n + 1]]).mean()
+    assert fit["damping_ratio"] == pytest.approx(zeta, rel=0.10), (fit, zeta)
+    assert fit["period_s"] == pytest.approx(period, rel=0.01)
+
+
+def test_node_help_lists_every_parameter_with_its_default():
+    pytest.importorskip("rclpy")
+    from fowt_hydro_sim.ros.node import NodeSettings
+    from fowt_hydro_sim.settings import described
+    done = fowt_sim("node", "--help")
+    assert done.returncode == 0, done.stderr
+    listed = {line.split()[0]: line for line in done.stdout.splitlines() if line.startswith("  ")}
+    assert set(listed) == set(described(NodeSettings))
+    assert "(default 'stop'; one of stop, continue)" in listed["record_failure"]
+    assert all("(default " in line for line in listed.values())

@@ -1,8 +1,8 @@
 """Configuration: the packaged windmoor12 platform and the paper's load cases against the spec
 text, and the validation errors (ConfigError naming the offending field).
 
-Oracles: the numbers of /work/shared/spec/platform_windmoor12.md and load_cases.md (typed in
-here from the spec text), hydrostatic equilibrium (mass = rho x displaced volume computed from
+Oracles: the numbers of docs/platform_windmoor12.md and docs/load_cases.md (typed in
+here from those documents), hydrostatic equilibrium (mass = rho x displaced volume computed from
 the member geometry), and the documented error-message format.
 """
 from __future__ import annotations

@@ -7,6 +7,7 @@ pitch under a thrust), the wall clock (pacing), and the node's own log for refus
 from __future__ import annotations
 
 import math
+import re
 import time
 
 import numpy as np
@@ -263,9 +264,10 @@ def test_wave_topic_gives_the_offline_models_motion():
 
 
 def test_bad_elevation_samples_and_a_silent_topic():
-    """NaN, duplicated, out-of-order, far-future, misplaced and wrong-frame samples: one log line
-    each and the sample is ignored; when the topic stops, the node says so and goes on in still
-    water; it keeps running and never publishes NaN."""
+    """NaN, absurd (1e6 m), duplicated, out-of-order, far-future, misplaced and wrong-frame
+    samples: one log line each and the sample is ignored; a burst of 400 bad samples of one kind
+    gives a couple of lines with a count of the others, not 400 lines; when the topic stops,
+    the node says so and goes on in still water; it keeps running and never publishes NaN."""
     listener = Listener({"/platform/pose": PoseStamped, "/waves/elevation_used": PointStamped})
     publisher = listener.publisher(PointStamped, "/waves/elevation")
     node = start("node", wave_source="topic", real_time_factor=50.0, wave_timeout_s=3.0, drag_model="constant")
@@ -279,10 +281,13 @@ def test_bad_elevation_samples_and_a_silent_topic():
                adapt.elevation_msg(5.0, 0.0, 0.0, 0.1),
                adapt.elevation_msg(1e7, 0.0, 0.0, 0.1),
                adapt.elevation_msg(10.0, 50.0, 0.0, 0.1),
-               adapt.elevation_msg(10.0, 0.0, 0.0, 0.1, "platform")]
+               adapt.elevation_msg(10.0, 0.0, 0.0, 0.1, "platform"),
+               adapt.elevation_msg(10.0, 0.0, 0.0, 1e6)]
         for msg in bad:
             publisher.publish(msg)
             time.sleep(0.2)
+        for i in range(400):  # a burst of one kind: out of order
+            publisher.publish(adapt.elevation_msg(1.0 + 0.01 * i, 0.0, 0.0, 0.1))
         listener.wait_for(lambda: len(listener.messages["/platform/pose"]) > 200, 30.0)
         count = len(listener.messages["/platform/pose"])
         time.sleep(1.0)
@@ -294,11 +299,31 @@ def test_bad_elevation_samples_and_a_silent_topic():
     for needle in ("wave elevation: non-finite sample", "wave elevation: duplicated sample at t = 9.900",
                    "wave elevation: out of order sample at t = 5.000", "ahead of the simulation",
                    "measured at (50, 0) m", "frame_id 'platform', expected 'world'",
-                   "no wave elevation on /waves/elevation for"):
+                   "no wave elevation on /waves/elevation for", "1e+06 m at t = 10.000 s is beyond +-50 m"):
         assert _log_after(output, needle), (needle, output)
+    burst = [line for line in output.splitlines() if "out of order sample" in line]
+    shown = sum(1 for line in burst if "more refused like" not in line)
+    counted = sum(int(a or b) for a, b in re.findall(r"and (\d+) more like it|(\d+) more refused like: wave", output))
+    assert len(burst) <= 4 and shown + counted == 401, output  # the earlier t = 5 sample and the burst
     for msg in listener.messages["/platform/pose"]:
         assert np.all(np.isfinite(adapt.motion_from_pose(msg)[1]))
     assert all(math.isfinite(m.point.z) for m in listener.messages["/waves/elevation_used"])
+
+
+def test_integer_values_of_floating_point_parameters_are_taken():
+    """``-p duration_s:=60`` as users type it (an INTEGER for a DOUBLE parameter)."""
+    listener, output = run_node(8, real_time_factor=0, publish_rate_hz=10, dt_s=0.05)
+    assert "duration 8 s reached" in output and "Traceback" not in output, output
+    t, _ = poses(listener)
+    assert t[-1] == pytest.approx(8.0) and len(t) >= 0.9 * 81
+
+
+def test_a_record_path_that_is_not_a_bag_is_said_so(tmp_path):
+    (tmp_path / "notes.txt").write_text("mine")
+    node = start("node", record=str(tmp_path))
+    output = finish(node, 60)
+    assert node.returncode == 2 and "is a directory that is not a bag (no metadata.yaml)" in output, output
+    assert "Traceback" not in output and (tmp_path / "notes.txt").read_text() == "mine"
 
 
 def test_a_parameter_file_that_does_not_parse(tmp_path):

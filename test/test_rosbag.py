@@ -209,6 +209,29 @@ def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
 
 
 @pytest.mark.ros
+@pytest.mark.parametrize("on_failure", ["stop", "continue"])
+def test_a_full_disk_ends_the_recording_with_one_line_and_a_readable_bag(small_disk, on_failure):
+    """The disk fills up: one error line, no traceback; the bag is closed with what was written
+    (both readers open it, every message readable); stepping stops or goes on as
+    record_failure says; the exit code says the recording is incomplete."""
+    bag = small_disk / "run"
+    process = start("node", real_time_factor=0.0, duration_s=600.0, record=str(bag), record_failure=on_failure)
+    log = finish(process, timeout_s=300)
+    assert process.returncode == 1 and "Traceback" not in log and "OSError" not in log, log
+    failures = [line for line in log.splitlines() if "recording stopped at a failed write" in line]
+    assert len(failures) == 1 and "No space left on device" in failures[0], log
+    ended = float(re.search(r"stepping ended at t = ([\d.]+) s", log).group(1))
+    assert (ended < 590.0) if on_failure == "stop" else (ended == 600.0 and "duration 600 s reached" in log), log
+    recorded = Bag(bag)
+    assert recorded.topics[topics.POSE].message_count > 100, log
+    assert int(re.search(r"closed with the (\d+) messages", failures[0]).group(1)) == recorded.message_count
+    with AnyReader([bag]) as reader:
+        assert sum(1 for _ in reader.messages()) == recorded.message_count
+    pose = recorded.series(topics.POSE)
+    assert np.all(np.diff(pose.time_s) > 0) and pose.time_s[-1] < 600.0
+
+
+@pytest.mark.ros
 def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
     bag = tmp_path / "run"
     process = recording_node(bag, real_time_factor=10.0, run_s=5.0)
@@ -224,6 +247,16 @@ def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
     assert list(bag.glob("*.mcap.damaged"))
     with AnyReader([bag]) as reader:
         assert sum(1 for _ in reader.messages()) == recovered.message_count
+
+
+def test_recover_leaves_an_intact_bag_alone(wave_bag, tmp_path):
+    bag = tmp_path / "intact"
+    shutil.copytree(wave_bag, bag)
+    before = {f.name: f.read_bytes() for f in bag.iterdir()}
+    result = run_cli("recover", str(bag))
+    assert result.returncode == 0, result.stderr
+    assert "intact" in result.stderr and "recovered" not in result.stderr
+    assert {f.name: f.read_bytes() for f in bag.iterdir()} == before  # no *.damaged, nothing rewritten
 
 
 def _bad_bags(root: Path, good: Path) -> dict[str, tuple[Path, str]]:

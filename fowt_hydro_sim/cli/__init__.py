@@ -21,9 +21,22 @@ ROS_COMMANDS = {
 }
 
 
+def node_help() -> str:
+    """The node's parameters with their defaults, meanings and ranges (from its settings)."""
+    from fowt_hydro_sim.ros.node import NodeSettings
+    from fowt_hydro_sim.settings import described
+    lines = ["", "parameters (-p name:=value):"]
+    for name, item in described(NodeSettings).items():
+        default = list(item.default) if isinstance(item.default, tuple) else item.default
+        limits = item.setting.range_text()
+        lines.append(f"  {name} (default {default!r}{'; ' + limits if limits else ''}): {item.setting.description}")
+    return "\n".join(lines)
+
+
 def _ros_command(name: str, argv: list[str]) -> int:
     if name in ("node", "controller") and any(a in ("-h", "--help") for a in argv[:1]):
-        sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n")
+        sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n" + (node_help() + "\n" if name == "node"
+                                                                                else ""))
         return 0
     if name == "node":
         from fowt_hydro_sim.ros.node import main as run
@@ -38,12 +51,31 @@ def _ros_command(name: str, argv: list[str]) -> int:
     return record(argv)
 
 
+def _default_text(action: argparse.Action) -> str:
+    """What an option's help says when it does not name its default itself."""
+    if action.required:
+        return "required"
+    if isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction)):
+        return "default off" if action.default is False else "default on"
+    return "default: none" if action.default is None else f"default {action.default}"
+
+
+def say_defaults(parser: argparse.ArgumentParser) -> None:
+    """Every option's help names its default (or says it has none, or is required)."""
+    for action in parser._actions:
+        if action.option_strings and action.help not in (None, argparse.SUPPRESS) and "default" not in action.help \
+                and not isinstance(action, argparse._HelpAction):
+            action.help += f" ({_default_text(action)})"
+
+
 def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
     top.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for module in (simulate, bags, analyze, calibrate, diagnose, loads, platform):
         module.add_parsers(sub)
+    for command in sub.choices.values():
+        say_defaults(command)
     for name, text in ROS_COMMANDS.items():
         sub.add_parser(name, help=text.split(": ", 1)[0], add_help=False)
     return top
@@ -61,3 +93,6 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:  # ConfigError, BagError, SettingError...: the user's input
         sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
         return 2
+    except KeyboardInterrupt:
+        sys.stderr.write(f"fowt-sim {args.command}: interrupted\n")
+        return 130

@@ -48,21 +48,23 @@ def analysis_settings(args: argparse.Namespace) -> AnalysisSettings:
 
 
 def analyze(args: argparse.Namespace) -> int:
-    text, files = analyze_bags(args.runs, args.ref or [], analysis_settings(args), Path(args.output))
+    output = Path(args.output) if args.output else Path(args.runs[0]).with_name(Path(args.runs[0]).name + "_report")
+    text, files = analyze_bags(args.runs, args.ref or [], analysis_settings(args), output)
     sys.stdout.write(text + "\n")
-    log.info(f"{args.output}: {', '.join(f.name for f in files)}")
+    log.info(f"{output}: {', '.join(f.name for f in files)}")
     return 0
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("analyze", help="PSDs, band STDs and errors against a reference, of recorded runs",
-                       description="Analyse bags (their /platform/pose): Welch PSD per DOF, band STDs with "
+                       description="Analyse runs, bags (their /platform/pose) or fowt-sim simulate output "
+                                   "folders (timeseries.csv): Welch PSD per DOF, band STDs with "
                                    "confidence intervals, and against --ref the STD error per DOF and band, "
                                    "pass/fail and pass rate. Writes table.txt, band_stds.csv, errors.csv, "
                                    "analysis.json and PNG figures.")
-    p.add_argument("runs", nargs="+", help="run bags")
-    p.add_argument("--ref", nargs="+", help="reference (measured) bags: one for all runs, or one per run")
-    p.add_argument("-o", "--output", required=True, help="report folder")
+    p.add_argument("runs", nargs="+", help="run bags or simulate output folders")
+    p.add_argument("--ref", nargs="+", help="reference (measured) bags or folders: one for all runs, or one per run")
+    p.add_argument("-o", "--output", help="report folder (default: RUN_report beside the first run)")
     p.add_argument("--transient", type=float, default=600.0, help="seconds discarded at each run's start (default %(default)s)")
     p.add_argument("--segment", type=float, default=2048.0, help="Welch segment [s] (default %(default)s)")
     p.add_argument("--window", default="hann", help="Welch window, a scipy.signal window name (default %(default)s)")

@@ -24,7 +24,9 @@ def waves(args: argparse.Namespace) -> int:
 
 def recover(args: argparse.Namespace) -> int:
     from fowt_hydro_sim.rosbag.recover import recover as rebuild
-    log.info(f"{args.bag}: {rebuild(args.bag)} messages recovered")
+    count = rebuild(args.bag)
+    if count is not None:
+        log.info(f"{args.bag}: {count} messages recovered")
     return 0
 
 
@@ -55,7 +57,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
 
     p = sub.add_parser("recover", help="rebuild a bag whose recording was killed",
                        description="Rewrite a bag left incomplete (killed recording) from its complete chunks; "
-                                   "the damaged file is kept as *.mcap.damaged.")
+                                   "the damaged file is kept as *.mcap.damaged. An intact bag is left alone.")
     p.add_argument("bag", help="bag directory")
     p.set_defaults(func=recover)
 

@@ -1,5 +1,5 @@
 """The ``fowt_hydro_sim`` ROS 2 node: steps the platform model in real or accelerated time and
-publishes its motion and loads (contract: shared/spec/ros_interface.md).
+publishes its motion and loads (contract: docs/ros_interface.md).
 
 The node stays thin: parameters become a ``PlatformModel``; messages go in and out through
 ``msg_adapters``; input checks live in ``inputs.py``. The simulator owns time: ``/clock`` and
@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import math
+import re
 import threading
 import time
 from collections import deque
@@ -49,7 +50,7 @@ from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.run_config import run_config
 from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.rosbag.writer import BagWriter
+from fowt_hydro_sim.rosbag.writer import BagWriter, RecordingStopped
 from fowt_hydro_sim.settings import like, setting
 from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds
@@ -62,6 +63,37 @@ WAVE_SOURCES = ("internal", "topic", "bag")
 BATCH_S = 1.0  # simulated seconds stepped per compiled call when running as fast as possible
 MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
+WARNING_INTERVAL_S = 5.0  # refused inputs of one kind: at most one warning line per this many wall seconds
+
+
+class WarningLimiter:
+    """Warnings about refused inputs, rate-limited per kind (the text without its numbers):
+    the first of a kind at once, then at most one line per ``interval_s`` with a count of
+    those not shown; ``flush`` reports what is still counted."""
+
+    def __init__(self, warn, interval_s: float = WARNING_INTERVAL_S):
+        self._warn, self.interval_s = warn, interval_s
+        self._kinds: dict[str, list] = {}  # kind: [wall time of the last line, not shown, last text]
+
+    @staticmethod
+    def kind(text: str) -> str:
+        return re.sub(r"[-+]?\d[\d.e+-]*", "#", text)
+
+    def __call__(self, text: str) -> None:
+        now = time.monotonic()
+        entry = self._kinds.setdefault(self.kind(text), [-math.inf, 0, text])
+        if now - entry[0] < self.interval_s:
+            entry[1], entry[2] = entry[1] + 1, text
+            return
+        self._warn(text + (f" (and {entry[1]} more like it not shown)" if entry[1] else ""))
+        entry[:] = [now, 0, text]
+
+    def flush(self) -> None:
+        for entry in self._kinds.values():
+            if entry[1]:
+                self._warn(f"{entry[1]} more refused like: {entry[2]}")
+                entry[1] = 0
+
 
 @dataclass(frozen=True)
 class NodeSettings:
@@ -103,6 +135,9 @@ class NodeSettings:
                                         gt=0.0)
     record: str = setting("", "bag directory recording every input and output of the run; empty = no recording")
     record_overwrite: bool = setting(False, "replace an existing bag at the record path")
+    record_failure: str = setting("stop", "when the recording cannot be written (disk full): the bag is closed "
+                                          "readable, then stepping stops, or continues unrecorded",
+                                  choices=("stop", "continue"))
 
     def __post_init__(self) -> None:
         """The rules between parameters (each one's own range is checked as it is read)."""
@@ -160,6 +195,7 @@ class SimulatorNode(Node):
         self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
         self.dropped = 0  # messages DDS refused (a subscriber too slow for the pace)
         self.published = 0  # messages published (each also recorded when recording)
+        self._refused = WarningLimiter(self.get_logger().warning)
         self._publisher = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fowt_publish")
         self._published: Future | None = None  # the batch being published
         self._make_interface()
@@ -210,7 +246,19 @@ class SimulatorNode(Node):
     # ------------------------------------------------------------------ inputs
     def _record_input(self, topic: str, data: bytes) -> None:
         if self._recorder is not None:
-            self._recorder.write(self._input_channel[topic], nanoseconds(self.model.time_s), data)
+            try:
+                self._recorder.write(self._input_channel[topic], nanoseconds(self.model.time_s), data)
+            except RecordingStopped as exc:
+                self._recording_stopped(exc)
+
+    def _recording_stopped(self, exc: RecordingStopped) -> None:
+        """The bag could not be written (disk full): it is closed and readable; said in one
+        line; stepping stops or goes on as record_failure says."""
+        stop = self.settings.record_failure == "stop"
+        self.get_logger().error(f"{exc}; {'stepping stopped' if stop else 'stepping goes on unrecorded'} "
+                                f"(record_failure {self.settings.record_failure})")
+        if stop:
+            self._stop.set()
 
     def _on_wrench(self, data: bytes) -> None:
         self._record_input(topics.EXTERNAL_WRENCH, data)
@@ -218,7 +266,7 @@ class SimulatorNode(Node):
         try:
             wrench = check_wrench(wrench, frame)
         except InputError as exc:
-            self.get_logger().warning(f"{exc}; keeping the last good wrench")
+            self._refused(f"{exc}; keeping the last good wrench")
             return
         with self._lock:
             self._wrench = (wrench, frame, t)
@@ -236,7 +284,7 @@ class SimulatorNode(Node):
         try:
             made = feed.accept(t, x, y, eta, frame)
         except InputError as exc:
-            self.get_logger().warning(f"{exc}; sample ignored")
+            self._refused(f"{exc}; sample ignored")
             return
         if feed.resampler.gap_s > 2.5 * feed.resampler.sample_dt_s and not self._still_water:
             self.get_logger().warning(f"wave elevation: {feed.resampler.gap_s:.2f} s gap before t = {t:.3f} s, "
@@ -320,8 +368,14 @@ class SimulatorNode(Node):
         if self._thread.is_alive():
             self._thread.join(timeout=10)
         self._publisher.shutdown(wait=True)
+        self._refused.flush()
         if self._recorder is not None:
             self._recorder.close()
+
+    @property
+    def recording_failed(self) -> bool:
+        """Whether the recording stopped early (its bag is closed, with what was written)."""
+        return self._recorder is not None and self._recorder.failure is not None
 
     @property
     def finished(self) -> bool:
@@ -448,8 +502,11 @@ class SimulatorNode(Node):
         self.published += len(samples) * len(names)
         if self._recorder is not None:
             channels = self._output_channels
-            self._recorder.write_rows((nanoseconds(t), zip(channels, messages))
-                                      for t, messages in zip(time_s.tolist(), samples))
+            try:
+                self._recorder.write_rows((nanoseconds(t), zip(channels, messages))
+                                          for t, messages in zip(time_s.tolist(), samples))
+            except RecordingStopped as exc:
+                self._recording_stopped(exc)
 
     def _send(self, name: str, data: bytes) -> None:
         """Publish; a reliable subscriber too slow for an accelerated run makes DDS refuse the
@@ -487,4 +544,4 @@ def main(args: list[str] | None = None) -> int:
         node.stop()
         node.destroy_node()
         rclpy.try_shutdown()
-    return 0
+    return 1 if node.recording_failed else 0

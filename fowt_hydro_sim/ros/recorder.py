@@ -28,7 +28,7 @@ import time
 from pathlib import Path
 
 from fowt_hydro_sim.ros.player import message_class, split_ros_args
-from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, qos_profiles
+from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, RecordingStopped, qos_profiles
 
 log = logging.getLogger("fowt_hydro_sim.recorder")
 
@@ -56,6 +56,7 @@ class Recorder:
         from rosgraph_msgs.msg import Clock
 
         self.writer = writer
+        self.failure: str | None = None  # why the recording stopped early (disk full)
         self.wanted = list(topics) if topics else None
         self.node = rclpy.create_node("fowt_sim_record")
         self.channels: dict[str, int] = {}  # recorded topic: channel id
@@ -139,7 +140,13 @@ class Recorder:
     def _subscribe(self, name: str, kind: type, channel: int, reliability: str, durability: str) -> None:
         from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
-        write = self.writer.write
+        def write(channel_id: int, log_time_ns: int, data: bytes) -> None:
+            try:
+                self.writer.write(channel_id, log_time_ns, data)
+            except RecordingStopped as exc:  # disk full: the bag is closed, readable; recording ends
+                log.error(f"fowt-sim record: {exc}")
+                self.failure = str(exc)
+
         if name == self.clock_topic:
             def on_message(data: bytes) -> None:
                 self._on_clock(data)
@@ -179,7 +186,8 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """``fowt-sim record -o DIR [options] [--ros-args ...]``; exit 0 when stopped (Ctrl-C,
-    SIGTERM, --duration), 2 for bad input (one line on stderr)."""
+    SIGTERM, --duration), 1 when the bag could not be written further (disk full: closed,
+    readable), 2 for bad input (one line on stderr)."""
     logging.basicConfig(level=logging.INFO, format="[%(levelname)s] [%(name)s]: %(message)s")
     own, ros_args = split_ros_args(sys.argv[1:] if argv is None else list(argv))
     try:
@@ -229,7 +237,7 @@ def main(argv: list[str] | None = None) -> int:
         log.info(f"recording {', '.join(topics) if topics else 'all topics'} to {writer.path}"
                  + (f" for {args.duration:g} s" if args.duration else " until stopped"))
         deadline = start + args.duration if args.duration else float("inf")
-        while not stop.is_set() and rclpy.ok() and time.monotonic() < deadline:
+        while not stop.is_set() and rclpy.ok() and time.monotonic() < deadline and recorder.failure is None:
             executor.spin_once(timeout_sec=0.1)
         drain_end = time.monotonic() + DRAIN_S
         while rclpy.ok() and time.monotonic() < drain_end:  # what is already queued
@@ -255,4 +263,4 @@ def main(argv: list[str] | None = None) -> int:
                     executor.shutdown(timeout_sec=1.0)
                 recorder.node.destroy_node()
             rclpy.try_shutdown()
-    return 0
+    return 1 if recorder is not None and recorder.failure else 0

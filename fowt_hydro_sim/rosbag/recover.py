@@ -37,14 +37,28 @@ def _salvage(file: Path) -> tuple[dict, dict, list, list]:
     return schemas, channels, metadata, messages
 
 
-def recover(path: str | Path) -> int:
-    """Rewrite the bag at ``path`` as a complete bag; returns the messages recovered."""
+def is_intact(path: Path) -> bool:
+    """Whether the bag at ``path`` opens as a complete bag (metadata and every file's summary)."""
+    from fowt_hydro_sim.rosbag.reader import Bag
+    try:
+        Bag(path)
+    except BagError:
+        return False
+    return True
+
+
+def recover(path: str | Path) -> int | None:
+    """Rewrite the bag at ``path`` as a complete bag; returns the messages recovered, or None
+    for an intact bag, which is left untouched."""
     path = Path(path)
     if not (path / METADATA_FILE).is_file():
         raise BagError(f"bag {path}: no {METADATA_FILE}; not a bag this tool can recover")
     files = sorted(path.glob("*.mcap"))
     if not files:
         raise BagError(f"bag {path}: no .mcap file to recover")
+    if is_intact(path):
+        log.info(f"bag {path}: intact (every file complete with its summary); left as it is")
+        return None
     salvaged = [_salvage(f) for f in files]
     config = next((yaml.safe_load(m.metadata["yaml"]) for _, _, meta, _ in salvaged for m in meta
                    if m.name == RUN_CONFIG_KEY), None)

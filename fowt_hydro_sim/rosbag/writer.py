@@ -1,4 +1,4 @@
-"""Writing rosbag2 bags with MCAP storage (contract: shared/spec/ros_interface.md).
+"""Writing rosbag2 bags with MCAP storage (contract: docs/ros_interface.md).
 
 A bag is a directory holding ``metadata.yaml`` and one ``.mcap`` file: profile ``ros2``,
 ``cdr`` messages, ``ros2msg`` schemas with every dependency, ``offered_qos_profiles`` in
@@ -10,6 +10,11 @@ per-message path costs about 5 us, too much for a node publishing ~10^5 messages
 second. Schema and channel records go straight to the file, and each chunk is written
 as soon as it is full or ``chunk_interval_s`` old, so after a crash everything up to the
 last written chunk can be recovered (``recover``).
+
+A write that fails (disk full, file-size limit: ``OSError``) ends the recording there: the
+file is cut back to its last complete chunk and closed with its summary (dropping the last
+chunks if even the summary does not fit), so that the bag stays readable, and the write
+raises ``RecordingStopped`` once; later writes are ignored.
 """
 from __future__ import annotations
 
@@ -59,6 +64,11 @@ class BagError(ValueError):
     """A bag that cannot be written or read; the message names the problem."""
 
 
+class RecordingStopped(BagError):
+    """The bag could not be written further (e.g. disk full); it was closed, readable, with
+    the messages written before."""
+
+
 def qos_profiles(reliability: str = "reliable", durability: str = "volatile", depth: int = 1000) -> list[dict]:
     """``offered_qos_profiles`` of one publisher, in the rosbag2 (version 9) layout."""
     return [{"history": "keep_last", "depth": int(depth), "reliability": reliability, "durability": durability,
@@ -70,10 +80,13 @@ def prepare_directory(path: Path, overwrite: bool) -> None:
     """Create the bag directory; an existing one is replaced only with ``overwrite`` and
     only if it is a bag (holds metadata.yaml) or empty."""
     if path.exists():
+        if not path.is_dir():
+            raise BagError(f"{path} is a file, not a bag directory: choose another path")
+        if any(path.iterdir()) and not (path / METADATA_FILE).exists():
+            raise BagError(f"{path} is a directory that is not a bag (no {METADATA_FILE}): choose another path; "
+                           f"it is never overwritten")
         if not overwrite:
             raise BagError(f"bag {path} already exists; choose another path or allow overwriting")
-        if not path.is_dir() or (any(path.iterdir()) and not (path / METADATA_FILE).exists()):
-            raise BagError(f"{path} exists and is not a bag: not overwriting it")
         shutil.rmtree(path)
     path.mkdir(parents=True)
 
@@ -87,8 +100,10 @@ class BagWriter:
         self.path = Path(path)
         prepare_directory(self.path, overwrite)
         self.mcap_path = self.path / (mcap_name or f"{self.path.name}_0.mcap")
-        self._file = open(self.mcap_path, "wb")
-        self._file.write(MCAP0_MAGIC)
+        self._file = open(self.mcap_path, "wb", buffering=0)  # unbuffered: a failed write leaves nothing pending
+        self.failure: str | None = None  # why the recording stopped early
+        self._chunk_counts: list[dict[int, int]] = []  # messages per channel of each written chunk
+        self._write_bytes(MCAP0_MAGIC)
         self._config_yaml = yaml.safe_dump(config, sort_keys=False) if config is not None else None
         self._chunk_size = chunk_size_bytes
         self._chunk_interval_s = chunk_interval_s
@@ -142,8 +157,11 @@ class BagWriter:
         self.write_rows([(log_time_ns, messages)])
 
     def write_rows(self, rows: Iterable[tuple[int, Iterable[tuple[int, bytes]]]]) -> None:
-        """Messages grouped by log time: (log time [ns], [(channel id, CDR bytes), ...]) rows."""
+        """Messages grouped by log time: (log time [ns], [(channel id, CDR bytes), ...]) rows.
+        Ignored once the recording stopped."""
         with self._lock:
+            if self._closed:
+                return
             chunk, offsets, pack = self._chunk, self._offsets, _MESSAGE_HEAD.pack
             for log_time_ns, messages in rows:
                 for channel_id, data in messages:
@@ -156,7 +174,18 @@ class BagWriter:
 
     def _maybe_write_chunk(self) -> None:
         if len(self._chunk) >= self._chunk_size or time.monotonic() - self._chunk_opened > self._chunk_interval_s:
-            self._write_chunk()
+            try:
+                self._write_chunk()
+            except OSError as exc:
+                self._stop_recording(exc)
+
+    def _write_bytes(self, data: bytes) -> None:
+        """All of ``data`` at the file's position (an unbuffered write may be partial); then
+        the file's end is that of a complete record."""
+        view = memoryview(data)
+        while view:
+            view = view[self._file.write(view):]
+        self._good_end = self._file.tell()
 
     def _new_chunk(self) -> None:
         self._chunk = bytearray()
@@ -180,32 +209,32 @@ class BagWriter:
         for channel_id, records in self._offsets.items():
             index_offsets[channel_id] = start + builder.count
             MessageIndex(channel_id=channel_id, records=records).write(builder)
-        self._chunk_indexes.append(ChunkIndex(
+        index = ChunkIndex(
             chunk_start_offset=start, chunk_length=chunk_length, message_index_offsets=index_offsets,
             message_index_length=builder.count - chunk_length, compression="zstd",
             compressed_size=len(compressed), uncompressed_size=len(data),
-            message_start_time=self._chunk_start_ns, message_end_time=self._chunk_end_ns))
+            message_start_time=self._chunk_start_ns, message_end_time=self._chunk_end_ns)
+        self._write_bytes(builder.end())
+        self._chunk_indexes.append(index)
+        self._chunk_counts.append({channel_id: len(records) for channel_id, records in self._offsets.items()})
         for channel_id, records in self._offsets.items():
             self.counts[channel_id] += len(records)
         self._start_ns = min(self._start_ns, self._chunk_start_ns)
         self._end_ns = max(self._end_ns, self._chunk_end_ns)
-        self._file.write(builder.end())
-        self._file.flush()
         self._new_chunk()
 
     def _append(self, record) -> None:
         """A record outside the chunks, written to the file at once."""
         builder = RecordBuilder()
         record.write(builder)
-        self._file.write(builder.end())
-        self._file.flush()
+        self._write_bytes(builder.end())
 
     def _add_metadata(self, name: str, values: dict[str, str]) -> None:
         start = self._file.tell()
         builder = RecordBuilder()
         Metadata(name=name, metadata=values).write(builder)
         self._metadata_indexes.append(MetadataIndex(offset=start, length=builder.count, name=name))
-        self._file.write(builder.end())
+        self._write_bytes(builder.end())
 
     # ------------------------------------------------------------------ closing
     @property
@@ -219,11 +248,45 @@ class BagWriter:
             if self._closed:
                 return
             self._closed = True
-            self._write_chunk()
-            self._finish_mcap()
+            try:
+                self._write_chunk()
+                self._finish_mcap()
+            except OSError as exc:
+                self._stop_recording(exc, raise_=False)
+                return
             self._file.close()
             self._write_metadata_yaml()
         log.info(f"bag {self.path}: {self.message_count} messages on {len(self._channels)} topics")
+
+    def _stop_recording(self, exc: OSError, raise_: bool = True) -> None:
+        """After a failed write: close the file at its last complete chunk with its summary,
+        dropping the last chunks while even the summary does not fit; raise RecordingStopped."""
+        self._closed = True
+        self._new_chunk()  # the messages not written are lost
+        end = self._good_end
+        while True:
+            try:
+                self._file.truncate(end)
+                self._file.seek(end)
+                self._finish_mcap()
+                break
+            except OSError:
+                if not self._chunk_indexes:
+                    break  # not even the summary fits: the bag needs ``recover``
+                dropped = self._chunk_indexes.pop()
+                for channel_id, n in self._chunk_counts.pop().items():
+                    self.counts[channel_id] -= n
+                end = dropped.chunk_start_offset
+        self._file.close()
+        try:
+            self._write_metadata_yaml()
+        except OSError:
+            (self.path / (METADATA_FILE + ".tmp")).unlink(missing_ok=True)
+        self.failure = (f"bag {self.path}: recording stopped at a failed write ({exc.strerror or exc}); "
+                        f"closed with the {self.message_count} messages written before")
+        if raise_:
+            raise RecordingStopped(self.failure) from None
+        log.error(self.failure)
 
     def _finish_mcap(self) -> None:
         self._append(DataEnd(data_section_crc=0))
@@ -244,8 +307,7 @@ class BagWriter:
         for offset in offsets:
             offset.write(builder)
         Footer(summary_start=summary_start, summary_offset_start=summary_offset_start, summary_crc=0).write(builder)
-        self._file.write(builder.end())
-        self._file.write(MCAP0_MAGIC)
+        self._write_bytes(builder.end() + MCAP0_MAGIC)
 
     def _statistics(self) -> Statistics:
         return Statistics(

@@ -1,4 +1,4 @@
-"""Offline analysis of recorded runs (the metric of shared/spec/load_cases.md): Welch PSD
+"""Offline analysis of recorded runs (the metric of docs/load_cases.md): Welch PSD
 of each DOF, band STDs with chi-square confidence intervals, and against a reference run
 (measured, or another simulation) the STD error per DOF and band, pass/fail at a
 threshold and the pass rate, as in the paper's tables.
@@ -7,10 +7,16 @@ Confidence: a band variance from a record of T seconds has about ``band_dof`` de
 freedom, so its STD lies in a chi-square interval, and the ratio of two runs' band
 variances in an F interval. An error whose interval excludes zero is "significant": a
 real gap rather than sampling noise.
+
+A run is a bag (recorded by the node, or measured) or the folder ``fowt-sim simulate``
+writes (timeseries.csv, summary.json). Its figures say its sea state, drag model and
+record length, mark Tp and the platform's natural frequencies, and say when the spectral
+resolution is too coarse for the low-frequency band.
 """
 from __future__ import annotations
 
 import csv
+import dataclasses
 import json
 import math
 from dataclasses import asdict, dataclass, field
@@ -18,11 +24,53 @@ from pathlib import Path
 
 import numpy as np
 import scipy.stats
+import yaml
 
 from fowt_hydro_sim.physics.model import DOF_NAMES
 from fowt_hydro_sim.studies.psd import BANDS_HZ, SEGMENT_S, band_dof, band_std, psd
 
 ANGULAR = {"roll", "pitch", "yaw"}  # analysed in degrees
+MIN_BINS_BELOW_RESONANCE = 10  # a resonance at f is resolved with at least this many PSD bins below f
+
+
+@dataclass(frozen=True)
+class RunContext:
+    """What the figures say about a run: sea state, drag model, the platform's natural
+    frequencies by DOF (each mode named after the DOF holding most of its kinetic energy)."""
+
+    hs_m: float | None = None
+    tp_s: float | None = None
+    gamma: float | None = None
+    drag_model: str | None = None
+    natural_hz: dict[str, float] = field(default_factory=dict)
+
+    def text(self) -> str:
+        sea = (f"Hs {self.hs_m:g} m, Tp {self.tp_s:g} s, gamma {self.gamma:g}" if self.hs_m else
+               "still water" if self.hs_m == 0 else "")
+        return ", ".join(filter(None, (sea, f"drag {self.drag_model}" if self.drag_model else "")))
+
+
+def natural_frequencies_hz(platform) -> dict[str, float]:
+    """Undamped natural frequencies of the linearised platform, one per mode, named after
+    the DOF with the largest share of the mode's kinetic energy (|v_i|^2 M_ii)."""
+    from fowt_hydro_sim.physics.model import PlatformModel
+    model = PlatformModel(platform, None)
+    mass = model.mass_matrix()
+    eigenvalues, vectors = np.linalg.eig(np.linalg.solve(mass, model.restoring_matrix()))
+    found: dict[str, float] = {}
+    for value, vector in sorted(zip(eigenvalues.real, vectors.T), key=lambda pair: pair[0]):
+        if value > 0:
+            dof = DOF_NAMES[int(np.argmax(np.abs(vector) ** 2 * np.diag(mass)))]
+            found.setdefault(dof, math.sqrt(value) / (2 * math.pi))
+    return found
+
+
+def resolution_note(frequency_hz: np.ndarray, natural_hz: dict[str, float]) -> str:
+    """'' if each natural frequency has enough PSD bins below it; else which are not resolved."""
+    df = float(frequency_hz[1] - frequency_hz[0])
+    coarse = [f"{dof} {f:.4f} Hz" for dof, f in natural_hz.items() if f < MIN_BINS_BELOW_RESONANCE * df]
+    return (f"resonance NOT RESOLVED ({', '.join(coarse)}; df {df:.4f} Hz): run longer or use longer segments"
+            if coarse else "")
 
 
 def unit(dof: str) -> str:
@@ -57,6 +105,7 @@ class RunAnalysis:
     std: dict[str, dict[str, float]]
     dof_nu: dict[str, dict[str, float]]  # equivalent degrees of freedom of each band variance
     std_interval: dict[str, dict[str, tuple[float, float]]]
+    context: RunContext = field(default_factory=RunContext)
 
 
 def uniform(time_s: np.ndarray, values: np.ndarray) -> tuple[float, np.ndarray]:
@@ -68,7 +117,8 @@ def uniform(time_s: np.ndarray, values: np.ndarray) -> tuple[float, np.ndarray]:
     return step, np.column_stack([np.interp(grid, time_s, column) for column in values.T])
 
 
-def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: AnalysisSettings) -> RunAnalysis:
+def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: AnalysisSettings,
+            context: RunContext = RunContext()) -> RunAnalysis:
     """Spectra and band STDs of a run's 6-DOF motion (surge ... yaw, angles in rad)."""
     keep = time_s >= time_s[0] + settings.transient_s
     if keep.sum() < 64:
@@ -89,7 +139,7 @@ def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: Analysi
             intervals[dof][band] = (std * math.sqrt(nu / scipy.stats.chi2.ppf(1 - alpha / 2, nu)),
                                     std * math.sqrt(nu / scipy.stats.chi2.ppf(alpha / 2, nu))) if nu > 0 else \
                 (float("nan"), float("nan"))
-    return RunAnalysis(name, analysed_s, frequency, spectra, stds, nus, intervals)
+    return RunAnalysis(name, analysed_s, frequency, spectra, stds, nus, intervals, context)
 
 
 def compare(run: RunAnalysis, reference: RunAnalysis, settings: AnalysisSettings) -> list[dict]:
@@ -173,17 +223,49 @@ def write_report(analyses: list[RunAnalysis], comparisons: list[dict], settings:
     return written
 
 
+def load_run(path: str | Path) -> tuple[np.ndarray, np.ndarray, RunContext]:
+    """Stamps, 6-DOF motion (angles in rad) and context of a bag, or of a ``fowt-sim
+    simulate`` output folder (timeseries.csv and summary.json)."""
+    from fowt_hydro_sim.physics.config import load_platform, platform_from_dict
+    from fowt_hydro_sim.rosbag.reader import Bag
+    from fowt_hydro_sim.rosbag.writer import METADATA_FILE
+    path = Path(path)
+    if (path / "timeseries.csv").is_file() and not (path / METADATA_FILE).exists():
+        from fowt_hydro_sim.studies.simulate import read_run
+        columns = read_run(path)
+        summary = json.loads((path / "summary.json").read_text()) if (path / "summary.json").is_file() else {}
+        waves = summary.get("waves", {})
+        try:
+            natural = natural_frequencies_hz(load_platform(summary.get("platform", "windmoor12")))
+        except ValueError:  # a platform file no longer where it was: no natural frequencies marked
+            natural = {}
+        context = RunContext(waves.get("hs_m"), waves.get("tp_s"), waves.get("gamma"), summary.get("drag_model"),
+                             natural)
+        motion = np.column_stack([columns[c] for c in ("surge_m", "sway_m", "heave_m", "roll_rad", "pitch_rad",
+                                                       "yaw_rad")])
+        return columns["time_s"], motion, context
+    bag = Bag(path)
+    motion = bag.motion()
+    config = bag.config or {}
+    sea = config.get("sea_state") or {}
+    platform_yaml = config.get("platform_yaml")
+    natural = natural_frequencies_hz(platform_from_dict(yaml.safe_load(platform_yaml), path.name)) \
+        if platform_yaml else {}
+    context = RunContext(sea.get("hs_m"), sea.get("tp_s"), sea.get("gamma"),
+                         (config.get("parameters") or {}).get("drag_model"), natural)
+    return motion.time_s, motion.values, context
+
+
 def analyze_bags(runs: list[str | Path], references: list[str | Path], settings: AnalysisSettings,
                  output: Path) -> tuple[str, list[Path]]:
-    """``fowt-sim analyze``: every run bag analysed, against one reference for all or one per
-    run; the table's text and the report's files."""
-    from fowt_hydro_sim.rosbag.reader import Bag
+    """``fowt-sim analyze``: every run (bag or simulate folder) analysed, against one
+    reference for all or one per run; the table's text and the report's files."""
     if references and len(references) not in (1, len(runs)):
         raise ValueError(f"--ref: give one reference, or one per run ({len(runs)}), got {len(references)}")
 
     def load(path: str | Path) -> RunAnalysis:
-        motion = Bag(path).motion()
-        return analyse(Path(path).name, motion.time_s, motion.values, settings)
+        time_s, motion, context = load_run(path)
+        return analyse(Path(path).name, time_s, motion, settings, context)
 
     analysed = [load(p) for p in runs]
     reference_runs = [load(p) for p in references]
@@ -220,25 +302,48 @@ def _pyplot():
     return plt
 
 
+def psd_labels(run: RunAnalysis, reference: RunAnalysis | None, dofs: tuple[str, ...]) -> dict[str, object]:
+    """The PSD figure's title lines, legend names and marked frequencies (label: Hz) of the
+    DOFs shown."""
+    context = dataclasses.replace(run.context, natural_hz={d: f for d, f in run.context.natural_hz.items()
+                                                           if d in dofs})
+    title = [f"PSD: {run.name}" + (f" vs reference {reference.name}" if reference else ""),
+             ", ".join(filter(None, (context.text(), f"{run.analysed_s:.0f} s analysed, "
+                                     f"df {run.frequency_hz[1] - run.frequency_hz[0]:.4f} Hz")))]
+    note = resolution_note(run.frequency_hz, context.natural_hz)
+    marks = {f"{dof} {1 / f:.0f} s": f for dof, f in context.natural_hz.items()}
+    if context.tp_s:
+        marks[f"Tp {context.tp_s:g} s"] = 1.0 / context.tp_s
+    return {"title": title + ([note] if note else []), "run": f"run: {run.name}",
+            "reference": f"reference: {reference.name}" if reference else None, "marks": marks}
+
+
 def plot_psd(run: RunAnalysis, reference: RunAnalysis | None, settings: AnalysisSettings, path: Path) -> Path:
-    """PSD of each DOF, the run against the reference, log axes, bands shaded."""
+    """PSD of each DOF, the run against the reference, log axes, bands shaded, Tp and the
+    natural frequencies marked; the title says the sea state, drag model and record length."""
+    labels = psd_labels(run, reference, settings.dofs)
     plt = _pyplot()
     fig, axes = plt.subplots(len(settings.dofs), 1, figsize=(7.5, 2.8 * len(settings.dofs)), sharex=True,
                              squeeze=False)
     for ax, dof in zip(axes[:, 0], settings.dofs):
         for (band, (low, high)), colour in zip(settings.bands(dof).items(), ("tab:orange", "tab:blue", "tab:green")):
             ax.axvspan(low, high, color=colour, alpha=0.08, label=f"{band} band")
-        for analysis, style in ((reference, "k-"), (run, "-")):
+        for analysis, style, name in ((reference, "k-", labels["reference"]), (run, "-", labels["run"])):
             if analysis is not None:
                 f, s = analysis.frequency_hz, analysis.psd[dof]
-                ax.loglog(f[1:], s[1:], style, lw=1.0, label=analysis.name)
+                ax.loglog(f[1:], s[1:], style, lw=1.0, label=name)
+        for text, frequency in labels["marks"].items():
+            ax.axvline(frequency, color="0.4", ls=":", lw=0.8)
+            if dof == settings.dofs[-1]:
+                ax.annotate(text, (frequency, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7,
+                            va="bottom", ha="right", color="0.3")
         ax.set_ylabel(f"{dof} [{unit(dof)}$^2$/Hz]")
         ax.grid(alpha=0.3, which="both")
         ax.set_xlim(0.002, 0.5)
         top = max(a.psd[dof].max() for a in (run, reference) if a is not None)
         ax.set_ylim(top * 1e-6, top * 3)
     axes[0, 0].legend(fontsize=8, loc="lower left")
-    axes[0, 0].set_title(f"PSD: {run.name}" + (f" vs {reference.name}" if reference else ""))
+    axes[0, 0].set_title("\n".join(labels["title"]), fontsize=9, color="tab:red" if len(labels["title"]) > 2 else "k")
     axes[-1, 0].set_xlabel("frequency [Hz]")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -253,11 +358,11 @@ def plot_band_errors(rows: list[dict], settings: AnalysisSettings, path: Path) -
     x = np.arange(len(rows))
     ratio_ref = np.ones(len(rows))
     ratio_run = np.array([r["std_run"] / r["std_reference"] if r["std_reference"] > 0 else np.nan for r in rows])
-    ax.bar(x - 0.2, ratio_ref, 0.4, color="0.6", label=rows[0]["reference"])
+    ax.bar(x - 0.2, ratio_ref, 0.4, color="0.6", label=f"reference: {rows[0]['reference']}")
     low = 1 + np.array([r["error_low_percent"] for r in rows]) / 100
     high = 1 + np.array([r["error_high_percent"] for r in rows]) / 100
     ax.bar(x + 0.2, ratio_run, 0.4, color=["tab:green" if r["passes"] else "tab:red" for r in rows],
-           label=rows[0]["run"], yerr=[ratio_run - low, high - ratio_run], capsize=3, ecolor="0.3")
+           label=f"run: {rows[0]['run']}", yerr=[ratio_run - low, high - ratio_run], capsize=3, ecolor="0.3")
     for i, r in enumerate(rows):
         ax.annotate(f"{r['error_percent']:+.0f} %" + ("*" if r["significant"] else ""), (i + 0.2, ratio_run[i]),
                     ha="center", va="bottom", fontsize=8)

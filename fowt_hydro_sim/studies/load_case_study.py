@@ -1,5 +1,8 @@
 """The paper's load cases with both drag models: surge, heave and pitch band STDs of the
-constant-Cd (case 1) and filtered (case 2) models side by side, and a PSD plot per load case.
+constant-Cd (case 1) and filtered (case 2) models side by side, and a PSD plot per load case
+(log frequency axis, Tp and the natural frequencies marked). A progress bar with the time
+left runs on stderr, and the tables are rewritten as each load case finishes, so that an
+interrupted study keeps the table of the cases done.
 
 With no basin data this is not the paper's error table: it shows how large the effect of
 frequency-dependent drag is and in which band it acts.
@@ -8,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import logging
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +21,7 @@ import numpy as np
 from fowt_hydro_sim.physics.config import DRAG_MODELS, Platform, SeaState, load_case
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
+from fowt_hydro_sim.studies.analysis import natural_frequencies_hz
 from fowt_hydro_sim.studies.psd import BANDS_HZ, band_std, psd
 
 log = logging.getLogger(__name__)
@@ -53,7 +58,7 @@ def run_case(platform: Platform, case: str, drag_model: str, duration_s: float, 
         x = result.motion[keep, j] * (180 / np.pi if unit == "deg" else 1.0)
         frequency, spectra[name] = psd(x, 0.25)
         stds[name] = {band: band_std(frequency, spectra[name], limits) for band, limits in BANDS_HZ.items()}
-    log.info("%s %s: %.0fx real time, surge LF %.3f m", case, drag_model, rtf, stds["surge"]["low_frequency"])
+    log.debug("%s %s: %.0fx real time, surge LF %.3f m", case, drag_model, rtf, stds["surge"]["low_frequency"])
     return CaseRun(case, drag_model, frequency, spectra, stds, rtf)
 
 
@@ -88,8 +93,21 @@ def write_tables(rows: list[dict], folder: Path, header: str) -> None:
     (folder / "band_stds.md").write_text("\n".join(lines) + "\n")
 
 
-def plot_case(case: str, runs: list[CaseRun], path: Path) -> None:
-    """Surge, heave and pitch PSDs of both drag models, the analysis bands shaded."""
+def case_labels(platform_name: str, case: str, runs: list[CaseRun], duration_s: float,
+                natural_hz: dict[str, float]) -> dict[str, object]:
+    """A load case figure's title and marked frequencies (label: Hz)."""
+    sea = load_case(case).sea_state
+    df = float(runs[0].frequency_hz[1] - runs[0].frequency_hz[0])
+    marks = {f"{dof} {1 / f:.0f} s": f for dof, f in natural_hz.items() if dof in {d for d, _, _ in STUDY_DOFS}}
+    marks[f"Tp {sea.tp_s:g} s"] = 1.0 / sea.tp_s
+    return {"title": f"{platform_name}, {case}: Hs {sea.hs_m:g} m, Tp {sea.tp_s:g} s, gamma {sea.gamma:g}\n"
+                     f"constant vs frequency-dependent (filtered) drag; {duration_s:g} s analysed, df {df:.4f} Hz",
+            "marks": marks}
+
+
+def plot_case(case: str, runs: list[CaseRun], path: Path, labels: dict[str, object]) -> None:
+    """Surge, heave and pitch PSDs of both drag models on log axes, the analysis bands
+    shaded, ``labels`` (``case_labels``) as title and marks."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -100,14 +118,19 @@ def plot_case(case: str, runs: list[CaseRun], path: Path) -> None:
             ax.axvspan(low, high, color=colour, alpha=0.08, label=f"{band} band" if name == "surge" else None)
         for run, style in zip(runs, ("-", "--")):
             label = f"case {DRAG_MODELS.index(run.drag_model) + 1}: {run.drag_model} Cd"
-            ax.semilogy(run.frequency_hz, run.psd[name], style, lw=1.1, label=label)
+            ax.loglog(run.frequency_hz[1:], run.psd[name][1:], style, lw=1.1, label=label)
+        for text, frequency in labels["marks"].items():
+            ax.axvline(frequency, color="0.4", ls=":", lw=0.8)
+            if name == STUDY_DOFS[-1][0]:
+                ax.annotate(text, (frequency, 0.02), xycoords=("data", "axes fraction"), rotation=90, fontsize=7,
+                            va="bottom", ha="right", color="0.3")
         ax.set_ylabel(f"{name} PSD [{unit}$^2$/Hz]")
-        ax.set_xlim(0.0, 0.3)
-        ax.grid(alpha=0.3)
-        top = max(run.psd[name][run.frequency_hz <= 0.3].max() for run in runs)
-        ax.set_ylim(top * 1e-5, top * 3)
-    axes[0].legend(fontsize=8, loc="upper right")
-    axes[0].set_title(f"windmoor12, {case}: constant vs frequency-dependent (filtered) drag")
+        ax.set_xlim(0.003, 0.5)
+        ax.grid(alpha=0.3, which="both")
+        top = max(run.psd[name][run.frequency_hz <= 0.5].max() for run in runs)
+        ax.set_ylim(top * 1e-6, top * 3)
+    axes[0].legend(fontsize=8, loc="lower left")
+    axes[0].set_title(labels["title"], fontsize=9)
     axes[-1].set_xlabel("frequency [Hz]")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -116,14 +139,27 @@ def plot_case(case: str, runs: list[CaseRun], path: Path) -> None:
 
 def run_study(platform: Platform, cases: tuple[str, ...], duration_s: float, transient_s: float, seed: int,
               folder: Path) -> list[dict]:
-    """Run every case with both drag models; write band_stds.csv / .md and psd_<case>.png."""
+    """Run every case with both drag models; write band_stds.csv / .md (rewritten as each
+    case finishes) and psd_<case>.png, with a progress bar and the time left on stderr."""
+    from tqdm import tqdm
     folder.mkdir(parents=True, exist_ok=True)
-    runs = []
-    for case in cases:
-        pair = [run_case(platform, case, drag, duration_s, transient_s, seed) for drag in DRAG_MODELS]
-        plot_case(case, pair, folder / f"psd_{case}.png")
-        runs += pair
-    rows = table_rows(runs)
-    write_tables(rows, folder, f"{platform.name}: band STDs, {duration_s:g} s analysed after {transient_s:g} s "
-                               f"of start-up, seed {seed}; case 1 constant Cd, case 2 filtered Cd")
+    natural = natural_frequencies_hz(platform)
+    header = (f"{platform.name}: band STDs, {duration_s:g} s analysed after {transient_s:g} s of start-up, "
+              f"seed {seed}; case 1 constant Cd, case 2 filtered Cd")
+    runs, rows = [], []
+    with tqdm(total=len(cases) * len(DRAG_MODELS), desc="load cases", unit="run", file=sys.stderr,
+              bar_format="{desc}: {n}/{total} runs |{bar}| {elapsed} elapsed, {remaining} left {postfix}") as bar:
+        for case in cases:
+            pair = []
+            for drag in DRAG_MODELS:
+                bar.set_postfix_str(f"{case} {drag}")
+                pair.append(run_case(platform, case, drag, duration_s, transient_s, seed))
+                bar.update()
+            plot_case(case, pair, folder / f"psd_{case}.png", case_labels(platform.name, case, pair, duration_s,
+                                                                          natural))
+            runs += pair
+            rows = table_rows(runs)
+            write_tables(rows, folder, header + ("" if len(runs) == len(cases) * len(DRAG_MODELS) else
+                                                 f" (partial: {len(runs) // len(DRAG_MODELS)} of {len(cases)} "
+                                                 f"load cases)"))
     return rows

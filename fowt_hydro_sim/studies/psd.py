@@ -1,5 +1,5 @@
 """Power spectral densities and band standard deviations of motion records (the metric of
-shared/spec/load_cases.md: band STD = square root of the PSD integrated over the band)."""
+docs/load_cases.md: band STD = square root of the PSD integrated over the band)."""
 from __future__ import annotations
 
 import numpy as np

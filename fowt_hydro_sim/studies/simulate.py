@@ -1,7 +1,8 @@
 """Offline runs of the platform model (``fowt-sim simulate``): waves from a sea state, an
 OpenFAST ``.Comp`` file, a measured elevation record or none; the run; its statistics; and
 its plain columnar output, ``timeseries.csv`` (one column per channel, SI units in the
-names) and ``summary.json`` (configuration and statistics)."""
+names) and ``summary.json`` (configuration and statistics). A free-decay run (still water,
+an initial offset) reports the fitted period and damping ratio of each DOF it displaced."""
 from __future__ import annotations
 
 import json
@@ -11,6 +12,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
+import scipy.signal
 
 from fowt_hydro_sim import __version__
 from fowt_hydro_sim.physics.config import ConfigError, Platform, RunConfig, SeaState, load_platform
@@ -27,6 +29,7 @@ from fowt_hydro_sim.studies.psd import BANDS_HZ, MIN_SEGMENTS, band_stds
 
 _AXES = ("fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm")
 _MOTION_UNITS = ("m", "m", "m", "rad", "rad", "rad")
+DECAY_CYCLES = 5  # free decay fitted over its first cycles: drag damping depends on the amplitude
 
 
 # ---------------------------------------------------------------------- waves
@@ -76,6 +79,34 @@ def statistics(result: RunResult, transient_s: float) -> dict:
     return stats
 
 
+def fit_free_decay(time_s: np.ndarray, x: np.ndarray) -> dict | None:
+    """Period and damping ratio of a decay record, fitted over its first ``DECAY_CYCLES``
+    cycles (drag damping grows with the amplitude: one ratio holds for an amplitude range):
+    least-squares lines through the times of the peaks (the damped period) and through
+    the logarithms of their heights above the rest position (the decrement per cycle, hence
+    the damping ratio); None if the record holds under two cycles."""
+    rest = float(np.median(x[len(x) // 2:]))
+    peaks, _ = scipy.signal.find_peaks(x - rest)
+    peaks = peaks[x[peaks] > rest][:DECAY_CYCLES + 1]
+    if len(peaks) < 3:
+        return None
+    cycles = np.arange(len(peaks))
+    period_s = float(np.polyfit(cycles, time_s[peaks], 1)[0])
+    decrement = -float(np.polyfit(cycles, np.log(x[peaks] - rest), 1)[0])
+    zeta = decrement / np.hypot(2 * np.pi, decrement)
+    return {"period_s": period_s, "natural_period_s": period_s * float(np.sqrt(1 - zeta**2)),
+            "damping_ratio": zeta, "cycles": int(len(peaks) - 1)}
+
+
+def free_decay(result: RunResult, initial_state: tuple[float, ...]) -> dict:
+    """Fitted decay of each DOF given an initial offset (see ``fit_free_decay``)."""
+    fits = {}
+    for j, name in enumerate(DOF_NAMES):
+        if initial_state[j] != 0 and (fit := fit_free_decay(result.time_s, result.motion[:, j])) is not None:
+            fits[name] = fit
+    return fits
+
+
 def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, output: Path,
              transient_s: float = 0.0, overwrite: bool = False) -> dict:
     """Run the model, write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the
@@ -103,6 +134,8 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
                         "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024},
         "statistics": statistics(result, transient_s),
     }
+    if waves is None and any(run.initial_state):
+        summary["free_decay"] = free_decay(result, run.initial_state)
     write_run(output, result, summary)
     return summary
 
@@ -124,6 +157,10 @@ def summary_text(summary: dict, output: Path) -> str:
         lines.append(f"{name + ' [' + s['unit'] + ']':16s}{s['mean']:10.3f}{s['std']:10.3f}{s['min']:10.3f}"
                      f"{s['max']:10.3f}" + bands)
     lines.append(f"wave Hs (4 std) at the reference point: {stats['wave_elevation']['hs_4std']:.2f} m")
+    for name, fit in summary.get("free_decay", {}).items():
+        lines.append(f"free decay {name}: period {fit['period_s']:.2f} s (undamped {fit['natural_period_s']:.2f} s), "
+                     f"damping ratio {100 * fit['damping_ratio']:.2f} % of critical, fitted over "
+                     f"{fit['cycles']:.1f} cycles")
     lines.append(f"wrote {output / 'timeseries.csv'} and {output / 'summary.json'}")
     return "\n".join(lines)
 

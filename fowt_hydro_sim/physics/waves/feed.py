@@ -17,6 +17,7 @@ from fowt_hydro_sim.physics.waves.stream import ElevationStream
 
 RING_MARGIN_S = 60.0  # the ring holds the kernel's span and this much more
 MAX_AHEAD_S = 3600.0  # elevation samples further ahead of the simulation are refused
+MAX_ELEVATION_M = 50.0  # beyond any sea (crests of the largest recorded waves are ~20 m): refused
 
 
 class ElevationResampler:
@@ -35,6 +36,9 @@ class ElevationResampler:
         """Grid samples (time, elevation) made available by this sample, or InputError."""
         if not math.isfinite(elevation_m) or not math.isfinite(time_s):
             raise InputError(f"wave elevation: non-finite sample {elevation_m} m at t = {time_s} s")
+        if abs(elevation_m) > MAX_ELEVATION_M:
+            raise InputError(f"wave elevation: {elevation_m:g} m at t = {time_s:.3f} s is beyond "
+                             f"+-{MAX_ELEVATION_M:g} m, not a sea surface")
         if frame_id != self.frame_id:
             raise InputError(f"wave elevation: frame_id {frame_id!r}, expected {self.frame_id!r}")
         if math.hypot(x_m - self.x_m, y_m - self.y_m) > self.tolerance_m:
