@@ -149,7 +149,8 @@ def read_with_rosbags(path: Path) -> dict[str, list]:
 def test_play_publishes_every_message_in_order_with_the_clock(source: Path):
     listener = Listener({ELEVATION: PointStamped, WRENCH: WrenchStamped, CLOCK: Clock})
     try:
-        player = launch("play", source, "--rate", 10, "--clock", "--start-delay", START_DELAY, *REMAP_CLOCK)
+        player = launch("play", source, "--rate", 10, "--clock", "--start-delay", START_DELAY, "--wait-for-subscribers", 1,
+                        *REMAP_CLOCK)
         code, output = wait_exit(player, 60)
         received = listener.wait_for(lambda: len(listener.messages[ELEVATION]) >= N_ELEVATION
                                      and len(listener.messages[WRENCH]) >= N_WRENCH, 5.0)
@@ -178,7 +179,8 @@ def test_play_publishes_every_message_in_order_with_the_clock(source: Path):
 def test_play_only_the_chosen_topics_as_fast_as_possible(source: Path):
     listener = Listener({ELEVATION: PointStamped, WRENCH: WrenchStamped})
     try:
-        player = launch("play", source, "--topics", ELEVATION, "--rate", 0, "--start-delay", START_DELAY)
+        player = launch("play", source, "--topics", ELEVATION, "--rate", 0, "--start-delay", START_DELAY,
+                        "--wait-for-subscribers", 1)
         code, output = wait_exit(player, 60)
         listener.wait_for(lambda: len(listener.messages[ELEVATION]) >= N_ELEVATION, 5.0)
         time.sleep(0.3)
@@ -194,7 +196,7 @@ def test_play_loops_until_interrupted(source: Path):
     listener = Listener({WRENCH: WrenchStamped, CLOCK: Clock})
     try:
         player = launch("play", source, "--topics", WRENCH, "--loop", "--rate", 20, "--clock",
-                        "--start-delay", START_DELAY, *REMAP_CLOCK)
+                        "--start-delay", START_DELAY, "--wait-for-subscribers", 1, *REMAP_CLOCK)
         looped = listener.wait_for(lambda: len(listener.messages[WRENCH]) > 1.5 * N_WRENCH, 30.0)
         code, output = stop(player, signal.SIGINT)
     finally:
@@ -219,7 +221,8 @@ def test_record_what_play_publishes(source: Path, tmp_path: Path):
         seen = wait_for_line(recorder, "until stopped", 30)  # its node is up: it finds the player's topics
         # rate 2: a clock step is 50 ms of wall time, so that a busy machine delaying the recorder's
         # callbacks by a few ms does not make a message's log time lag its stamp by two steps
-        player = launch("play", source, "--rate", 2, "--clock", "--start-delay", START_DELAY, *REMAP_CLOCK)
+        player = launch("play", source, "--rate", 2, "--clock", "--start-delay", START_DELAY, "--wait-for-subscribers", 1,
+                        *REMAP_CLOCK)
         play_code, play_output = wait_exit(player, 90)
         time.sleep(0.5)
     finally:

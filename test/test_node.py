@@ -37,6 +37,7 @@ def poses(listener: Listener) -> tuple[np.ndarray, np.ndarray]:
 
 def run_node(duration_s: float, topics: dict | None = None, timeout_s: float = 120.0, **parameters):
     listener = Listener(topics or {"/platform/pose": PoseStamped, "/clock": Clock})
+    parameters.setdefault("wait_for_subscribers", 1)  # the listener, before the first step
     node = start("node", duration_s=duration_s, **parameters)
     try:
         listener.wait_for(lambda: node.poll() is not None, timeout_s)

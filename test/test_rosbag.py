@@ -185,10 +185,18 @@ def test_bag_wave_source_gives_the_offline_models_motion_and_records_the_same_sa
 
 
 def recording_node(bag: Path, real_time_factor: float, run_s: float) -> subprocess.Popen:
-    """A node recording to ``bag``, running for about ``run_s`` wall seconds after its bag appeared."""
+    """A node recording to ``bag``, running for about ``run_s`` wall seconds after its first
+    chunk reached the bag (the node is stepping, not starting up)."""
     process = start("node", real_time_factor=real_time_factor, record=str(bag))
-    deadline = time.monotonic() + 60
+    deadline = time.monotonic() + 180
+
+    def size() -> int:
+        return sum(f.stat().st_size for f in bag.glob("*.mcap"))
     while time.monotonic() < deadline and not (bag / "metadata.yaml").exists():
+        time.sleep(0.2)
+    time.sleep(0.5)
+    opened = size()  # header, schemas and channels
+    while time.monotonic() < deadline and size() <= opened:  # until a chunk of messages is written
         time.sleep(0.2)
     time.sleep(run_s)
     return process
@@ -352,7 +360,8 @@ def test_a_wave_bag_played_on_the_topic_is_recorded_again_bit_for_bit(wave_bag, 
         finally:
             listener.close()
         player = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(wave_bag), "--rate", "0",
-                                 "--start-delay", "3"], cwd=REPO, capture_output=True, text=True, timeout=120)
+                                 "--wait-for-subscribers", "1"], cwd=REPO, capture_output=True, text=True,
+                                timeout=180)
         assert player.returncode == 0, player.stderr
         time.sleep(3.0)  # the node takes the last samples
         node.send_signal(signal.SIGINT)

@@ -138,6 +138,9 @@ class NodeSettings:
     record_failure: str = setting("stop", "when the recording cannot be written (disk full): the bag is closed "
                                           "readable, then stepping stops, or continues unrecorded",
                                   choices=("stop", "continue"))
+    wait_for_subscribers: int = setting(0, "before stepping, wait (at most 60 wall seconds) until this many "
+                                           "subscribers are connected to /platform/pose (a run as fast as "
+                                           "possible is over before a late subscriber is discovered)", ge=0)
 
     def __post_init__(self) -> None:
         """The rules between parameters (each one's own range is checked as it is read)."""
@@ -395,11 +398,22 @@ class SimulatorNode(Node):
                            f"{np.percentile(late, 99):.3f} ms over {late.size} steps")
             self.get_logger().info(report)
 
+    def _wait_for_subscribers(self, count: int, timeout_s: float = 60.0) -> None:
+        """Before the first step: until ``count`` subscribers are connected to the pose topic."""
+        deadline = time.monotonic() + timeout_s
+        while (count and self._pub["pose"].get_subscription_count() < count and not self._stop.is_set()
+               and time.monotonic() < deadline):
+            time.sleep(0.05)
+        if count and self._pub["pose"].get_subscription_count() < count:
+            self.get_logger().warning(f"wait_for_subscribers: {self._pub['pose'].get_subscription_count()} of "
+                                      f"{count} subscribers after {timeout_s:g} s; stepping anyway")
+
     def _step_until_done(self) -> None:
         s, model = self.settings, self.model
         period = s.steps_per_publish * s.dt_s
         if s.lockstep:
             self._wait_for_controller()
+        self._wait_for_subscribers(s.wait_for_subscribers)
         self._publish_now()
         self._anchor = (time.monotonic(), model.time_s, self._rtf)  # pacing: wall, sim, factor
         try:
@@ -528,6 +542,10 @@ def main(args: list[str] | None = None) -> int:
     try:
         init_ros(args)
         node = SimulatorNode()
+    except KeyboardInterrupt:  # stopped while starting: nothing was stepped
+        log.error("fowt-sim node: interrupted while starting")
+        rclpy.try_shutdown()
+        return 130
     except Exception as exc:  # bad parameters, parameter file or platform: one line, no traceback
         log.error(f"fowt-sim node: {exc}".splitlines()[0])
         rclpy.try_shutdown()

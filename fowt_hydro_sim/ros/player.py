@@ -171,6 +171,18 @@ class Player:
         self.dropped = 0
         self.passes = 0
 
+    def wait_for_subscribers(self, count: int, timeout_s: float = 60.0) -> None:
+        """Until every played topic has ``count`` subscribers (a reliable subscriber discovered
+        late would miss what was published before)."""
+        deadline = time.monotonic() + timeout_s
+        while count and time.monotonic() < deadline and any(
+                p.get_subscription_count() < count for p in self.publishers.values()):
+            time.sleep(0.05)
+        short = [name for name, p in self.publishers.items() if p.get_subscription_count() < count]
+        if short:
+            log.warning(f"--wait-for-subscribers: fewer than {count} subscriber(s) on {', '.join(short)} after "
+                        f"{timeout_s:g} s; playing anyway")
+
     def _send(self, publisher, data: bytes) -> None:
         """Publish; a reliable subscriber too slow for the rate can make DDS refuse the write
         (after blocking): the message is dropped and counted."""
@@ -240,6 +252,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--start-delay", type=float, default=1.0, metavar="S",
                    help="wall seconds between creating the publishers and the first message, so subscribers "
                         "can discover them (default 1)")
+    p.add_argument("--wait-for-subscribers", type=int, default=0, metavar="N",
+                   help="before playing, wait (at most 60 wall seconds) until every played topic has N "
+                        "subscribers (default 0: do not wait)")
     return p
 
 
@@ -282,6 +297,7 @@ def main(argv: list[str] | None = None) -> int:
         log.info(f"playing {bag.path}: {count} messages on {len(topics)} topic(s) ({', '.join(t.name for t in topics)})"
                  f", rate {'as fast as possible' if args.rate == 0 else f'{args.rate:g}'}"
                  + (", with /clock" if args.clock else "") + (", looping" if args.loop else ""))
+        player.wait_for_subscribers(args.wait_for_subscribers)
         time.sleep(args.start_delay)
         start = time.monotonic()
         player.play()
