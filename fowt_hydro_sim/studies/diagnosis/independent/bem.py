@@ -4,9 +4,8 @@ hydrostatics computed from the geometry. Only the platform's typed description i
 the model (geometry, environment); nothing of its kernel.
 
 The hull is three vertical cylinders (open at the waterline) and three rectangular
-pontoons whose open ends reach into the columns until their corners touch the column
-surface; the panels of each part that lie inside the other are kept (a coarse mesh's
-usual error, small next to the pontoon-column junction's true shape)."""
+pontoons running into the columns, with the panels of each part that lie inside another
+removed (the junctions stay open by about a panel: a coarse mesh's error)."""
 from __future__ import annotations
 
 import logging
@@ -113,10 +112,28 @@ def hydrostatics(platform: Platform) -> tuple[np.ndarray, float]:
     return stiffness, volume
 
 
+def _inside_column(points: np.ndarray, column) -> np.ndarray:
+    """Points within the column's radius (over its immersed height, bottom included)."""
+    bottom = min(column.end_a_m[2], column.end_b_m[2])
+    radial = np.hypot(points[:, 0] - column.end_a_m[0], points[:, 1] - column.end_a_m[1])
+    return (radial < column.width_m / 2.0 - 1e-6) & (points[:, 2] >= bottom - 1e-6)
+
+
+def _inside_box(points: np.ndarray, centre: np.ndarray, angle: float, size: tuple[float, float, float]) -> np.ndarray:
+    """Points strictly inside a box of ``size`` (along, across, up) about ``centre`` turned by ``angle``."""
+    d = points - centre
+    along = d[:, 0] * math.cos(angle) + d[:, 1] * math.sin(angle)
+    across = -d[:, 0] * math.sin(angle) + d[:, 1] * math.cos(angle)
+    return ((np.abs(along) < size[0] / 2 - 1e-6) & (np.abs(across) < size[1] / 2 - 1e-6)
+            & (np.abs(d[:, 2]) < size[2] / 2 - 1e-6))
+
+
 def hull_mesh(platform: Platform, panel_size_m: float = PANEL_SIZE_M):
-    """The immersed hull as one capytaine mesh (normals outward)."""
+    """The immersed hull as one capytaine mesh (normals outward): the panels of each part
+    that lie inside another part are removed (pontoon panels within a column's radius,
+    column panels inside a pontoon), which leaves the junctions open by about a panel."""
     import capytaine as cpt
-    parts = []
+    columns, boxes = [], []
     for column in _columns(platform):
         radius = column.width_m / 2.0
         length = _immersed_length_m(column)
@@ -124,29 +141,40 @@ def hull_mesh(platform: Platform, panel_size_m: float = PANEL_SIZE_M):
         n_theta = max(12, int(round(2 * math.pi * radius / panel_size_m)))
         n_z = max(3, int(round(length / panel_size_m)))
         n_r = max(2, int(round(radius / panel_size_m)))
-        # one panel row above the waterline, clipped off by immersed_part
-        extra = length / n_z
-        cylinder = cpt.mesh_vertical_cylinder(
+        extra = length / n_z  # one panel row above the waterline, clipped off by immersed_part
+        columns.append(cpt.mesh_vertical_cylinder(
             length=length + extra, radius=radius, center=(column.end_a_m[0], column.end_a_m[1],
                                                           bottom + (length + extra) / 2.0),
-            resolution=(n_r, n_theta, n_z + 1), name=column.name)
-        parts.append(cylinder)
+            resolution=(n_r, n_theta, n_z + 1), name=column.name))
     column_radius = _columns(platform)[0].width_m / 2.0
     for pontoon in _pontoons(platform):
         a, b = np.asarray(pontoon.end_a_m), np.asarray(pontoon.end_b_m)
         axis = b - a
         length = float(np.linalg.norm(axis))
-        half_width = pontoon.width_m / 2.0
-        reach = column_radius - math.sqrt(column_radius ** 2 - half_width ** 2)  # to the corner's contact
-        full = length + 2.0 * reach
+        full = length + 2.0 * column_radius  # open ends at the column centres
         box = cpt.mesh_parallelepiped(
             size=(full, pontoon.width_m, pontoon.height_m), center=(0.0, 0.0, 0.0),
             resolution=(max(4, int(round(full / panel_size_m))), max(2, int(round(pontoon.width_m / panel_size_m))),
                         max(2, int(round(pontoon.height_m / panel_size_m)))),
             missing_sides={"left", "right"}, name=pontoon.name)
         angle = math.atan2(axis[1], axis[0])
-        parts.append(box.rotated_z(angle).translated(tuple((a + b) / 2.0)))
-    mesh = parts[0].join_meshes(*parts[1:])
+        centre = (a + b) / 2.0
+        boxes.append((box.rotated_z(angle).translated(tuple(centre)), centre, angle,
+                      (full, pontoon.width_m, pontoon.height_m)))
+    kept = []
+    for mesh in columns:
+        centres = mesh.faces_centers
+        inside = np.zeros(len(centres), bool)
+        for _, centre, angle, size in boxes:
+            inside |= _inside_box(centres, centre, angle, size)
+        kept.append(mesh.extract_faces(np.flatnonzero(~inside)))
+    for mesh, *_ in boxes:
+        centres = mesh.faces_centers
+        inside = np.zeros(len(centres), bool)
+        for column in _columns(platform):
+            inside |= _inside_column(centres, column)
+        kept.append(mesh.extract_faces(np.flatnonzero(~inside)))
+    mesh = kept[0].join_meshes(*kept[1:])
     return mesh.immersed_part(water_depth=platform.environment.water_depth_m)
 
 
@@ -191,8 +219,12 @@ def solve(platform: Platform, frequencies_hz=FREQUENCIES_HZ, headings_deg=HEADIN
     if not solved.all():
         LOG.warning("dropped %d unsolved frequencies: %s rad/s", int((~solved).sum()),
                     np.round(data["omega"].values[~solved], 4).tolist())
+    # the open junctions leave A and B slightly unsymmetric (surge-pitch ~13 %): symmetrised
+    asymmetry = np.abs(added - np.swapaxes(added, 1, 2))[solved].max() / np.abs(added[solved]).max()
+    LOG.info("added-mass asymmetry %.3f of its largest term; stored symmetrised", asymmetry)
+    symmetric = lambda m: 0.5 * (m + np.swapaxes(m, -1, -2))  # noqa: E731
     stiffness, volume = hydrostatics(platform)
-    return HydroDatabase(omega_rad_s=data["omega"].values[solved], added_mass=added[solved],
-                         damping=damping[solved], added_mass_inf=added_inf,
+    return HydroDatabase(omega_rad_s=data["omega"].values[solved], added_mass=symmetric(added[solved]),
+                         damping=symmetric(damping[solved]), added_mass_inf=symmetric(added_inf),
                          headings_deg=np.asarray(headings_deg, float), excitation=np.conj(excitation[solved]), hydrostatic_stiffness=stiffness,
                          displaced_volume_m3=volume, panels=int(mesh.nb_faces))
