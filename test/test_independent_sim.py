@@ -94,10 +94,10 @@ def test_heave_free_decay_period_and_radiation_damping():
     ups = np.flatnonzero((z[:-1] < 0) & (z[1:] >= 0))
     crossings = t[ups] - z[ups] / (z[ups + 1] - z[ups]) * (t[1] - t[0])
     period = float(np.mean(np.diff(crossings)))
-    assert period == pytest.approx(2 * math.pi / omega, rel=0.01)
+    assert period == pytest.approx(2 * math.pi / omega, rel=0.003)
     peaks = [np.max(z[(t >= a) & (t < b)]) for a, b in zip(crossings[:-1], crossings[1:])]
     measured = -np.polyfit(crossings[:-1], np.log(peaks), 1)[0]
-    assert measured == pytest.approx(decay_rate, rel=0.25, abs=2e-4)
+    assert measured == pytest.approx(decay_rate, rel=0.2)
 
 
 @pytest.mark.parametrize("omega_index", [14, 18])
@@ -192,3 +192,18 @@ def test_measured_run_has_the_replay_shape():
     assert run.motion_time_s[1] - run.motion_time_s[0] == pytest.approx(0.25)
     assert run.motion.shape == (run.motion_time_s.size, 6) and np.all(np.isfinite(run.motion))
     assert run.point_xy_m == (0.0, 0.0)
+
+
+def test_newman_drift_effect_has_the_mean_drift_of_its_coefficient():
+    """The injected drift force |sum a_j sqrt(D_j) e^{i theta_j}|^2 averages, over the
+    sea's repeat period, to sum D(w_j) a_j^2 (the mean drift of each component)."""
+    waves = cummins.jonswap_waves(6.0, 11.0, 2.0, 200.0, seed=3)
+    table = ((0.3, 2.0e4), (0.8, 6.0e4), (1.2, 1.0e4))
+    effects = cummins.Effects(drift_coefficient_n_m2=table)
+    time_s = np.arange(0.0, 200.0, 0.05)
+    force = effects.drift_force_n(waves, time_s)
+    coefficient = np.interp(waves.omega_rad_s, *np.asarray(table).T)
+    assert np.mean(force) == pytest.approx(np.sum(coefficient * waves.amplitude_m ** 2), rel=1e-9)
+    assert np.all(force >= 0.0)
+    with pytest.raises(ValueError, match="drift coefficient"):
+        cummins.Effects(drift_coefficient_n_m2=((0.3, -1.0),)).drift_force_n(waves, time_s)
