@@ -4,6 +4,7 @@ against frequency-domain closed forms, the drag against a hand sum, and the exci
 the fixed hull against the OpenFAST HydroDyn reference in a band where strip theory holds."""
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -95,9 +96,27 @@ def test_heave_free_decay_period_and_radiation_damping():
     crossings = t[ups] - z[ups] / (z[ups + 1] - z[ups]) * (t[1] - t[0])
     period = float(np.mean(np.diff(crossings)))
     assert period == pytest.approx(2 * math.pi / omega, rel=0.003)
-    peaks = [np.max(z[(t >= a) & (t < b)]) for a, b in zip(crossings[:-1], crossings[1:])]
+    peaks = [np.max(z[(t >= a) & (t < b)]) for a, b in itertools.pairwise(crossings)]
     measured = -np.polyfit(crossings[:-1], np.log(peaks), 1)[0]
     assert measured == pytest.approx(decay_rate, rel=0.2)
+
+
+def test_added_mass_baseline_scale_moves_the_heave_period_as_the_closed_form():
+    """Baseline(added_mass_scale=s) scales A_inf and the kernel, hence A(w): the heave period
+    becomes 2 pi sqrt((m + s A33(w_n)) / C33)."""
+    scale = 1.2
+    mass = cummins.rigid_body_mass(PLATFORM)[2, 2]
+    c33 = DATABASE.hydrostatic_stiffness[2, 2]
+    omega = math.sqrt(c33 / mass)
+    for _ in range(50):
+        omega = math.sqrt(c33 / (mass + scale * np.interp(omega, DATABASE.omega_rad_s, DATABASE.added_mass[:, 2, 2])))
+    run = cummins.integrate(PLATFORM, DATABASE, None, 120.0, 0.05,
+                            cummins.Baseline(drag=False, mooring=False, added_mass_scale=scale),
+                            initial=np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]))
+    z, t = run.position[:, 2], run.time_s
+    ups = np.flatnonzero((z[:-1] < 0) & (z[1:] >= 0))
+    crossings = t[ups] - z[ups] / (z[ups + 1] - z[ups]) * (t[1] - t[0])
+    assert float(np.mean(np.diff(crossings))) == pytest.approx(2 * math.pi / omega, rel=0.003)
 
 
 @pytest.mark.parametrize("omega_index", [14, 18])
@@ -174,7 +193,7 @@ def test_excitation_on_the_fixed_hull_against_hydrodyn():
     inside = (waves.omega_rad_s >= DATABASE.omega_rad_s[0]) & (waves.omega_rad_s <= DATABASE.omega_rad_s[-1])
     waves = cummins.Waves(waves.omega_rad_s[inside], waves.amplitude_m[inside], waves.phase_rad[inside])
     force = cummins.forcing(DATABASE, PLATFORM, cummins.strips(PLATFORM), waves, time_s, cummins.Effects())
-    spectrum = lambda x: np.fft.rfft(x[:-1] - np.mean(x[:-1]))  # noqa: E731  one 600 s period
+    spectrum = lambda x: np.fft.rfft(x[:-1] - np.mean(x[:-1]))
     f = np.fft.rfftfreq(time_s.size - 1, time_s[1] - time_s[0])
     fx = spectrum(force.excitation[:, 0]), spectrum(out[:, header.index("HydroFxi")])
     my = spectrum(force.excitation[:, 4]), spectrum(out[:, header.index("HydroMyi")])
@@ -207,3 +226,13 @@ def test_newman_drift_effect_has_the_mean_drift_of_its_coefficient():
     assert np.all(force >= 0.0)
     with pytest.raises(ValueError, match="drift coefficient"):
         cummins.Effects(drift_coefficient_n_m2=((0.3, -1.0),)).drift_force_n(waves, time_s)
+
+
+@pytest.mark.parametrize("argv, message", [(["bem", "--platform", "nope"], "--platform: platform 'nope'"),
+                                           (["bem", "--panel-size-m", "0"], "--panel-size-m: must be > 0")])
+def test_the_bem_script_names_bad_input_and_exits_2(argv, message, capsys):
+    from fowt_hydro_sim.studies.diagnosis.independent.__main__ import main
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
+    assert message in capsys.readouterr().err

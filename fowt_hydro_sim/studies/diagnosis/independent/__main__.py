@@ -5,8 +5,10 @@ import argparse
 import logging
 import sys
 
-from fowt_hydro_sim.physics.config import load_platform
+from fowt_hydro_sim.physics.config import ConfigError, load_platform
 from fowt_hydro_sim.studies.diagnosis.independent import bem
+
+LOG = logging.getLogger(__name__)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -19,9 +21,15 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     logging.getLogger("capytaine").setLevel(logging.WARNING)
-    database = bem.solve(load_platform(args.platform), panel_size_m=args.panel_size_m)
+    if args.panel_size_m <= 0.0:
+        parser.error(f"--panel-size-m: must be > 0, got {args.panel_size_m:g}")
+    try:
+        platform = load_platform(args.platform)
+    except (ConfigError, OSError) as error:
+        parser.error(f"--platform: {error}")
+    database = bem.solve(platform, panel_size_m=args.panel_size_m)
     bem.save_database(database, args.out)
-    logging.info("wrote %s (%d panels, %d frequencies)", args.out, database.panels, len(database.omega_rad_s))
+    LOG.info("wrote %s (%d panels, %d frequencies)", args.out, database.panels, len(database.omega_rad_s))
     return 0
 
 

@@ -138,9 +138,9 @@ def hull_mesh(platform: Platform, panel_size_m: float = PANEL_SIZE_M):
         radius = column.width_m / 2.0
         length = _immersed_length_m(column)
         bottom = min(column.end_a_m[2], column.end_b_m[2])
-        n_theta = max(12, int(round(2 * math.pi * radius / panel_size_m)))
-        n_z = max(3, int(round(length / panel_size_m)))
-        n_r = max(2, int(round(radius / panel_size_m)))
+        n_theta = max(12, round(2 * math.pi * radius / panel_size_m))
+        n_z = max(3, round(length / panel_size_m))
+        n_r = max(2, round(radius / panel_size_m))
         extra = length / n_z  # one panel row above the waterline, clipped off by immersed_part
         columns.append(cpt.mesh_vertical_cylinder(
             length=length + extra, radius=radius, center=(column.end_a_m[0], column.end_a_m[1],
@@ -154,8 +154,8 @@ def hull_mesh(platform: Platform, panel_size_m: float = PANEL_SIZE_M):
         full = length + 2.0 * column_radius  # open ends at the column centres
         box = cpt.mesh_parallelepiped(
             size=(full, pontoon.width_m, pontoon.height_m), center=(0.0, 0.0, 0.0),
-            resolution=(max(4, int(round(full / panel_size_m))), max(2, int(round(pontoon.width_m / panel_size_m))),
-                        max(2, int(round(pontoon.height_m / panel_size_m)))),
+            resolution=(max(4, round(full / panel_size_m)), max(2, round(pontoon.width_m / panel_size_m)),
+                        max(2, round(pontoon.height_m / panel_size_m))),
             missing_sides={"left", "right"}, name=pontoon.name)
         angle = math.atan2(axis[1], axis[0])
         centre = (a + b) / 2.0
@@ -222,7 +222,7 @@ def solve(platform: Platform, frequencies_hz=FREQUENCIES_HZ, headings_deg=HEADIN
     # the open junctions leave A and B slightly unsymmetric (surge-pitch ~13 %): symmetrised
     asymmetry = np.abs(added - np.swapaxes(added, 1, 2))[solved].max() / np.abs(added[solved]).max()
     LOG.info("added-mass asymmetry %.3f of its largest term; stored symmetrised", asymmetry)
-    symmetric = lambda m: 0.5 * (m + np.swapaxes(m, -1, -2))  # noqa: E731
+    symmetric = lambda m: 0.5 * (m + np.swapaxes(m, -1, -2))
     stiffness, volume = hydrostatics(platform)
     return HydroDatabase(omega_rad_s=data["omega"].values[solved], added_mass=symmetric(added[solved]),
                          damping=symmetric(damping[solved]), added_mass_inf=symmetric(added_inf),

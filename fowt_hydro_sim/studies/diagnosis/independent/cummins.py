@@ -138,7 +138,7 @@ def strips(platform: Platform, cd_scale: float = 1.0, strip_length_m: float | No
             bottom = a if a[2] < b[2] else b
             plate[0].append(bottom)
             plate[1].append(cd_scale * member.end_a_plate.cd * math.pi * member.width_m ** 2 / 4.0)
-    array = lambda items, shape: np.asarray(items, float).reshape(shape)  # noqa: E731
+    array = lambda items, shape: np.asarray(items, float).reshape(shape)
     return Strips(array(circ[0], (-1, 3)), array(circ[1], (-1, 3)), array(circ[2], (-1,)),
                   array(box[0], (-1, 3)), array(box[1], (-1, 2, 3)), array(box[2], (-1, 2)),
                   array(plate[0], (-1, 3)), array(plate[1], (-1,)))
@@ -311,7 +311,7 @@ def integrate(platform: Platform, database: HydroDatabase, waves: Waves | None, 
     K with the velocity history at each step, extrapolated linearly inside the step."""
     env = platform.environment
     rho = env.water_density_kg_m3
-    steps = int(round(duration_s / dt_s))
+    steps = round(duration_s / dt_s)
     half_grid = np.arange(2 * steps + 1) * 0.5 * dt_s
     hull = strips(platform, baseline.cd_scale, baseline.strip_length_m)
     waves = waves or Waves(np.array([1.0]), np.zeros(1), np.zeros(1))
