@@ -236,3 +236,11 @@ def test_the_bem_script_names_bad_input_and_exits_2(argv, message, capsys):
         main(argv)
     assert stop.value.code == 2
     assert message in capsys.readouterr().err
+
+
+def test_a_short_sea_is_cut_at_the_bem_top_frequency_and_keeps_its_hs():
+    waves = cummins.jonswap_waves(3.74, 7.0, 4.9, 1800.0, seed=2)  # 4 fp = 0.57 Hz > 0.5 Hz
+    assert waves.omega_rad_s.max() <= DATABASE.omega_rad_s[-1]
+    assert 4.0 * math.sqrt(0.5 * np.sum(waves.amplitude_m ** 2)) == pytest.approx(3.74, rel=1e-12)
+    cummins.forcing(DATABASE, PLATFORM, cummins.strips(PLATFORM), waves, np.arange(0.0, 1.0, 0.5),
+                    cummins.Effects())

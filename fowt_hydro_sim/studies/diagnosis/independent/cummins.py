@@ -18,7 +18,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fowt_hydro_sim.physics.config import Platform
-from fowt_hydro_sim.studies.diagnosis.independent.bem import HydroDatabase
+from fowt_hydro_sim.studies.diagnosis.independent.bem import (
+    FREQUENCIES_HZ,
+    HydroDatabase,
+)
 from fowt_hydro_sim.studies.replay import MeasuredRun
 
 ELEVATION_STEP_S = 0.1
@@ -49,11 +52,14 @@ def wavenumber(omega_rad_s: np.ndarray, depth_m: float, g: float) -> np.ndarray:
 
 
 def jonswap_waves(hs_m: float, tp_s: float, gamma: float, period_s: float, seed: int,
-                  heading_deg: float = 0.0, band_tp: tuple[float, float] = (0.5, 4.0)) -> Waves:
-    """Random-phase components at f = i / period_s between band_tp x the peak frequency,
-    amplitudes sqrt(2 S df) from the JONSWAP spectrum (Goda's form), scaled to the Hs."""
+                  heading_deg: float = 0.0, band_tp: tuple[float, float] = (0.5, 4.0),
+                  f_max_hz: float = float(FREQUENCIES_HZ[-1])) -> Waves:
+    """Random-phase components at f = i / period_s between band_tp x the peak frequency (and
+    at most f_max_hz, the BEM's highest by default), amplitudes sqrt(2 S df) from the JONSWAP
+    spectrum (Goda's form), scaled to the Hs."""
     fp = 1.0 / tp_s
-    f = np.arange(math.ceil(band_tp[0] * fp * period_s), math.floor(band_tp[1] * fp * period_s) + 1) / period_s
+    top = min(band_tp[1] * fp, f_max_hz)
+    f = np.arange(math.ceil(band_tp[0] * fp * period_s), math.floor(top * period_s + 1e-9) + 1) / period_s
     sigma = np.where(f <= fp, 0.07, 0.09)
     shape = f ** -5 * np.exp(-1.25 * (fp / f) ** 4) * gamma ** np.exp(-((f / fp - 1.0) ** 2) / (2 * sigma ** 2))
     amplitude = np.sqrt(2.0 * shape / period_s)
