@@ -36,7 +36,7 @@ setup(
     maintainer_email='fowt-dev@example.com',
     python_requires='>=3.10',
     packages=PACKAGES,
-    package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'rosbag/msg/**/*']},
+    package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'studies/diagnosis/independent/data/*', 'rosbag/msg/**/*']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
@@ -61,6 +61,8 @@ setup(
         'test': ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0'],
         # fowt-sim platform import (OpenFAST HydroDyn decks)
         'hydrodyn': ['openfast-io>=5.0'],
+        # rebuilding the independent simulator's BEM database (the stored one needs neither)
+        'bem': ['capytaine>=3.0', 'xarray'],
     },
     zip_safe=False,
     entry_points={

@@ -1,0 +1,37 @@
+"""``python -m fowt_hydro_sim.studies.diagnosis.independent bem``: rebuild the BEM database."""
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+
+from fowt_hydro_sim.physics.config import ConfigError, load_platform
+from fowt_hydro_sim.studies.diagnosis.independent import bem
+
+LOG = logging.getLogger(__name__)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m fowt_hydro_sim.studies.diagnosis.independent")
+    sub = parser.add_subparsers(dest="command", required=True)
+    build = sub.add_parser("bem", help="mesh the hull and solve radiation and diffraction with capytaine")
+    build.add_argument("--platform", default="windmoor12")
+    build.add_argument("--panel-size-m", type=float, default=bem.PANEL_SIZE_M)
+    build.add_argument("--out", default=str(bem.DATABASE))
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    logging.getLogger("capytaine").setLevel(logging.WARNING)
+    if args.panel_size_m <= 0.0:
+        parser.error(f"--panel-size-m: must be > 0, got {args.panel_size_m:g}")
+    try:
+        platform = load_platform(args.platform)
+    except (ConfigError, OSError) as error:
+        parser.error(f"--platform: {error}")
+    database = bem.solve(platform, panel_size_m=args.panel_size_m)
+    bem.save_database(database, args.out)
+    LOG.info("wrote %s (%d panels, %d frequencies)", args.out, database.panels, len(database.omega_rad_s))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
