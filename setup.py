@@ -36,7 +36,7 @@ setup(
     maintainer_email='fowt-dev@example.com',
     python_requires='>=3.10',
     packages=PACKAGES,
-    package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'rosbag/msg/**/*']},
+    package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'turbine/data/*.yaml', 'rosbag/msg/**/*']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
@@ -57,6 +57,8 @@ setup(
     ],
     extras_require={
         'ros': ROS_WHEELS,
+        # the turbine node's controller: NREL's ROSCO (compiled library, toolbox, IEA 15 MW files)
+        'rosco': ['rosco>=2.10,<2.11'],
         # independent bag readers, to check the bags we write
         'test': ['pytest', 'mcap-ros2-support', 'rosbags'],
     },

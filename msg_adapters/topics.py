@@ -28,6 +28,15 @@ MOTION = {  # the node's outputs before the loads, by short name: (topic, type)
     "accel": ("/platform/accel", ACCEL_STAMPED),
 }
 ELEVATION_USED = ("/waves/elevation_used", POINT_STAMPED)
+FLOAT64 = "std_msgs/msg/Float64"
+TURBINE = {  # the turbine node's state, by short name: (topic, type); SI units
+    "rotor_speed": ("/turbine/rotor_speed", FLOAT64),  # rad/s
+    "generator_torque": ("/turbine/generator_torque", FLOAT64),  # N m
+    "generator_power": ("/turbine/generator_power", FLOAT64),  # W
+    "blade_pitch": ("/turbine/blade_pitch", FLOAT64),  # rad
+    "wind_speed": ("/turbine/wind_speed", FLOAT64),  # free wind at the hub, m/s
+    "relative_wind_speed": ("/turbine/relative_wind_speed", FLOAT64),  # wind minus hub fore-aft velocity, m/s
+}
 
 
 def load_topic(name: str) -> str:
