@@ -8,9 +8,9 @@ import logging
 import sys
 
 NODE_OPTIONS = ("platform", "drag_model", "load_case", "hs_m", "tp_s", "seed", "duration_s", "dt_s",
-                "real_time_factor", "publish_rate_hz", "lockstep_timeout_s", "controller_lost", "controller_timeouts")
+                "real_time_factor", "publish_rate_hz", "initial_state", "lockstep_timeout_s", "controller_lost", "controller_timeouts")
 TURBINE_OPTIONS = ("turbine", "hub_height_m", "wind", "wind_speed_m_s", "wind_end_m_s", "wind_start_s", "wind_ramp_s",
-                   "wind_file", "rotor_speed_rad_s", "fixed_platform")
+                   "wind_file", "rotor_start", "rotor_speed_rad_s", "pitch_rad", "fixed_platform")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -24,7 +24,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", required=True, help="bag directory to create")
     p.add_argument("--overwrite", action="store_true", help="replace an existing bag")
     options.add(p.add_argument_group("platform node"), NodeSettings, NODE_OPTIONS,
-                defaults={"duration_s": 600.0, "real_time_factor": 0.0, "load_case": "lc5.2"})
+                defaults={"duration_s": 600.0, "real_time_factor": 0.0, "load_case": "lc5.2", "initial_state": None},
+                notes={"initial_state": "; not given: the static offset under the initial thrust"})
     options.add(p.add_argument_group("turbine node"), TurbineSettings, TURBINE_OPTIONS,
                 defaults={"wind_speed_m_s": 13.0})
     return p
@@ -44,8 +45,9 @@ def closed_loop(argv: list[str]) -> int:
         turbine = options.values(args, TurbineSettings, TURBINE_OPTIONS)
         if not node["duration_s"]:
             raise ConfigError("--duration: a closed-loop run needs a duration > 0")
-        NodeSettings(**{**node, "lockstep": True})  # the rules between settings, before starting anything
-        TurbineSettings(**turbine)
+        # the rules between settings, before starting anything
+        NodeSettings(**{k: v for k, v in node.items() if v is not None}, lockstep=True)
+        TurbineSettings(**{k: v for k, v in turbine.items() if v is not None})
     except ValueError as exc:
         sys.stderr.write(f"fowt-sim closed-loop: error: {exc}\n")
         return 2

@@ -57,11 +57,44 @@ def _stop(process: subprocess.Popen, timeout_s: float = 20.0) -> int:
         return process.wait()
 
 
+def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float, ...]:
+    """The platform's offset K^-1 F under the turbine's steady thrust in the initial wind (K:
+    the platform's restoring matrix at rest), where a closed loop starts without a start-up
+    swing."""
+    import numpy as np
+
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.physics.model import PlatformModel
+    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.turbine.description import load_turbine
+    from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
+    from fowt_hydro_sim.turbine.rotor import aero_loads, steady_operating_point
+
+    settings = TurbineSettings(**{k: v for k, v in turbine.items() if v is not None})
+    description = load_turbine(settings.turbine)
+    coefficients = RotorCoefficients(read_table(description.performance_path))
+    wind = settings.make_wind().at(0.0)
+    speed, pitch, _ = steady_operating_point(description, coefficients, wind)
+    thrust, _ = aero_loads(description, coefficients, wind, speed, pitch)
+    platform = load_platform(node.get("platform") or "windmoor12")
+    hub = np.array(platform.hub_point_m)
+    if settings.hub_height_m:
+        hub[2] = settings.hub_height_m
+    force = np.array([thrust, 0.0, 0.0])
+    stiffness = PlatformModel(platform, None).restoring_matrix()
+    return tuple(float(v) for v in np.linalg.solve(stiffness, np.concatenate([force, np.cross(hub, force)])))
+
+
 def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrite: bool = False,
         timeout_s: float = 3600.0) -> ClosedLoopResult:
     """Run the loop: ``node`` and ``turbine`` are the two nodes' parameters (the node's
-    lockstep is set); the bag and the nodes' logs (``<bag>.logs/``) are written."""
+    lockstep is set; without an ``initial_state`` the platform starts at its static offset
+    under the initial thrust); the bag and the nodes' logs (``<bag>.logs/``) are written."""
     bag = Path(bag)
+    if node.get("initial_state") is None:
+        node = {**node, "initial_state": list(static_offset(node, turbine))}
+        log.info(f"the platform starts at its static offset under the initial thrust: "
+                 f"{', '.join(f'{v:.4g}' for v in node['initial_state'])}")
     logs = Path(f"{bag}.logs")
     logs.mkdir(parents=True, exist_ok=True)
     record = [sys.executable, "-m", "fowt_hydro_sim.cli", "record", "-o", str(bag)] + (["--overwrite"] if overwrite

@@ -88,6 +88,7 @@ class NodeSettings:
     wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed",
                                     gt=0.0)
     dt_s: float = like(RunConfig, "dt_s")
+    initial_state: tuple[float, ...] = like(RunConfig, "initial_state")
     real_time_factor: float = setting(1.0, "1 = real time, N = N times faster, 0 = as fast as possible", ge=0.0)
     publish_rate_hz: float = setting(20.0, "output rate in simulation time [Hz]; a multiple of it must be 1/dt_s",
                                      gt=0.0)
@@ -141,6 +142,7 @@ class SimulatorNode(Node):
         if s.wave_source == "internal":
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
         self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model)
+        self.model.reset(motion=np.array(s.initial_state))
         self._feed: WaveFeed | None = None
         self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
         if s.wave_source != "internal":

@@ -29,7 +29,7 @@ from fowt_hydro_sim.settings import like, setting
 from fowt_hydro_sim.turbine.controller import ControllerError, Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
-from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads
+from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads, steady_operating_point
 from fowt_hydro_sim.turbine.wind import WIND_KINDS, Wind, read_series, series_wind
 from msg_adapters import topics
 
@@ -49,8 +49,11 @@ class TurbineSettings:
     wind_start_s: float = setting(0.0, "time of the step or start of the ramp [s]", ge=0.0)
     wind_ramp_s: float = setting(60.0, "duration of the ramp [s]", gt=0.0)
     wind_file: str = setting("", "CSV of time [s] and hub-height wind speed [m/s] (wind file)")
-    rotor_speed_rad_s: float = setting(0.0, "initial rotor speed [rad/s]; 0 = rated", ge=0.0)
-    pitch_rad: float = setting(0.0, "initial blade pitch [rad]", ge=-0.5, le=1.6)
+    rotor_start: str = setting("steady", "steady: the turbine starts at its steady operating point in the "
+                                           "initial wind; given: at rotor_speed_rad_s and pitch_rad",
+                                 choices=("steady", "given"))
+    rotor_speed_rad_s: float = setting(0.5, "initial rotor speed (rotor_start given) [rad/s]", ge=0.0)
+    pitch_rad: float = setting(0.0, "initial blade pitch (rotor_start given) [rad]", ge=-0.5, le=1.6)
     fixed_platform: bool = setting(False, "ignore the platform's motion (a turbine on a fixed foundation)")
     rosco_logging: int = setting(0, "ROSCO's LoggingLevel (debug files in its temporary folder)", ge=0, le=3)
 
@@ -77,8 +80,9 @@ class TurbineNode(Node):
         self.coefficients = RotorCoefficients(read_table(self.turbine.performance_path))
         self.rosco = Rosco(self.turbine.discon_path, self.turbine.controller_dt_s, self.turbine.generator_efficiency,
                            s.rosco_logging)
-        self.model = TurbineModel(self.turbine, self.coefficients, self.rosco,
-                                  s.rotor_speed_rad_s or self.turbine.rated_rotor_speed_rad_s, s.pitch_rad)
+        start = (steady_operating_point(self.turbine, self.coefficients, self.wind.at(0.0))
+                 if s.rotor_start == "steady" else (s.rotor_speed_rad_s, s.pitch_rad, 0.0))
+        self.model = TurbineModel(self.turbine, self.coefficients, self.rosco, *start)
         self.failed = False
         self._last = None  # (stamp, pitch rate) of the last odometry answered
         qos = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)

@@ -21,7 +21,7 @@ from mcap.writer import MCAP0_MAGIC
 from fowt_hydro_sim.frames import euler_from_quaternion
 from fowt_hydro_sim.rosbag.writer import METADATA_FILE, RUN_CONFIG_KEY, BagError
 from msg_adapters import topics as contract
-from msg_adapters.cdr import decode_stamped
+from msg_adapters.cdr import decode_float64, decode_stamped
 
 RECOVER_HINT = "`fowt-sim recover {path}` rebuilds it from its complete chunks"
 
@@ -172,6 +172,17 @@ class Bag:
         time_s, values = time_s[order], values[order]
         keep = np.concatenate([[True], np.diff(time_s) > 0])
         return Series(time_s[keep], values[keep])
+
+    def scalar(self, topic: str) -> Series:
+        """A std_msgs/Float64 topic (unstamped: its log times, simulation time when recorded
+        with /clock) as arrays (n,) and (n, 1)."""
+        self.check_type(topic, contract.FLOAT64)
+        stamped = [(log_time, data) for _, log_time, data in self.messages([topic])]
+        try:
+            values = decode_float64([data for _, data in stamped])
+        except ValueError as exc:
+            raise BagError(f"bag {self.path}: topic {topic}: {exc}") from None
+        return Series(np.array([t for t, _ in stamped]) * 1e-9, values[:, None])
 
     def aligned(self, topics: list[str], time_s: np.ndarray | None = None) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """Several topics on one time base (default: the first topic's stamps, where all

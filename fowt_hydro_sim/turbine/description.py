@@ -30,6 +30,8 @@ class TurbineDescription:
                                           gt=0.0, le=1.0)
     air_density_kg_m3: float = setting(1.225, "air density [kg/m^3]", gt=0.0)
     rated_rotor_speed_rad_s: float = setting(REQUIRED, "rated rotor speed [rad/s]", gt=0.0)
+    rated_power_w: float = setting(REQUIRED, "rated electrical power [W]", gt=0.0)
+    optimal_tsr: float = setting(REQUIRED, "tip-speed ratio of the most power below rated [-]", gt=0.0)
     min_pitch_rad: float = setting(0.0, "lowest blade pitch of the actuator [rad]", ge=-0.5, le=1.6)
     max_pitch_rad: float = setting(1.57, "highest blade pitch of the actuator [rad]", ge=-0.5, le=1.6)
     max_pitch_rate_rad_s: float = setting(REQUIRED, "blade pitch rate limit of the actuator [rad/s]", gt=0.0)
@@ -42,6 +44,10 @@ class TurbineDescription:
     def __post_init__(self) -> None:
         if self.min_pitch_rad >= self.max_pitch_rad:
             raise ConfigError(f"turbine {self.name}: min_pitch_rad must be below max_pitch_rad")
+
+    @property
+    def rated_generator_torque_nm(self) -> float:
+        return self.rated_power_w / (self.rated_rotor_speed_rad_s * self.gearbox_ratio * self.generator_efficiency)
 
     @property
     def performance_path(self) -> Path:

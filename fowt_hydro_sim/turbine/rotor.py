@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from scipy.optimize import brentq
+
 from fowt_hydro_sim.turbine.description import TurbineDescription
 from fowt_hydro_sim.turbine.performance import RotorCoefficients
 
@@ -43,6 +45,24 @@ def aero_loads(turbine: TurbineDescription, coefficients: RotorCoefficients, rel
     return thrust, torque
 
 
+def steady_operating_point(turbine: TurbineDescription, coefficients: RotorCoefficients,
+                           wind_m_s: float) -> tuple[float, float, float]:
+    """Rotor speed, blade pitch and generator torque where the rotor runs steadily in
+    ``wind_m_s``: below rated at the optimal tip-speed ratio (up to rated speed) and the
+    lowest pitch; above rated at rated speed and torque, the pitch balancing them."""
+    speed = min(turbine.rated_rotor_speed_rad_s, turbine.optimal_tsr * wind_m_s / turbine.rotor_radius_m)
+    shaft = turbine.rated_generator_torque_nm * turbine.gearbox_ratio / turbine.gearbox_efficiency
+
+    def surplus(pitch_rad: float) -> float:
+        return aero_loads(turbine, coefficients, wind_m_s, speed, pitch_rad)[1] - shaft
+
+    pitch = turbine.min_pitch_rad
+    if speed >= turbine.rated_rotor_speed_rad_s and surplus(pitch) > 0:
+        pitch = brentq(surplus, pitch, min(turbine.max_pitch_rad, float(coefficients.table.pitch_rad[-1])))
+    torque = aero_loads(turbine, coefficients, wind_m_s, speed, pitch)[1]
+    return speed, pitch, torque * turbine.gearbox_efficiency / turbine.gearbox_ratio
+
+
 def actuate_pitch(turbine: TurbineDescription, pitch_rad: float, command_rad: float, dt_s: float) -> float:
     """The blade pitch after one step towards the command, within rate and position limits."""
     most = turbine.max_pitch_rate_rad_s * dt_s
@@ -61,9 +81,10 @@ class TurbineModel:
     """The turbine stepped at its controller step; ``controller`` has ROSCO's ``step``."""
 
     def __init__(self, turbine: TurbineDescription, coefficients: RotorCoefficients, controller,
-                 rotor_speed_rad_s: float, pitch_rad: float = 0.0):
+                 rotor_speed_rad_s: float, pitch_rad: float = 0.0, generator_torque_nm: float = 0.0):
         self.turbine, self.coefficients, self.controller = turbine, coefficients, controller
-        self.state = TurbineState(rotor_speed_rad_s=rotor_speed_rad_s, pitch_rad=pitch_rad)
+        self.state = TurbineState(rotor_speed_rad_s=rotor_speed_rad_s, pitch_rad=pitch_rad,
+                                  generator_torque_nm=generator_torque_nm)
 
     @property
     def dt_s(self) -> float:

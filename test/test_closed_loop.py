@@ -1,0 +1,101 @@
+"""The closed loop over real DDS (loopback): the platform node and the turbine node with
+NREL's ROSCO as child processes, recorded to one bag; and the faults: the turbine killed
+mid-run, ROSCO refusing its input file."""
+from __future__ import annotations
+
+import re
+import signal
+
+import numpy as np
+import pytest
+
+pytest.importorskip("rclpy")
+pytest.importorskip("rosco")
+
+from rosgraph_msgs.msg import Clock  # noqa: E402
+
+from fowt_hydro_sim.ros import closed_loop  # noqa: E402
+from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
+from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
+from fowt_hydro_sim.turbine.description import load_turbine, turbine_path  # noqa: E402
+from msg_adapters import topics  # noqa: E402
+
+pytestmark = pytest.mark.ros
+PLATFORM_TOPICS = ("/clock", "/platform/odom", "/platform/pose", "/platform/external_wrench", "/platform/loads/total")
+
+
+def test_600_s_of_lc5_2_waves_and_13_m_s_wind(tmp_path):
+    bag_path = tmp_path / "loop"
+    result = closed_loop.run(bag_path, {"load_case": "lc5.2", "duration_s": 600.0, "real_time_factor": 0.0},
+                             {"wind": "steady", "wind_speed_m_s": 13.0}, timeout_s=1500.0)
+    assert result.returncodes == {"node": 0, "turbine": 0, "record": 0}, result.logs
+    assert result.simulated_s == pytest.approx(600.0)
+    bag = Bag(bag_path)
+    for topic in (*PLATFORM_TOPICS, *(t for t, _ in topics.TURBINE.values())):
+        assert bag.topics[topic].message_count >= 11_000, topic  # 20 Hz for 600 s, both nodes
+    rated = load_turbine().rated_rotor_speed_rad_s
+    speed = bag.scalar("/turbine/rotor_speed")
+    assert speed.time_s[-1] >= 599.9
+    assert np.all(np.abs(speed.values[:, 0] / rated - 1.0) < 0.10), (speed.values.min(), speed.values.max())
+    for topic, kind in topics.TURBINE.values():
+        assert np.all(np.isfinite(bag.scalar(topic).values)), topic
+    for topic in PLATFORM_TOPICS[1:]:
+        assert np.all(np.isfinite(bag.series(topic).values)), topic
+    motion = bag.motion().values
+    assert 0.05 < motion[:, 4].mean() < 0.25  # pitched by the thrust (static offset about 0.13 rad)
+    power = bag.scalar("/turbine/generator_power").values[:, 0]
+    assert power.mean() == pytest.approx(15e6, rel=0.05)  # above rated: rated power on average
+
+
+def clock_after(listener: Listener, time_s: float, timeout_s: float) -> bool:
+    def reached() -> bool:
+        clocks = listener.messages["/clock"]
+        return bool(clocks) and clocks[-1].clock.sec >= time_s
+    return listener.wait_for(reached, timeout_s)
+
+
+@pytest.mark.parametrize("lost", ["stop", "open_loop"])
+def test_the_turbine_killed_mid_run_is_noticed_and_the_parameter_followed(tmp_path, lost):
+    listener = Listener({"/clock": Clock})
+    bag_path = tmp_path / "run"
+    node = start("node", lockstep=True, duration_s=120.0 if lost == "open_loop" else 0.0, real_time_factor=0.0,
+                 controller_lost=lost, lockstep_timeout_s=1.0, record=str(bag_path))
+    turbine = start("turbine", wind_speed_m_s=12.0)
+    try:
+        assert clock_after(listener, 10.0, 180.0), finish(node, 5)
+        turbine.send_signal(signal.SIGKILL)
+        output = finish(node, 120.0)
+    finally:
+        finish(turbine, 5.0)
+        finish(node, 5.0)
+        listener.close()
+    gone = re.findall(r"lockstep: the controller is gone at t = ([\d.]+) s \(([^)]*)\)", output)
+    assert len(gone) == 1, output[-3000:]
+    assert float(gone[0][0]) >= 10.0
+    ended = float(re.search(r"stepping ended at t = ([\d.]+) s", output).group(1))
+    if lost == "stop":
+        assert "stepping stopped (controller_lost stop)" in output
+        assert ended == pytest.approx(float(gone[0][0]))
+    else:
+        assert "going on open loop" in output and ended == pytest.approx(120.0)
+    odom = Bag(bag_path).series("/platform/odom")  # the recording is complete and readable
+    assert odom.time_s[-1] == pytest.approx(ended)
+    assert np.all(np.isfinite(odom.values))
+
+
+def test_rosco_refusing_its_input_is_one_clear_line_and_the_bag_stays_readable(tmp_path):
+    good = load_turbine()
+    discon = tmp_path / "DISCON.IN"
+    discon.write_text(good.discon_path.read_text().replace("! PC_MaxPit", "! PC_MaxPitX", 1)
+                      .replace('"../IEA-15-240-RWT/', f'"{good.discon_path.parent.parent}/IEA-15-240-RWT/'))
+    source = turbine_path("iea15_umaine").read_text()
+    turbine_file = tmp_path / "broken.yaml"
+    turbine_file.write_text(source.replace(f"discon: {good.discon}", f"discon: {discon}"))
+    bag_path = tmp_path / "loop"
+    result = closed_loop.run(bag_path, {"duration_s": 30.0, "real_time_factor": 0.0},
+                             {"turbine": str(turbine_file)}, timeout_s=300.0)
+    assert result.returncodes["turbine"] == 2
+    errors = [line for line in result.logs["turbine"].splitlines() if "ERROR" in line]
+    assert len(errors) == 1 and "ROSCO failed starting" in errors[0], result.logs["turbine"]
+    assert "Traceback" not in result.logs["turbine"]
+    Bag(bag_path)  # closed and readable
