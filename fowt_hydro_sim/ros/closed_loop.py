@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 log = logging.getLogger("fowt_hydro_sim.closed_loop")
+RECORDER_READY_S = 120.0  # wall seconds at most for the recorder to see the platform node (its start compiles)
 
 
 @dataclass(frozen=True)
@@ -85,6 +86,16 @@ def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float,
     return tuple(float(v) for v in np.linalg.solve(stiffness, np.concatenate([force, np.cross(hub, force)])))
 
 
+def _wait_for_recording(record_log: Path, processes: dict[str, subprocess.Popen], timeout_s: float) -> None:
+    """Until the recorder subscribes to the platform's odometry (or a process ends, or the
+    timeout: the run goes on, the bag may miss its first messages)."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline and all(p.poll() is None for p in processes.values()):
+        if "recording /platform/odom" in record_log.read_text():
+            return
+        time.sleep(0.1)
+
+
 def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrite: bool = False,
         timeout_s: float = 3600.0) -> ClosedLoopResult:
     """Run the loop: ``node`` and ``turbine`` are the two nodes' parameters (the node's
@@ -101,6 +112,7 @@ def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrit
                                                                                        else [])
     processes = {"record": _start(record, logs / "record.log")}
     processes["node"] = _start(_command("node", {**node, "lockstep": True}), logs / "node.log")
+    _wait_for_recording(logs / "record.log", processes, RECORDER_READY_S)  # the run's first messages too
     processes["turbine"] = _start(_command("turbine", turbine), logs / "turbine.log")
     codes: dict[str, int] = {}
     try:

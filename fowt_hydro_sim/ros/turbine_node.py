@@ -78,10 +78,10 @@ class TurbineNode(Node):
         self.hub_point_m = np.array(load_platform(s.platform).hub_point_m)
         self.thrust_height_m = s.hub_height_m or float(self.hub_point_m[2])
         self.coefficients = RotorCoefficients(read_table(self.turbine.performance_path))
-        self.rosco = Rosco(self.turbine.discon_path, self.turbine.controller_dt_s, self.turbine.generator_efficiency,
-                           s.rosco_logging)
         start = (steady_operating_point(self.turbine, self.coefficients, self.wind.at(0.0))
                  if s.rotor_start == "steady" else (s.rotor_speed_rad_s, s.pitch_rad, 0.0))
+        self.rosco = Rosco(self.turbine.discon_path, self.turbine.controller_dt_s, self.turbine.generator_efficiency,
+                           s.rosco_logging, pitch_rad=start[1])
         self.model = TurbineModel(self.turbine, self.coefficients, self.rosco, *start)
         self.failed = False
         self._last = None  # (stamp, pitch rate) of the last odometry answered

@@ -7,6 +7,7 @@ with the performance table's path made absolute, debug output off unless asked).
 from __future__ import annotations
 
 import logging
+import math
 import re
 import tempfile
 from pathlib import Path
@@ -42,7 +43,8 @@ class Rosco:
     """One ROSCO instance: ``step`` passes the turbine's measurements and returns the
     generator torque [N m] and collective blade pitch [rad] it commands."""
 
-    def __init__(self, discon: Path, dt_s: float, generator_efficiency: float, logging_level: int = 0):
+    def __init__(self, discon: Path, dt_s: float, generator_efficiency: float, logging_level: int = 0,
+                 pitch_rad: float = 0.0):
         from rosco import discon_lib_path
         from rosco.toolbox.control_interface import ControllerInterface
 
@@ -51,7 +53,8 @@ class Rosco:
         param = discon_copy(Path(discon), folder, logging_level)
         self.dt_s, self._efficiency = dt_s, generator_efficiency
         self._interface = ControllerInterface(discon_lib_path, param_filename=str(param),
-                                              sim_name=str(folder / "rosco"), DT=dt_s)
+                                              sim_name=str(folder / "rosco"), DT=dt_s,
+                                              pitch=math.degrees(pitch_rad))  # its integrators start there
         self._check("starting")  # the interface swallows a failed start: ask the library
 
     def _check(self, when: str) -> None:
