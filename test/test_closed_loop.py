@@ -3,8 +3,11 @@ NREL's ROSCO as child processes, recorded to one bag; and the faults: the turbin
 mid-run, ROSCO refusing its input file."""
 from __future__ import annotations
 
+import json
 import re
 import signal
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -16,6 +19,7 @@ from rosgraph_msgs.msg import Clock  # noqa: E402
 
 from fowt_hydro_sim.ros import closed_loop  # noqa: E402
 from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
+from fowt_hydro_sim.testing import REPO  # noqa: E402
 from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
 from fowt_hydro_sim.turbine.description import load_turbine, turbine_path  # noqa: E402
 from msg_adapters import topics  # noqa: E402
@@ -45,6 +49,35 @@ def test_600_s_of_lc5_2_waves_and_13_m_s_wind(tmp_path):
     assert 0.05 < motion[:, 4].mean() < 0.25  # pitched by the thrust (static offset about 0.13 rad)
     power = bag.scalar("/turbine/generator_power").values[:, 0]
     assert power.mean() == pytest.approx(15e6, rel=0.05)  # above rated: rated power on average
+
+
+def test_held_fixed_the_turbine_node_gives_rosco_simulators_trajectories(tmp_path):
+    """The platform held fixed (turbine parameter fixed_platform), a wind step 10 -> 14 m/s:
+    the recorded rotor speed, pitch and generator torque against rosco.toolbox.sim.Sim."""
+    dt, duration, step, rpm = 0.05, 150.0, 30.0, 7.0
+    out = tmp_path / "oracle.json"
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.testing.rosco_oracle", str(out), "iea15_umaine",
+                           str(dt), str(duration), str(step), "10", "14", str(rpm)], cwd=REPO, capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    oracle = {k: np.array(v) for k, v in json.loads(out.read_text()).items()}
+    bag_path = tmp_path / "fixed"
+    result = closed_loop.run(bag_path, {"duration_s": duration, "real_time_factor": 0.0, "hs_m": 0.01, "tp_s": 10.0,
+                                        "initial_state": [0.0] * 6},
+                             {"wind": "step", "wind_speed_m_s": 10.0, "wind_end_m_s": 14.0, "wind_start_s": step,
+                              "fixed_platform": True, "rotor_start": "given", "rotor_speed_rad_s": rpm * 2 * np.pi / 60,
+                              "pitch_rad": 0.0}, timeout_s=900.0)
+    assert result.returncodes == {"node": 0, "turbine": 0, "record": 0}, result.logs
+    bag = Bag(bag_path)
+    for topic, name in (("/turbine/rotor_speed", "rotor_speed_rad_s"), ("/turbine/blade_pitch", "pitch_rad"),
+                        ("/turbine/generator_torque", "generator_torque_nm")):
+        series = bag.scalar(topic)
+        time_s, first = np.unique(np.round(series.time_s / dt).astype(int), return_index=True)
+        ours = series.values[first, 0]
+        theirs = oracle[name][time_s]
+        assert len(time_s) > 0.95 * duration / dt
+        rms = np.sqrt(np.mean((ours - theirs) ** 2)) / np.sqrt(np.mean(theirs ** 2))
+        assert rms < 0.01, f"{topic}: RMS difference {100 * rms:.3f} %"
 
 
 def clock_after(listener: Listener, time_s: float, timeout_s: float) -> bool:

@@ -25,12 +25,13 @@ import msg_adapters as adapt
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
 from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.startup import init_ros
+from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.settings import like, setting
 from fowt_hydro_sim.turbine.controller import ControllerError, Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads, steady_operating_point
-from fowt_hydro_sim.turbine.wind import WIND_KINDS, Wind, read_series, series_wind
+from fowt_hydro_sim.turbine.wind import WIND_KINDS, Wind, check_series, read_series, series_wind
 from msg_adapters import topics
 
 
@@ -43,12 +44,15 @@ class TurbineSettings:
     hub_height_m: float = setting(0.0, "height of the thrust point above the platform's reference point [m]; "
                                        "0 = the platform's hub point", ge=0.0)
     wind: str = setting("steady", "wind input: steady, step, ramp (from wind_speed_m_s to wind_end_m_s at "
-                                  "wind_start_s, ramp over wind_ramp_s), file (wind_file)", choices=WIND_KINDS)
+                                  "wind_start_s, ramp over wind_ramp_s), file (wind_file), bag (wind_topic of "
+                                  "wind_bag)", choices=(*WIND_KINDS, "bag"))
     wind_speed_m_s: float = setting(11.0, "hub-height wind speed (before the step or ramp) [m/s]", ge=0.0, le=80.0)
     wind_end_m_s: float = setting(11.0, "wind speed after the step or ramp [m/s]", ge=0.0, le=80.0)
     wind_start_s: float = setting(0.0, "time of the step or start of the ramp [s]", ge=0.0)
     wind_ramp_s: float = setting(60.0, "duration of the ramp [s]", gt=0.0)
     wind_file: str = setting("", "CSV of time [s] and hub-height wind speed [m/s] (wind file)")
+    wind_bag: str = setting("", "bag holding a hub-height wind speed series (wind bag)")
+    wind_topic: str = setting(topics.TURBINE["wind_speed"][0], "std_msgs/Float64 topic of wind_bag, by log time")
     rotor_start: str = setting("steady", "steady: the turbine starts at its steady operating point in the "
                                            "initial wind; given: at rotor_speed_rad_s and pitch_rad",
                                  choices=("steady", "given"))
@@ -60,10 +64,17 @@ class TurbineSettings:
     def __post_init__(self) -> None:
         if self.wind == "file" and not self.wind_file:
             raise ConfigError("parameter wind_file: wind file needs the path of a CSV of time and speed")
+        if self.wind == "bag" and not self.wind_bag:
+            raise ConfigError("parameter wind_bag: wind bag needs the path of a bag with a wind speed topic")
 
     def make_wind(self) -> Wind:
         if self.wind == "file":
             return series_wind(*read_series(self.wind_file))
+        if self.wind == "bag":
+            series = Bag(self.wind_bag).scalar(self.wind_topic)
+            time_s, first = np.unique(series.time_s, return_index=True)
+            check_series(time_s, series.values[first, 0], f"wind bag {self.wind_bag} {self.wind_topic}")
+            return series_wind(time_s, series.values[first, 0])
         return Wind(self.wind, self.wind_speed_m_s, self.wind_end_m_s, self.wind_start_s, self.wind_ramp_s)
 
 
