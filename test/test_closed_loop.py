@@ -132,3 +132,24 @@ def test_rosco_refusing_its_input_is_one_clear_line_and_the_bag_stays_readable(t
     assert len(errors) == 1 and "ROSCO failed starting" in errors[0], result.logs["turbine"]
     assert "Traceback" not in result.logs["turbine"]
     Bag(bag_path)  # closed and readable
+
+
+def test_a_silent_controller_is_given_up_after_its_timeouts_in_a_row():
+    """A controller connected both ways that never answers: after controller_timeouts
+    timeouts in a row (not one timeout per step forever) the node says so once and stops."""
+    from geometry_msgs.msg import WrenchStamped
+    from nav_msgs.msg import Odometry
+
+    listener = Listener({"/platform/odom": Odometry})
+    listener.publisher(WrenchStamped, topics.EXTERNAL_WRENCH)  # connected, silent
+    node = start("node", lockstep=True, real_time_factor=0.0, lockstep_timeout_s=0.5, controller_timeouts=3)
+    try:
+        output = finish(node, 120.0)
+    finally:
+        finish(node, 5.0)
+        listener.close()
+    assert node.returncode == 0
+    assert output.count("lockstep: no external wrench stamped") == 2, output[-3000:]
+    gone = re.findall(r"the controller is gone at t = ([\d.]+) s \(3 lockstep timeouts in a row\)", output)
+    assert len(gone) == 1 and float(gone[0]) == pytest.approx(0.1)  # two steps with the last wrench, then stop
+    assert "stepping ended at t = 0.10 s" in output
