@@ -125,6 +125,7 @@ def outputs(time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, accele
 TRAILING_DOUBLES = {"rosgraph_msgs/msg/Clock": 0, "geometry_msgs/msg/PointStamped": 3,
                     "geometry_msgs/msg/PoseStamped": 7, "geometry_msgs/msg/TwistStamped": 6,
                     "geometry_msgs/msg/AccelStamped": 6, "geometry_msgs/msg/WrenchStamped": 6,
+                    "geometry_msgs/msg/Vector3Stamped": 3,
                     "nav_msgs/msg/Odometry": 85}
 _STAMP = np.dtype([("sec", "<i4"), ("nanosec", "<u4")])
 
@@ -156,10 +157,3 @@ def decode_stamped(type_name: str, messages: list[bytes]) -> tuple[np.ndarray, n
         if k:
             values[rows] = raw[:, length - 8 * k:].copy().view("<f8")
     return time_s, values
-
-
-def decode_float64(messages: list[bytes]) -> np.ndarray:
-    """The values of std_msgs/Float64 messages (CDR bytes: encapsulation, then the double)."""
-    if any(len(m) < 12 or m[:2] != ENCAPSULATION[:2] for m in messages):
-        raise ValueError("std_msgs/msg/Float64: messages are not little-endian CDR of it")
-    return np.array([struct.unpack_from("<d", m, 4)[0] for m in messages])

@@ -148,17 +148,17 @@ def test_rosco_refusing_its_input_file_is_one_clear_error(tmp_path):
 
 
 def test_a_wind_series_from_a_bag(tmp_path):
-    """The turbine node's wind bag: a Float64 topic read back by log time (as recorded)."""
+    """The turbine node's wind bag: a turbine quantity topic (Vector3Stamped, x) by stamp."""
     pytest.importorskip("rclpy")
     from fowt_hydro_sim.ros.turbine_node import TurbineSettings
     from fowt_hydro_sim.rosbag.writer import BagWriter
-    from msg_adapters import topics
+    from msg_adapters import cdr, topics
 
     bag = tmp_path / "wind"
     writer = BagWriter(bag)
-    channel = writer.add_topic(topics.TURBINE["wind_speed"][0], topics.FLOAT64)
-    for i, speed in enumerate((10.0, 11.0, 13.0)):
-        writer.write(channel, i * 10**9, b"\x00\x01\x00\x00" + np.float64(speed).tobytes())
+    channel = writer.add_topic(*topics.TURBINE["wind_speed"])
+    for i, speed in enumerate((10.0, 11.0, 13.0)):  # the same bytes as a PointStamped
+        writer.write(channel, (5 - i) * 10**9, cdr.point(float(i), speed, 0.0, 0.0, "hub"))  # log times disagree
     writer.close()
     wind = TurbineSettings(wind="bag", wind_bag=str(bag)).make_wind()
     assert wind.at(0.5) == pytest.approx(10.5) and wind.at(2.0) == 13.0 and wind.at(9.0) == 13.0

@@ -48,6 +48,8 @@ def closed_loop(argv: list[str]) -> int:
         # the rules between settings, before starting anything
         NodeSettings(**{k: v for k, v in node.items() if v is not None}, lockstep=True)
         TurbineSettings(**{k: v for k, v in turbine.items() if v is not None})
+        if node["initial_state"] is None:  # reads the turbine and the platform: their errors here
+            node["initial_state"] = list(loop.static_offset(node, turbine))
     except ValueError as exc:
         sys.stderr.write(f"fowt-sim closed-loop: error: {exc}\n")
         return 2

@@ -4,7 +4,7 @@ Each platform odometry (stamped t) advances the turbine model (``fowt_hydro_sim.
 to t in controller steps, in the relative wind at the hub, and answers with the rotor's
 thrust and shaft-torque reaction as the platform's external wrench (frame ``hub``, stamped
 t: a lockstep platform node steps on it), and the turbine's state on ``/turbine/*``
-(std_msgs/Float64, SI units). Runs on simulation time.
+(geometry_msgs/Vector3Stamped stamped t, the value in x, SI units). Runs on simulation time.
 """
 from __future__ import annotations
 
@@ -13,13 +13,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import rclpy
-from geometry_msgs.msg import WrenchStamped
+from geometry_msgs.msg import Vector3Stamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from std_msgs.msg import Float64
 
 import msg_adapters as adapt
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
@@ -52,7 +51,7 @@ class TurbineSettings:
     wind_ramp_s: float = setting(60.0, "duration of the ramp [s]", gt=0.0)
     wind_file: str = setting("", "CSV of time [s] and hub-height wind speed [m/s] (wind file)")
     wind_bag: str = setting("", "bag holding a hub-height wind speed series (wind bag)")
-    wind_topic: str = setting(topics.TURBINE["wind_speed"][0], "std_msgs/Float64 topic of wind_bag, by log time")
+    wind_topic: str = setting(topics.TURBINE["wind_speed"][0], "topic of wind_bag with the wind speed (a turbine quantity topic: Vector3Stamped, x)")
     rotor_start: str = setting("steady", "steady: the turbine starts at its steady operating point in the "
                                            "initial wind; given: at rotor_speed_rad_s and pitch_rad",
                                  choices=("steady", "given"))
@@ -72,9 +71,8 @@ class TurbineSettings:
             return series_wind(*read_series(self.wind_file))
         if self.wind == "bag":
             series = Bag(self.wind_bag).scalar(self.wind_topic)
-            time_s, first = np.unique(series.time_s, return_index=True)
-            check_series(time_s, series.values[first, 0], f"wind bag {self.wind_bag} {self.wind_topic}")
-            return series_wind(time_s, series.values[first, 0])
+            check_series(series.time_s, series.values[:, 0], f"wind bag {self.wind_bag} {self.wind_topic}")
+            return series_wind(series.time_s, series.values[:, 0])
         return Wind(self.wind, self.wind_speed_m_s, self.wind_end_m_s, self.wind_start_s, self.wind_ramp_s)
 
 
@@ -98,7 +96,7 @@ class TurbineNode(Node):
         self._last = None  # (stamp, pitch rate) of the last odometry answered
         qos = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
         self._wrench = self.create_publisher(WrenchStamped, topics.EXTERNAL_WRENCH, qos)
-        self._state = {name: self.create_publisher(Float64, topic, qos) for name, (topic, _) in topics.TURBINE.items()}
+        self._state = {name: self.create_publisher(Vector3Stamped, topic, qos) for name, (topic, _) in topics.TURBINE.items()}
         self.create_subscription(Odometry, topics.MOTION["odom"][0], self._on_odometry, qos)
         self.get_logger().info(
             f"{self.turbine.name}: ROSCO every {self.turbine.controller_dt_s:g} s, wind {s.wind}, thrust at "
@@ -146,7 +144,7 @@ class TurbineNode(Node):
                   "generator_power": self.model.generator_power_w(), "blade_pitch": s.pitch_rad,
                   "wind_speed": s.wind_m_s, "relative_wind_speed": s.relative_wind_m_s}
         for name, value in values.items():
-            self._state[name].publish(Float64(data=float(value)))
+            self._state[name].publish(adapt.quantity_msg(t, value))
 
 
 def main(args: list[str] | None = None) -> int:

@@ -21,7 +21,7 @@ from mcap.writer import MCAP0_MAGIC
 from fowt_hydro_sim.frames import euler_from_quaternion
 from fowt_hydro_sim.rosbag.writer import METADATA_FILE, RUN_CONFIG_KEY, BagError
 from msg_adapters import topics as contract
-from msg_adapters.cdr import decode_float64, decode_stamped
+from msg_adapters.cdr import decode_stamped
 
 RECOVER_HINT = "`fowt-sim recover {path}` rebuilds it from its complete chunks"
 
@@ -47,6 +47,7 @@ COLUMNS = {  # names of a decoded series' columns, per type
     contract.TWIST_STAMPED: ("vx", "vy", "vz", "wx", "wy", "wz"),
     contract.ACCEL_STAMPED: ("ax", "ay", "az", "alpha_x", "alpha_y", "alpha_z"),
     contract.WRENCH_STAMPED: ("fx", "fy", "fz", "mx", "my", "mz"),
+    contract.VECTOR3_STAMPED: ("x", "y", "z"),
     contract.CLOCK: (),
 }
 
@@ -174,15 +175,11 @@ class Bag:
         return Series(time_s[keep], values[keep])
 
     def scalar(self, topic: str) -> Series:
-        """A std_msgs/Float64 topic (unstamped: its log times, simulation time when recorded
-        with /clock) as arrays (n,) and (n, 1)."""
-        self.check_type(topic, contract.FLOAT64)
-        stamped = [(log_time, data) for _, log_time, data in self.messages([topic])]
-        try:
-            values = decode_float64([data for _, data in stamped])
-        except ValueError as exc:
-            raise BagError(f"bag {self.path}: topic {topic}: {exc}") from None
-        return Series(np.array([t for t, _ in stamped]) * 1e-9, values[:, None])
+        """A quantity topic of the turbine (Vector3Stamped, the value in x) as stamps (n,)
+        and values (n, 1), sorted by stamp, duplicates dropped."""
+        self.check_type(topic, contract.VECTOR3_STAMPED)
+        series = self.series(topic)
+        return Series(series.time_s, series.values[:, :1])
 
     def aligned(self, topics: list[str], time_s: np.ndarray | None = None) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """Several topics on one time base (default: the first topic's stamps, where all

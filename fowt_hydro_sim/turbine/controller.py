@@ -6,15 +6,12 @@ DISCON.IN and writes its debug files under a folder of its own (a copy of the DI
 with the performance table's path made absolute, debug output off unless asked)."""
 from __future__ import annotations
 
-import logging
 import math
 import re
 import tempfile
 from pathlib import Path
 
 from fowt_hydro_sim.physics.config import ConfigError
-
-log = logging.getLogger("fowt_hydro_sim.turbine")
 
 
 class ControllerError(RuntimeError):

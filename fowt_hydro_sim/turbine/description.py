@@ -3,7 +3,6 @@ controller input file, read from packaged YAML (``turbine/data``) or a file and 
 like the platform (each field's range written once as a setting)."""
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -119,7 +118,3 @@ def load_turbine(name_or_path: str = "iea15_umaine", **overrides: float) -> Turb
     except (OSError, yaml.YAMLError) as exc:
         raise ConfigError(f"{path}: cannot be read: {str(exc).splitlines()[0]}") from None
     return turbine_from_dict(data, str(path), **{k: v for k, v in overrides.items() if v})
-
-
-def as_dict(turbine: TurbineDescription) -> dict:
-    return dataclasses.asdict(turbine)
