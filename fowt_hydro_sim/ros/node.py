@@ -142,7 +142,8 @@ class SimulatorNode(Node):
         if s.wave_source == "internal":
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
         self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model)
-        self.model.reset(motion=np.array(s.initial_state))
+        if any(s.initial_state):
+            self.model.reset(motion=np.array(s.initial_state))
         self._feed: WaveFeed | None = None
         self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
         if s.wave_source != "internal":
@@ -382,7 +383,8 @@ class SimulatorNode(Node):
                 if s.lockstep and not self._wait_for_lockstep(model.time_s):
                     return
                 # as fast as possible: a batch of publish periods per compiled call
-                periods = 1 if self._rtf > 0 or (s.lockstep and not self._open_loop) else max(1, int(round(BATCH_S / period)))
+                waits = s.lockstep and not self._open_loop
+                periods = 1 if self._rtf > 0 or waits else max(1, int(round(BATCH_S / period)))
                 if s.duration_s:
                     periods = max(1, min(periods, int(round((s.duration_s - model.time_s) / period))))
                 if self._feed is not None and not self._wait_for_waves(
