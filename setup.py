@@ -36,7 +36,8 @@ setup(
     maintainer_email='fowt-dev@example.com',
     python_requires='>=3.10',
     packages=PACKAGES,
-    package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'studies/diagnosis/independent/data/*', 'rosbag/msg/**/*']},
+    package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'turbine/data/*.yaml',
+                                  'studies/diagnosis/independent/data/*', 'rosbag/msg/**/*']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
@@ -57,8 +58,10 @@ setup(
     ],
     extras_require={
         'ros': ROS_WHEELS,
+        # the turbine node's controller: NREL's ROSCO (compiled library, toolbox, IEA 15 MW files)
+        'rosco': ['rosco>=2.10,<2.11'],
         # independent bag readers, to check the bags we write
-        'test': ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0'],
+        'test': ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', 'rosco>=2.10,<2.11'],
         # fowt-sim platform import (OpenFAST HydroDyn decks)
         'hydrodyn': ['openfast-io>=5.0'],
         # rebuilding the independent simulator's BEM database (the stored one needs neither)

@@ -125,6 +125,7 @@ def outputs(time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, accele
 TRAILING_DOUBLES = {"rosgraph_msgs/msg/Clock": 0, "geometry_msgs/msg/PointStamped": 3,
                     "geometry_msgs/msg/PoseStamped": 7, "geometry_msgs/msg/TwistStamped": 6,
                     "geometry_msgs/msg/AccelStamped": 6, "geometry_msgs/msg/WrenchStamped": 6,
+                    "geometry_msgs/msg/Vector3Stamped": 3,
                     "nav_msgs/msg/Odometry": 85}
 _STAMP = np.dtype([("sec", "<i4"), ("nanosec", "<u4")])
 

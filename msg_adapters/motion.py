@@ -83,3 +83,8 @@ def state_from_odometry(msg: Odometry) -> tuple[float, np.ndarray, np.ndarray]:
     to_world = rotation_matrix(motion[3], motion[4], motion[5])
     body = components(msg.twist.twist.linear, msg.twist.twist.angular)
     return seconds(msg.header.stamp), motion, np.concatenate([to_world @ body[:3], to_world @ body[3:]])
+
+
+def body_twist_from_odometry(msg: Odometry) -> tuple[float, np.ndarray]:
+    """(time, [v, omega] in the platform's body axes) of an Odometry (its twist's own axes)."""
+    return seconds(msg.header.stamp), components(msg.twist.twist.linear, msg.twist.twist.angular)

@@ -28,6 +28,15 @@ MOTION = {  # the node's outputs before the loads, by short name: (topic, type)
     "accel": ("/platform/accel", ACCEL_STAMPED),
 }
 ELEVATION_USED = ("/waves/elevation_used", POINT_STAMPED)
+VECTOR3_STAMPED = "geometry_msgs/msg/Vector3Stamped"
+TURBINE = {  # the turbine node's state, by short name: (topic, type); the value in vector.x, SI units
+    "rotor_speed": ("/turbine/rotor_speed", VECTOR3_STAMPED),  # rad/s
+    "generator_torque": ("/turbine/generator_torque", VECTOR3_STAMPED),  # N m
+    "generator_power": ("/turbine/generator_power", VECTOR3_STAMPED),  # W
+    "blade_pitch": ("/turbine/blade_pitch", VECTOR3_STAMPED),  # rad
+    "wind_speed": ("/turbine/wind_speed", VECTOR3_STAMPED),  # free wind at the hub, m/s
+    "relative_wind_speed": ("/turbine/relative_wind_speed", VECTOR3_STAMPED),  # wind minus hub fore-aft velocity, m/s
+}
 
 
 def load_topic(name: str) -> str:

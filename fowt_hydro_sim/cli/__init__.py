@@ -16,6 +16,9 @@ from fowt_hydro_sim.cli import analyze, bags, calibrate, diagnose, loads, platfo
 ROS_COMMANDS = {
     "node": "the ROS 2 simulator node: fowt-sim node [--ros-args -p name:=value ... --params-file F]",
     "controller": "the example thrust controller node: fowt-sim controller [--ros-args ...]",
+    "turbine": "the wind turbine node driven by NREL's ROSCO: fowt-sim turbine [--ros-args -p name:=value ...]",
+    "closed-loop": "platform and turbine nodes in lockstep, recorded to one bag: fowt-sim closed-loop -o BAG "
+                   "[--wind-speed 13 --duration 600 ...] (--help)",
     "play": "publish a bag's messages on the ROS graph: fowt-sim play BAG [--rate R] [--clock] ...",
     "record": "record topics of the ROS graph to a bag: fowt-sim record -o DIR [--topics ...]",
 }
@@ -34,7 +37,7 @@ def node_help() -> str:
 
 
 def _ros_command(name: str, argv: list[str]) -> int:
-    if name in ("node", "controller") and any(a in ("-h", "--help") for a in argv[:1]):
+    if name in ("node", "controller", "turbine") and any(a in ("-h", "--help") for a in argv[:1]):
         sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n" + (node_help() + "\n" if name == "node"
                                                                                 else ""))
         return 0
@@ -44,6 +47,12 @@ def _ros_command(name: str, argv: list[str]) -> int:
     if name == "controller":
         from fowt_hydro_sim.ros.controller import main as run
         return run(["fowt-sim", *argv])
+    if name == "turbine":
+        from fowt_hydro_sim.ros.turbine_node import main as run
+        return run(["fowt-sim", *argv])
+    if name == "closed-loop":
+        from fowt_hydro_sim.cli.turbine import closed_loop
+        return closed_loop(argv)
     if name == "play":
         from fowt_hydro_sim.ros.player import main as play
         return play(argv)

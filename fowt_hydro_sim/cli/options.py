@@ -11,7 +11,7 @@ from fowt_hydro_sim.physics.config import ConfigError
 from fowt_hydro_sim.settings import Described, SettingError, check, described
 
 FLAGS = {"drag_model": "--drag", "initial_state": "--initial"}  # where the name without its unit is not the flag
-_UNIT = re.compile(r"_(s|m|hz|deg|rad|kg|n|n_m)$")
+_UNIT = re.compile(r"_(m_s|rad_s|s|m|hz|deg|rad|kg|n|n_m)$")
 
 
 def flag(name: str) -> str:

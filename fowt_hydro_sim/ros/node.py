@@ -60,6 +60,7 @@ MESSAGE_CLASSES = {topics.type_name(c): c for c in (AccelStamped, Clock, Odometr
 
 OUTPUTS = topics.outputs(PUBLISHED)  # every published load component has its topic
 WAVE_SOURCES = ("internal", "topic", "bag")
+CONTROLLER_LOST = ("stop", "open_loop")  # lockstep: what the node does when its controller is gone
 BATCH_S = 1.0  # simulated seconds stepped per compiled call when running as fast as possible
 MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
@@ -123,6 +124,7 @@ class NodeSettings:
     wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed",
                                     gt=0.0)
     dt_s: float = like(RunConfig, "dt_s")
+    initial_state: tuple[float, ...] = like(RunConfig, "initial_state")
     real_time_factor: float = setting(1.0, "1 = real time, N = N times faster, 0 = as fast as possible", ge=0.0)
     publish_rate_hz: float = setting(20.0, "output rate in simulation time [Hz]; a multiple of it must be 1/dt_s",
                                      gt=0.0)
@@ -133,6 +135,10 @@ class NodeSettings:
     lockstep: bool = setting(False, "wait for an external wrench stamped for each publish time before stepping")
     lockstep_timeout_s: float = setting(5.0, "wall seconds to wait for the wrench in lockstep, then step anyway",
                                         gt=0.0)
+    controller_lost: str = setting("stop", "lockstep: when the controller is gone (no publisher of the wrench, "
+                                           "or controller_timeouts timeouts in a row): stop stepping, or go on "
+                                           "open loop with the last wrench", choices=CONTROLLER_LOST)
+    controller_timeouts: int = setting(3, "lockstep: timeouts in a row that mean the controller is gone", ge=1)
     record: str = setting("", "bag directory recording every input and output of the run; empty = no recording")
     record_overwrite: bool = setting(False, "replace an existing bag at the record path")
     record_failure: str = setting("stop", "when the recording cannot be written (disk full): the bag is closed "
@@ -179,6 +185,7 @@ class SimulatorNode(Node):
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
         options = HydroOptions(s.wetted_length, s.load_directions, s.hydrostatics)
         self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model, options=options)
+        self.model.reset(motion=np.array(s.initial_state))
         self._feed: WaveFeed | None = None
         self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
         if s.wave_source != "internal":
@@ -193,6 +200,8 @@ class SimulatorNode(Node):
         self._recorder = self._open_recorder() if s.record else None
         self._lock = threading.Condition()
         self._wrench = (np.zeros(6), "world", -math.inf)  # wrench, frame, stamp
+        self._timeouts = 0  # lockstep: timeouts in a row
+        self._open_loop = False  # lockstep given up: the controller is gone
         self._rtf = s.real_time_factor
         self._stop = threading.Event()
         self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
@@ -346,18 +355,40 @@ class SimulatorNode(Node):
             time.sleep(0.05)
         time.sleep(0.5)  # let discovery finish on the controller's side too
 
-    def _wait_for_lockstep(self, time_s: float) -> None:
-        """Wait for a wrench stamped ``time_s``, sending the state again every 0.5 s."""
-        deadline = time.monotonic() + self.settings.lockstep_timeout_s
+    def _wait_for_lockstep(self, time_s: float) -> bool:
+        """Wait for a wrench stamped ``time_s``, sending the state again every 0.5 s. A
+        controller gone (its wrench publisher left the graph, or controller_timeouts
+        timeouts in a row) is said once; then False (stop) or open loop, as
+        controller_lost says."""
+        s = self.settings
+        if self._open_loop:
+            return True
+        deadline = time.monotonic() + s.lockstep_timeout_s
         with self._lock:
             while self._wrench[2] < time_s - 1e-9 and not self._stop.is_set():
+                if self.count_publishers(topics.EXTERNAL_WRENCH) == 0:
+                    return self._controller_lost(time_s, f"no publisher on {topics.EXTERNAL_WRENCH} any more")
                 remaining = deadline - time.monotonic()
                 if remaining <= 0:
+                    self._timeouts += 1
+                    if self._timeouts >= s.controller_timeouts:
+                        return self._controller_lost(time_s, f"{self._timeouts} lockstep timeouts in a row")
                     self.get_logger().warning(f"lockstep: no external wrench stamped {time_s:.3f} s within "
-                                              f"{self.settings.lockstep_timeout_s:g} s; stepping with the last one")
-                    return
+                                              f"{s.lockstep_timeout_s:g} s; stepping with the last one")
+                    return True
                 if not self._lock.wait(timeout=min(remaining, 0.5)):
                     self._publish_now()
+        self._timeouts = 0
+        return True
+
+    def _controller_lost(self, time_s: float, why: str) -> bool:
+        """Say once that the controller is gone; False if the stepping stops."""
+        stop = self.settings.controller_lost == "stop"
+        self.get_logger().error(f"lockstep: the controller is gone at t = {time_s:.3f} s ({why}): "
+                                + ("stepping stopped (controller_lost stop)" if stop else
+                                   "going on open loop with the last wrench (controller_lost open_loop)"))
+        self._open_loop = True
+        return not stop
 
     # ------------------------------------------------------------------ stepping
     def start(self) -> None:
@@ -421,10 +452,11 @@ class SimulatorNode(Node):
                 if s.duration_s and model.time_s >= s.duration_s - 1e-9:
                     self.get_logger().info(f"duration {s.duration_s:g} s reached: stepping stopped")
                     return
-                if s.lockstep:
-                    self._wait_for_lockstep(model.time_s)
+                if s.lockstep and not self._wait_for_lockstep(model.time_s):
+                    return
                 # as fast as possible: a batch of publish periods per compiled call
-                periods = 1 if self._rtf > 0 or s.lockstep else max(1, int(round(BATCH_S / period)))
+                waits = s.lockstep and not self._open_loop
+                periods = 1 if self._rtf > 0 or waits else max(1, int(round(BATCH_S / period)))
                 if s.duration_s:
                     periods = max(1, min(periods, int(round((s.duration_s - model.time_s) / period))))
                 if self._feed is not None and not self._wait_for_waves(

@@ -47,6 +47,7 @@ COLUMNS = {  # names of a decoded series' columns, per type
     contract.TWIST_STAMPED: ("vx", "vy", "vz", "wx", "wy", "wz"),
     contract.ACCEL_STAMPED: ("ax", "ay", "az", "alpha_x", "alpha_y", "alpha_z"),
     contract.WRENCH_STAMPED: ("fx", "fy", "fz", "mx", "my", "mz"),
+    contract.VECTOR3_STAMPED: ("x", "y", "z"),
     contract.CLOCK: (),
 }
 
@@ -172,6 +173,13 @@ class Bag:
         time_s, values = time_s[order], values[order]
         keep = np.concatenate([[True], np.diff(time_s) > 0])
         return Series(time_s[keep], values[keep])
+
+    def scalar(self, topic: str) -> Series:
+        """A quantity topic of the turbine (Vector3Stamped, the value in x) as stamps (n,)
+        and values (n, 1), sorted by stamp, duplicates dropped."""
+        self.check_type(topic, contract.VECTOR3_STAMPED)
+        series = self.series(topic)
+        return Series(series.time_s, series.values[:, :1])
 
     def aligned(self, topics: list[str], time_s: np.ndarray | None = None) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """Several topics on one time base (default: the first topic's stamps, where all

@@ -271,8 +271,34 @@ def analyze_bags(runs: list[str | Path], references: list[str | Path], settings:
     reference_runs = [load(p) for p in references]
     pairs = list(zip(analysed, reference_runs * len(analysed) if len(reference_runs) == 1 else reference_runs))
     comparisons = [row for run, ref in pairs for row in compare(run, ref, settings)]
-    return (table_text(analysed, comparisons, settings),
-            write_report(analysed, comparisons, settings, Path(output), reference_runs))
+    text = table_text(analysed, comparisons, settings)
+    files = write_report(analysed, comparisons, settings, Path(output), reference_runs)
+    loop_text, loop_files = closed_loop_report(runs, settings, Path(output))
+    return (text + loop_text, files + loop_files)
+
+
+def closed_loop_report(runs: list[str | Path], settings: AnalysisSettings, folder: Path) -> tuple[str, list[Path]]:
+    """For the runs with a turbine (a closed loop): time-series plots of rotor speed, pitch,
+    power, platform pitch and surge, and their statistics after the transient."""
+    from fowt_hydro_sim.rosbag.reader import Bag
+    from fowt_hydro_sim.studies import turbine_plots
+
+    rows, files = [], []
+    for path in runs:
+        bag = Bag(path)
+        if not turbine_plots.has_turbine(bag):
+            continue
+        name = Path(path).name
+        series = turbine_plots.closed_loop_series(bag)
+        rows += turbine_plots.stats_rows(name, series, settings.transient_s)
+        files.append(turbine_plots.plot_closed_loop(name, series, folder / f"closed_loop_{_slug(name)}.png"))
+    if not rows:
+        return "", []
+    files.append(_csv(folder / "closed_loop.csv", rows))
+    lines = ["", f"closed loop (after {settings.transient_s:g} s):"]
+    lines += [f"  {r['run']:<16} {r['quantity']:<16} mean {r['mean']:10.4g} std {r['std']:9.3g} "
+              f"min {r['min']:10.4g} max {r['max']:10.4g} {r['unit']}" for r in rows]
+    return "\n".join(lines), files
 
 
 def _pairs(analyses, references):

@@ -1,0 +1,120 @@
+"""The turbine description: rotor, drivetrain, pitch actuator, performance table and
+controller input file, read from packaged YAML (``turbine/data``) or a file and validated
+like the platform (each field's range written once as a setting)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import yaml
+
+from fowt_hydro_sim.physics.config import ConfigError
+from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, setting
+
+ROSCO_PREFIX = "rosco:"  # a path relative to the test cases installed with the rosco wheel
+
+
+@dataclass(frozen=True, kw_only=True)
+class TurbineDescription:
+    name: str = setting(REQUIRED, "turbine name")
+    rotor_radius_m: float = setting(REQUIRED, "rotor radius (hub centre to blade tip) [m]", gt=0.0)
+    hub_height_m: float = setting(REQUIRED, "hub height above the still water line, where the thrust acts [m]",
+                                  gt=0.0)
+    drivetrain_inertia_kg_m2: float = setting(REQUIRED, "rotor and generator inertia on the low-speed shaft "
+                                                        "[kg m^2]", gt=0.0)
+    gearbox_ratio: float = setting(REQUIRED, "generator speed / rotor speed [-]", ge=1.0)
+    gearbox_efficiency: float = setting(1.0, "gearbox efficiency [-]", gt=0.0, le=1.0)
+    generator_efficiency: float = setting(REQUIRED, "generator efficiency, mechanical to electrical [-]",
+                                          gt=0.0, le=1.0)
+    air_density_kg_m3: float = setting(1.225, "air density [kg/m^3]", gt=0.0)
+    rated_rotor_speed_rad_s: float = setting(REQUIRED, "rated rotor speed [rad/s]", gt=0.0)
+    rated_power_w: float = setting(REQUIRED, "rated electrical power [W]", gt=0.0)
+    optimal_tsr: float = setting(REQUIRED, "tip-speed ratio of the most power below rated [-]", gt=0.0)
+    min_pitch_rad: float = setting(0.0, "lowest blade pitch of the actuator [rad]", ge=-0.5, le=1.6)
+    max_pitch_rad: float = setting(1.57, "highest blade pitch of the actuator [rad]", ge=-0.5, le=1.6)
+    max_pitch_rate_rad_s: float = setting(REQUIRED, "blade pitch rate limit of the actuator [rad/s]", gt=0.0)
+    controller_dt_s: float = setting(0.05, "controller (and rotor) step [s]", gt=0.0, le=1.0)
+    performance_table: str = setting(REQUIRED, "Cp/Ct/Cq table in ROSCO's text format (path; rosco: = in the "
+                                               "rosco wheel's test cases)")
+    discon: str = setting(REQUIRED, "ROSCO DISCON.IN of the turbine (path; rosco: = in the rosco wheel's "
+                                    "test cases)")
+
+    def __post_init__(self) -> None:
+        if self.min_pitch_rad >= self.max_pitch_rad:
+            raise ConfigError(f"turbine {self.name}: min_pitch_rad must be below max_pitch_rad")
+
+    @property
+    def rated_generator_torque_nm(self) -> float:
+        return self.rated_power_w / (self.rated_rotor_speed_rad_s * self.gearbox_ratio * self.generator_efficiency)
+
+    @property
+    def performance_path(self) -> Path:
+        return resolve(self.performance_table)
+
+    @property
+    def discon_path(self) -> Path:
+        return resolve(self.discon)
+
+
+def resolve(path: str) -> Path:
+    """A file path; ``rosco:...`` relative to the test cases installed with rosco."""
+    if path.startswith(ROSCO_PREFIX):
+        import rosco  # only for its location: the test cases are installed beside it
+
+        return Path(rosco.__file__).resolve().parents[1] / "Examples" / "Test_Cases" / path[len(ROSCO_PREFIX):]
+    return Path(path).expanduser()
+
+
+def packaged_turbines() -> list[str]:
+    folder = resources.files("fowt_hydro_sim.turbine") / "data"
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".yaml"))
+
+
+def turbine_path(name_or_path: str) -> Path:
+    """The YAML file of a packaged turbine (by name) or a turbine file."""
+    if name_or_path in packaged_turbines():
+        return Path(str(resources.files("fowt_hydro_sim.turbine") / "data" / f"{name_or_path}.yaml"))
+    path = Path(name_or_path)
+    if not path.is_file():
+        raise ConfigError(f"turbine {name_or_path!r}: no such file and not a packaged turbine "
+                          f"({', '.join(packaged_turbines())})")
+    return path
+
+
+def turbine_from_dict(data: object, where: str, **overrides: float) -> TurbineDescription:
+    """A validated description; ``overrides`` replace fields (e.g. ``hub_height_m``). Relative
+    file paths are taken relative to the YAML file's folder (``where``)."""
+    if not isinstance(data, dict):
+        raise ConfigError(f"{where}: expected a mapping, got {type(data).__name__}")
+    items = described(TurbineDescription)
+    unknown = sorted(set(data) - set(items))
+    if unknown:
+        raise ConfigError(f"{where}: unknown field(s) {', '.join(unknown)}")
+    values = {}
+    for name, item in items.items():
+        value = overrides.get(name, data.get(name, None if item.default is REQUIRED else item.default))
+        if value is None:
+            raise ConfigError(f"{where}: {name}: missing")
+        try:
+            values[name] = check(item, value)
+        except SettingError as exc:
+            raise ConfigError(f"{where}: {name}: {exc}") from None
+    folder = Path(where).parent
+    for name in ("performance_table", "discon"):
+        path = values[name]
+        if not path.startswith(ROSCO_PREFIX) and not Path(path).is_absolute():
+            values[name] = str(folder / path)
+        if not resolve(values[name]).is_file():
+            raise ConfigError(f"{where}: {name}: no such file {str(resolve(values[name]))!r}")
+    return TurbineDescription(**values)
+
+
+def load_turbine(name_or_path: str = "iea15_umaine", **overrides: float) -> TurbineDescription:
+    """A packaged turbine by name (``iea15_umaine``) or a turbine YAML file."""
+    path = turbine_path(name_or_path)
+    try:
+        data = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as exc:
+        raise ConfigError(f"{path}: cannot be read: {str(exc).splitlines()[0]}") from None
+    return turbine_from_dict(data, str(path), **{k: v for k, v in overrides.items() if v})

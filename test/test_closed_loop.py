@@ -1,0 +1,166 @@
+"""The closed loop over real DDS (loopback): the platform node and the turbine node with
+NREL's ROSCO as child processes, recorded to one bag; and the faults: the turbine killed
+mid-run, ROSCO refusing its input file."""
+from __future__ import annotations
+
+import json
+import re
+import signal
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+pytest.importorskip("rclpy")
+pytest.importorskip("rosco")
+
+from rosgraph_msgs.msg import Clock  # noqa: E402
+
+from fowt_hydro_sim.ros import closed_loop  # noqa: E402
+from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
+from fowt_hydro_sim.testing import REPO  # noqa: E402
+from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
+from fowt_hydro_sim.turbine.description import load_turbine, turbine_path  # noqa: E402
+from msg_adapters import topics  # noqa: E402
+
+pytestmark = pytest.mark.ros
+PLATFORM_TOPICS = ("/clock", "/platform/odom", "/platform/pose", "/platform/external_wrench", "/platform/loads/total")
+
+
+def test_600_s_of_lc5_2_waves_and_13_m_s_wind(tmp_path):
+    bag_path = tmp_path / "loop"
+    result = closed_loop.run(bag_path, {"load_case": "lc5.2", "duration_s": 600.0, "real_time_factor": 0.0},
+                             {"wind": "steady", "wind_speed_m_s": 13.0}, timeout_s=1500.0)
+    assert result.returncodes == {"node": 0, "turbine": 0, "record": 0}, result.logs
+    assert result.simulated_s == pytest.approx(600.0)
+    bag = Bag(bag_path)
+    for topic in (*PLATFORM_TOPICS, *(t for t, _ in topics.TURBINE.values())):
+        assert bag.topics[topic].message_count >= 11_000, topic  # 20 Hz for 600 s, both nodes
+    rated = load_turbine().rated_rotor_speed_rad_s
+    speed = bag.scalar("/turbine/rotor_speed")
+    assert speed.time_s[-1] >= 599.9
+    assert np.all(np.abs(speed.values[:, 0] / rated - 1.0) < 0.10), (speed.values.min(), speed.values.max())
+    for topic, kind in topics.TURBINE.values():
+        assert np.all(np.isfinite(bag.scalar(topic).values)), topic
+    for topic in PLATFORM_TOPICS[1:]:
+        assert np.all(np.isfinite(bag.series(topic).values)), topic
+    motion = bag.motion().values
+    assert 0.05 < motion[:, 4].mean() < 0.25  # pitched by the thrust (static offset about 0.13 rad)
+    power = bag.scalar("/turbine/generator_power").values[:, 0]
+    assert power.mean() == pytest.approx(15e6, rel=0.05)  # above rated: rated power on average
+
+
+def test_held_fixed_the_turbine_node_gives_rosco_simulators_trajectories(tmp_path):
+    """The platform held fixed (turbine parameter fixed_platform), a wind step 10 -> 14 m/s:
+    the recorded rotor speed, pitch and generator torque against rosco.toolbox.sim.Sim."""
+    dt, duration, step, rpm = 0.05, 150.0, 30.0, 7.0
+    out = tmp_path / "oracle.json"
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.testing.rosco_oracle", str(out), "iea15_umaine",
+                           str(dt), str(duration), str(step), "10", "14", str(rpm)], cwd=REPO, capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    oracle = {k: np.array(v) for k, v in json.loads(out.read_text()).items()}
+    bag_path = tmp_path / "fixed"
+    result = closed_loop.run(bag_path, {"duration_s": duration, "real_time_factor": 0.0, "hs_m": 0.01, "tp_s": 10.0,
+                                        "initial_state": [0.0] * 6},
+                             {"wind": "step", "wind_speed_m_s": 10.0, "wind_end_m_s": 14.0, "wind_start_s": step,
+                              "fixed_platform": True, "rotor_start": "given", "rotor_speed_rad_s": rpm * 2 * np.pi / 60,
+                              "pitch_rad": 0.0}, timeout_s=900.0)
+    assert result.returncodes == {"node": 0, "turbine": 0, "record": 0}, result.logs
+    bag = Bag(bag_path)
+    for topic, name in (("/turbine/rotor_speed", "rotor_speed_rad_s"), ("/turbine/blade_pitch", "pitch_rad"),
+                        ("/turbine/generator_torque", "generator_torque_nm")):
+        series = bag.scalar(topic)
+        index = np.round(series.time_s / dt).astype(int)
+        assert np.allclose(index * dt, series.time_s, atol=1e-6)
+        ours, theirs = series.values[:, 0], oracle[name][index]
+        assert len(index) > 0.95 * duration / dt
+        rms = np.sqrt(np.mean((ours - theirs) ** 2)) / np.sqrt(np.mean(theirs ** 2))
+        assert rms < 0.01, f"{topic}: RMS difference {100 * rms:.3f} %"
+
+
+def clock_after(listener: Listener, time_s: float, timeout_s: float) -> bool:
+    def reached() -> bool:
+        clocks = listener.messages["/clock"]
+        return bool(clocks) and clocks[-1].clock.sec >= time_s
+    return listener.wait_for(reached, timeout_s)
+
+
+@pytest.mark.parametrize("lost", ["stop", "open_loop"])
+def test_the_turbine_killed_mid_run_is_noticed_and_the_parameter_followed(tmp_path, lost):
+    listener = Listener({"/clock": Clock})
+    bag_path = tmp_path / "run"
+    node = start("node", lockstep=True, duration_s=120.0 if lost == "open_loop" else 0.0, real_time_factor=0.0,
+                 controller_lost=lost, lockstep_timeout_s=1.0, record=str(bag_path))
+    turbine = start("turbine", wind_speed_m_s=12.0)
+    try:
+        assert clock_after(listener, 10.0, 180.0), finish(node, 5)
+        turbine.send_signal(signal.SIGKILL)
+        output = finish(node, 120.0)
+    finally:
+        finish(turbine, 5.0)
+        finish(node, 5.0)
+        listener.close()
+    gone = re.findall(r"lockstep: the controller is gone at t = ([\d.]+) s \(([^)]*)\)", output)
+    assert len(gone) == 1, output[-3000:]
+    assert float(gone[0][0]) >= 10.0
+    ended = float(re.search(r"stepping ended at t = ([\d.]+) s", output).group(1))
+    if lost == "stop":
+        assert "stepping stopped (controller_lost stop)" in output
+        assert ended == pytest.approx(float(gone[0][0]))
+    else:
+        assert "going on open loop" in output and ended == pytest.approx(120.0)
+    odom = Bag(bag_path).series("/platform/odom")  # the recording is complete and readable
+    assert odom.time_s[-1] == pytest.approx(ended)
+    assert np.all(np.isfinite(odom.values))
+
+
+def test_rosco_refusing_its_input_is_one_clear_line_and_the_bag_stays_readable(tmp_path):
+    good = load_turbine()
+    discon = tmp_path / "DISCON.IN"
+    discon.write_text(good.discon_path.read_text().replace("! PC_MaxPit", "! PC_MaxPitX", 1)
+                      .replace('"../IEA-15-240-RWT/', f'"{good.discon_path.parent.parent}/IEA-15-240-RWT/'))
+    source = turbine_path("iea15_umaine").read_text()
+    turbine_file = tmp_path / "broken.yaml"
+    turbine_file.write_text(source.replace(f"discon: {good.discon}", f"discon: {discon}"))
+    bag_path = tmp_path / "loop"
+    result = closed_loop.run(bag_path, {"duration_s": 30.0, "real_time_factor": 0.0},
+                             {"turbine": str(turbine_file)}, timeout_s=300.0)
+    assert result.returncodes["turbine"] == 2
+    errors = [line for line in result.logs["turbine"].splitlines() if "ERROR" in line]
+    assert len(errors) == 1 and "ROSCO failed starting" in errors[0], result.logs["turbine"]
+    assert "Traceback" not in result.logs["turbine"]
+    Bag(bag_path)  # closed and readable
+
+
+def test_a_silent_controller_is_given_up_after_its_timeouts_in_a_row():
+    """A controller connected both ways that never answers: after controller_timeouts
+    timeouts in a row (not one timeout per step forever) the node says so once and stops."""
+    from geometry_msgs.msg import WrenchStamped
+    from nav_msgs.msg import Odometry
+
+    listener = Listener({"/platform/odom": Odometry})
+    listener.publisher(WrenchStamped, topics.EXTERNAL_WRENCH)  # connected, silent
+    node = start("node", lockstep=True, real_time_factor=0.0, lockstep_timeout_s=0.5, controller_timeouts=3)
+    try:
+        output = finish(node, 120.0)
+    finally:
+        finish(node, 5.0)
+        listener.close()
+    assert node.returncode == 0
+    assert output.count("lockstep: no external wrench stamped") == 2, output[-3000:]
+    gone = re.findall(r"the controller is gone at t = ([\d.]+) s \(3 lockstep timeouts in a row\)", output)
+    assert len(gone) == 1 and float(gone[0]) == pytest.approx(0.1)  # two steps with the last wrench, then stop
+    assert "stepping ended at t = 0.10 s" in output
+
+
+@pytest.mark.parametrize("bad, named", [(["--wind-speed", "100"], "--wind-speed"), (["--duration", "0"], "--duration"),
+                                        (["--turbine", "nope"], "turbine 'nope'"), (["--wind", "file"], "wind_file")])
+def test_closed_loop_refuses_bad_input_in_one_line(tmp_path, bad, named):
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "closed-loop", "-o", str(tmp_path / "b"), *bad],
+                          cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and named in lines[0] and "Traceback" not in done.stderr
+    assert not (tmp_path / "b").exists()  # nothing started

@@ -1,0 +1,166 @@
+"""The turbine model against ROSCO's own simulator and the performance table by hand, and
+the floating platform's steady pitch under the rotor thrust against K^-1 F."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from fowt_hydro_sim.physics.config import ConfigError, load_platform
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.turbine.controller import ControllerError, Rosco
+from fowt_hydro_sim.turbine.description import load_turbine
+from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
+from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads
+from fowt_hydro_sim.turbine.wind import Wind, read_series
+
+RPM = 2 * np.pi / 60
+RATED_TORQUE_NM = 1.97868e7  # the DISCON.IN's VS_RtTq
+
+
+def table_value(path, section: str, tsr: float, pitch_deg: float) -> float:
+    """A coefficient read off the text table by hand: its row of TSR, its column of pitch."""
+    lines = path.read_text().splitlines()
+    pitches = [float(v) for v in lines[lines.index(next(l for l in lines if l.startswith("# Pitch"))) + 1].split()]
+    tsrs = [float(v) for v in lines[lines.index(next(l for l in lines if l.startswith("# TSR"))) + 1].split()]
+    start = lines.index(next(l for l in lines if l.split()[1:2] == [section])) + 2
+    return float(lines[start + tsrs.index(tsr)].split()[pitches.index(pitch_deg)])
+
+
+def test_thrust_at_the_rated_point_is_the_table_thrust_coefficient_by_hand():
+    turbine = load_turbine()
+    coefficients = RotorCoefficients(read_table(turbine.performance_path))
+    speed, tsr = turbine.rated_rotor_speed_rad_s, 9.0  # a grid point of the table near rated (TSR 8.9)
+    wind = speed * turbine.rotor_radius_m / tsr
+    ct = table_value(turbine.performance_path, "Thrust", 9.0, 0.0)
+    cp = table_value(turbine.performance_path, "Power", 9.0, 0.0)
+    area = np.pi * turbine.rotor_radius_m ** 2
+    thrust, torque = aero_loads(turbine, coefficients, wind, speed, 0.0)
+    assert thrust == pytest.approx(0.5 * 1.225 * area * wind ** 2 * ct, rel=1e-6)
+    assert torque * speed == pytest.approx(0.5 * 1.225 * area * wind ** 3 * cp, rel=1e-6)
+    assert 2.0e6 < thrust < 3.0e6  # the IEA 15 MW rated thrust is about 2.5 MN
+
+
+def run_model(turbine_name: str, dt_s: float, duration_s: float, wind: Wind, rpm: float) -> dict[str, np.ndarray]:
+    turbine = load_turbine(turbine_name, controller_dt_s=dt_s)
+    rosco = Rosco(turbine.discon_path, dt_s, turbine.generator_efficiency)
+    model = TurbineModel(turbine, RotorCoefficients(read_table(turbine.performance_path)), rosco, rpm * RPM)
+    n = int(round(duration_s / dt_s))
+    rows = [(0.0, model.state.rotor_speed_rad_s, 0.0, 0.0)]
+    try:
+        for i in range(1, n + 1):
+            s = model.step(wind.at(i * dt_s), last=i == n)
+            rows.append((s.time_s, s.rotor_speed_rad_s, s.pitch_rad, s.generator_torque_nm))
+    finally:
+        rosco.close()
+    return dict(zip(("time_s", "rotor_speed_rad_s", "pitch_rad", "generator_torque_nm"), np.array(rows).T))
+
+
+def test_a_wind_step_gives_rosco_simulators_trajectories(tmp_path):
+    """Platform held fixed: the turbine model with ROSCO against rosco.toolbox.sim.Sim, same
+    turbine, same DISCON.IN, wind 10 -> 14 m/s (each in its own process: ROSCO is global)."""
+    dt, duration, step, rpm = 0.05, 300.0, 50.0, 7.0
+    out = tmp_path / "oracle.json"
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.testing.rosco_oracle", str(out), "iea15_umaine",
+                           str(dt), str(duration), str(step), "10", "14", str(rpm)], cwd=REPO, capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    oracle = {k: np.array(v) for k, v in json.loads(out.read_text()).items()}
+    ours = run_model("iea15_umaine", dt, duration, Wind("step", 10.0, 14.0, start_s=step), rpm)
+    assert np.allclose(ours["time_s"], oracle["time_s"])
+    for name in ("rotor_speed_rad_s", "pitch_rad", "generator_torque_nm"):
+        a, b = ours[name][1:], oracle[name][1:]
+        assert np.all(np.isfinite(a))
+        rms = np.sqrt(np.mean((a - b) ** 2)) / np.sqrt(np.mean(b ** 2))
+        assert rms < 0.01, f"{name}: RMS difference {100 * rms:.3f} %"
+    # the step is a real transient: the pitch opens from fine pitch to above-rated pitch
+    assert oracle["pitch_rad"][int(step / dt) - 1] < 0.05
+    # at the end, steady above rated: the pitch giving the rated torque at rated speed (table by hand)
+    turbine = load_turbine()
+    pitch, _ = steady_above_rated(turbine, RotorCoefficients(read_table(turbine.performance_path)), 14.0)
+    assert ours["pitch_rad"][-1] == pytest.approx(pitch, abs=1e-3)
+    assert ours["rotor_speed_rad_s"][-1] == pytest.approx(turbine.rated_rotor_speed_rad_s, rel=1e-3)
+
+
+def steady_above_rated(turbine, coefficients, wind_m_s: float) -> tuple[float, float]:
+    """Blade pitch and thrust where the rotor at rated speed gives the rated torque."""
+    speed = turbine.rated_rotor_speed_rad_s
+    pitch = brentq(lambda p: aero_loads(turbine, coefficients, wind_m_s, speed, p)[1] - RATED_TORQUE_NM, 0.0, 0.5)
+    return pitch, aero_loads(turbine, coefficients, wind_m_s, speed, pitch)[0]
+
+
+def test_steady_platform_pitch_under_the_mean_thrust_is_the_static_offset():
+    """The mean thrust at 13 m/s at the hub of the floating platform: the steady pitch against
+    the pitch of K^-1 F, K the platform's restoring matrix (hydrostatics, gravity, mooring).
+    Within 0.5 % at a tenth of the thrust; at the full thrust (7 degrees of pitch) the
+    nonlinear hydrostatics make the linear offset 2 to 3 % larger."""
+    turbine = load_turbine()
+    coefficients = RotorCoefficients(read_table(turbine.performance_path))
+    _, thrust = steady_above_rated(turbine, coefficients, 13.0)
+    platform = load_platform("windmoor12")
+    model = PlatformModel(platform, None, dt_s=0.05, drag_model="constant")
+    hub = np.array(platform.hub_point_m)
+    stiffness = model.restoring_matrix()
+    for force_n, tolerance in ((0.1 * thrust, 0.005), (thrust, 0.03)):
+        force = np.array([force_n, 0.0, 0.0])
+        static = np.linalg.solve(stiffness, np.concatenate([force, np.cross(hub, force)]))
+        model.reset()
+        model.set_external_wrench(np.array([force_n, 0, 0, 0, 0, 0.0]), "hub")
+        steady = model.run(1800.0, output_interval_s=1.0).motion[-900:, 4].mean()
+        assert steady == pytest.approx(static[4], rel=tolerance), force_n
+
+
+def test_wind_inputs(tmp_path):
+    assert Wind("steady", 9.0).at(100.0) == 9.0
+    assert Wind("step", 10.0, 14.0, start_s=5.0).at(4.9) == 10.0 and Wind("step", 10.0, 14.0, start_s=5.0).at(5.0) == 14.0
+    assert Wind("ramp", 10.0, 14.0, start_s=10.0, ramp_s=40.0).at(20.0) == pytest.approx(11.0)
+    csv = tmp_path / "wind.csv"
+    csv.write_text("time_s,speed_m_s\n0,10\n10,12\n")
+    t, u = read_series(csv)
+    assert np.allclose(t, [0, 10]) and np.allclose(u, [10, 12])
+    csv.write_text("0,10\n10,abc\n")
+    with pytest.raises(ConfigError, match="line 2"):
+        read_series(csv)
+    csv.write_text("0,10\n0,12\n")
+    with pytest.raises(ConfigError, match="increase"):
+        read_series(csv)
+
+
+def test_a_turbine_description_is_validated(tmp_path):
+    with pytest.raises(ConfigError, match="rotor_radius_m"):
+        load_turbine("iea15_umaine", rotor_radius_m=-1.0)
+    with pytest.raises(ConfigError, match="not a packaged turbine"):
+        load_turbine("nope")
+    assert load_turbine(hub_height_m=131.7).hub_height_m == 131.7
+
+
+def test_rosco_refusing_its_input_file_is_one_clear_error(tmp_path):
+    turbine = load_turbine()
+    bad = tmp_path / "DISCON.IN"
+    bad.write_text(turbine.discon_path.read_text().replace("! PC_MaxPit", "! PC_MaxPitX", 1))
+    with pytest.raises(ControllerError, match="ROSCO failed starting"):
+        Rosco(bad, 0.05, 0.95)
+
+
+def test_a_wind_series_from_a_bag(tmp_path):
+    """The turbine node's wind bag: a turbine quantity topic (Vector3Stamped, x) by stamp."""
+    pytest.importorskip("rclpy")
+    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.rosbag.writer import BagWriter
+    from msg_adapters import cdr, topics
+
+    bag = tmp_path / "wind"
+    writer = BagWriter(bag)
+    channel = writer.add_topic(*topics.TURBINE["wind_speed"])
+    for i, speed in enumerate((10.0, 11.0, 13.0)):  # the same bytes as a PointStamped
+        writer.write(channel, (5 - i) * 10**9, cdr.point(float(i), speed, 0.0, 0.0, "hub"))  # log times disagree
+    writer.close()
+    wind = TurbineSettings(wind="bag", wind_bag=str(bag)).make_wind()
+    assert wind.at(0.5) == pytest.approx(10.5) and wind.at(2.0) == 13.0 and wind.at(9.0) == 13.0
+    with pytest.raises(ConfigError, match="wind_bag"):
+        TurbineSettings(wind="bag")
