@@ -10,7 +10,7 @@ import argparse
 import logging
 import sys
 
-from fowt_hydro_sim.cli import analyze, bags, calibrate, diagnose, simulate, sweep
+from fowt_hydro_sim.cli import analyze, bags, calibrate, diagnose, kernels, simulate, sweep
 
 # commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')
 ROS_COMMANDS = {
@@ -42,7 +42,7 @@ def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
     top.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for module in (simulate, bags, analyze, calibrate, diagnose, sweep):
+    for module in (simulate, bags, analyze, calibrate, diagnose, sweep, kernels):
         module.add_parsers(sub)
     for name, text in ROS_COMMANDS.items():
         sub.add_parser(name, help=text.split(": ", 1)[0], add_help=False)
