@@ -136,7 +136,8 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
     assert done.returncode == 0, done.stderr
     rows = read_table(tmp_path / "a" / RUNS_FILE)
     assert sorted(r["seed"] for r in rows) == ["1", "2"] and {r["variant"] for r in rows} == {"stiff"}
-    assert json.loads((tmp_path / "a" / "sweep.json").read_text())["variants"]["stiff"]["mooring_stiffness_scale"] == 1.5
+    settings = json.loads((tmp_path / "a" / "sweep.json").read_text())
+    assert settings["variants"]["stiff"]["mooring_stiffness_scale"] == 1.5
 
     changed = fowt_sim("sweep", "--load-cases", "lc5.2", "--duration", "90", "-o", str(tmp_path / "a"))
     assert changed.returncode == 2 and "other run settings" in changed.stderr

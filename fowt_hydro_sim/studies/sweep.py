@@ -190,12 +190,14 @@ def sweep_from_dict(data: Any, source: str = "sweep") -> Sweep:
 
     seeds = data.get("seeds", 1)
     seeds = tuple(range(1, seeds + 1)) if isinstance(seeds, int) and not isinstance(seeds, bool) else names("seeds")
-    variants = tuple(_variant(v, f"{source}: variants[{i}]") for i, v in enumerate(names("variants", [{"name": "base"}])))
+    variants = tuple(_variant(v, f"{source}: variants[{i}]")
+                     for i, v in enumerate(names("variants", [{"name": "base"}])))
     try:
         transient_s = float(data.get("transient_s", 0.0))
     except (TypeError, ValueError):
         raise ConfigError(f"{source}: transient_s: must be a number") from None
-    return Sweep(tuple(str(c) for c in names("load_cases")), seeds, tuple(str(d) for d in names("drag_models", ["constant"])),
+    return Sweep(tuple(str(c) for c in names("load_cases")), seeds,
+                 tuple(str(d) for d in names("drag_models", ["constant"])),
                  variants, run_from_dict(data.get("run") or {}, f"{source}: run"), transient_s)
 
 
@@ -270,7 +272,8 @@ def write_bag(path: Path, result: RunResult, config: dict) -> None:
                           "world", "platform")
     with BagWriter(path, config=config, overwrite=True) as bag:
         channels = [bag.add_topic(topic, kind, qos_profiles()) for topic, kind in topics.outputs(PUBLISHED).values()]
-        bag.write_rows((nanoseconds(t), zip(channels, messages)) for t, messages in zip(result.time_s.tolist(), samples))
+        bag.write_rows((nanoseconds(t), zip(channels, messages))
+                       for t, messages in zip(result.time_s.tolist(), samples))
 
 
 # ---------------------------------------------------------------------- the table on disk
@@ -414,8 +417,8 @@ def run_sweep(sweep: Sweep, folder: str | Path, scheduler: str | None = None, wo
                 append_row(folder / RUNS_FILE, row)
     rows = order(read_rows(folder / RUNS_FILE), sweep)
     files = write_summary(folder, rows, level)
-    return {"runs": len(rows), "new": len(todo), "wall_s": time.perf_counter() - start, "files": [str(f) for f in files],
-            "summary": summarise(rows, level)}
+    return {"runs": len(rows), "new": len(todo), "wall_s": time.perf_counter() - start,
+            "files": [str(f) for f in files], "summary": summarise(rows, level)}
 
 
 def _task(task: tuple[dict, Platform], run: RunConfig, transient_s: float, bag_folder: str | None) -> dict:
