@@ -4,9 +4,9 @@ numba compiles a kernel on its first call with each set of argument types and ca
 machine code on disk (``physics/__init__.py`` says where); compiling the model's kernels
 takes 20-40 s, which a first ``simulate`` or node would otherwise spend before its first
 step. Every entry point the model calls from Python (the set-up's derivative, the time
-loop, the analyses' static loads and prescribed motion) is called here once with the
-argument types of a real run; the argument types do not depend on the platform, the drag
-model or the waves, so one warm-up serves every later run in any process.
+loop, the analyses' static loads, strip velocities and prescribed motion) is called here
+once with the argument types of a real run; the argument types do not depend on the
+platform, the drag model or the waves, so one warm-up serves every later run in any process.
 """
 from __future__ import annotations
 
@@ -40,6 +40,7 @@ def entry_points() -> dict[str, Callable[[dict], None]]:
         "set-up (derivative)": lambda made: made.update(filtered=_model("filtered")),
         "time loop (integrate)": lambda made: made["filtered"].run(4 * made["filtered"].dt_s),
         "natural periods (static loads)": lambda made: made["filtered"].natural_periods_s(),
+        "strip velocities": lambda made: made["filtered"].strip_velocities(),
         "prescribed motion": lambda made: _prescribed(_model("constant")),
     }
 
