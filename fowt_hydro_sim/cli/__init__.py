@@ -10,7 +10,7 @@ import argparse
 import logging
 import sys
 
-from fowt_hydro_sim.cli import analyze, bags, calibrate, diagnose, loads, platform, simulate
+from fowt_hydro_sim.cli import analyze, bags, calibrate, diagnose, kernels, loads, platform, simulate, sweep
 
 # commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')
 ROS_COMMANDS = {
@@ -81,7 +81,7 @@ def parser() -> argparse.ArgumentParser:
     top = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
     top.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for module in (simulate, bags, analyze, calibrate, diagnose, loads, platform):
+    for module in (simulate, bags, analyze, calibrate, diagnose, loads, platform, sweep, kernels):
         module.add_parsers(sub)
     for command in sub.choices.values():
         say_defaults(command)

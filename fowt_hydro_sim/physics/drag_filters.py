@@ -135,8 +135,9 @@ def effective_drag_coefficient(band_cd: np.ndarray, response: np.ndarray) -> np.
 # --------------------------------------------------------------------------- compiled kernels
 def nonzero_entries(matrix: np.ndarray) -> np.ndarray:
     """(row, column) of the non-zero entries, (nnz, 2): the kernels skip the structural zeros
-    of the bank's block-diagonal, cascade-triangular matrices."""
-    return np.argwhere(matrix != 0.0).astype(np.int64)
+    of the bank's block-diagonal, cascade-triangular matrices. C order whether empty or not,
+    so that both drag models call the kernels with the same types (one compilation)."""
+    return np.ascontiguousarray(np.argwhere(matrix != 0.0), dtype=np.int64)
 
 
 @njit(cache=True)

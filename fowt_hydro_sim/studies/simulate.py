@@ -115,6 +115,26 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
     if output.exists() and any(output.iterdir()) and not overwrite:
         raise ConfigError(f"{output}: exists and is not empty (pass --overwrite to replace its files)")
     platform = load_platform(run.platform)
+    result, performance, wave_table_step_s = run_model(platform, run, waves)
+    summary = {
+        "software": {"name": "fowt_hydro_sim", "version": __version__},
+        "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
+        "waves": wave_info,
+        "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
+                "initial_state": list(run.initial_state), "wave_table_step_s": wave_table_step_s,
+                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
+        "performance": performance,
+        "statistics": statistics(result, transient_s),
+    }
+    if waves is None and any(run.initial_state):
+        summary["free_decay"] = free_decay(result, run.initial_state)
+    write_run(output, result, summary)
+    return summary
+
+
+def run_model(platform: Platform, run: RunConfig, waves: WaveComponents | None) -> tuple[RunResult, dict, float]:
+    """One run of ``platform`` (``run.platform`` is not read): its result, its performance
+    figures and the kinematics table step used [s]."""
     start = time.perf_counter()
     model = PlatformModel(platform, waves, dt_s=run.dt_s, drag_model=run.drag_model,
                           wave_table_dt_s=run.wave_table_dt_s, options=run.hydro_options)
@@ -122,22 +142,10 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
     model.reset(motion=np.array(run.initial_state))
     result = model.run(run.duration_s, output_interval_s=run.output_interval_s)
     end = time.perf_counter()
-    summary = {
-        "software": {"name": "fowt_hydro_sim", "version": __version__},
-        "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
-        "waves": wave_info,
-        "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
-                "initial_state": list(run.initial_state), "wave_table_step_s": model.wave_table_step_s,
-                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
-        "performance": {"wall_time_s": end - start, "set_up_s": built - start,
-                        "real_time_factor": run.duration_s / (end - built),
-                        "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024},
-        "statistics": statistics(result, transient_s),
-    }
-    if waves is None and any(run.initial_state):
-        summary["free_decay"] = free_decay(result, run.initial_state)
-    write_run(output, result, summary)
-    return summary
+    performance = {"wall_time_s": end - start, "set_up_s": built - start,
+                   "real_time_factor": run.duration_s / (end - built),
+                   "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
+    return result, performance, model.wave_table_step_s
 
 
 def summary_text(summary: dict, output: Path) -> str:

@@ -1,0 +1,71 @@
+"""``fowt-sim sweep``: load cases x seeds x drag models x platform variants on a Dask cluster,
+one table of statistics and band STDs, means over seeds with confidence intervals."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from fowt_hydro_sim.cli import options
+from fowt_hydro_sim.physics.config import DEFAULT_PLATFORM, DRAG_MODELS, RunConfig
+from fowt_hydro_sim.studies import sweep as study
+
+RUN_OPTIONS = ("duration_s", "dt_s", "wave_table_dt_s", "output_interval_s")
+
+
+def _variants(platforms: list[str], cd_scales: list[float]) -> tuple[study.Variant, ...]:
+    """Every platform with every Cd scale, named ``PLATFORM`` (scale 1) or ``PLATFORM_cdSCALE``."""
+    return tuple(study.Variant(Path(p).stem + ("" if s == 1.0 else f"_cd{s:g}"), p, cd_scale=s)
+                 for p in platforms for s in cd_scales)
+
+
+def sweep(args: argparse.Namespace) -> int:
+    if args.config:
+        table = study.load_sweep_file(args.config)
+    else:
+        run = RunConfig(**{k: v for k, v in options.values(args, RunConfig, RUN_OPTIONS).items() if v is not None})
+        if args.seed_count and len(args.seeds) != 1:
+            raise ValueError(f"--seed-count: give one count with --seeds, got {len(args.seeds)} numbers")
+        seeds = tuple(range(1, args.seeds[0] + 1)) if args.seed_count else tuple(args.seeds)
+        table = study.Sweep(tuple(args.load_cases), seeds, tuple(args.drag_models),
+                            _variants(args.platforms, args.cd_scales), run, args.transient)
+    outcome = study.run_sweep(table, Path(args.output), args.scheduler, args.workers, args.bags, args.confidence,
+                              args.overwrite)
+    sys.stdout.write(study.summary_text(outcome) + "\n")
+    return 0
+
+
+def add_parsers(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("sweep", help="load cases x seeds x drag models x platform variants on a Dask cluster",
+                       description="Run a table of runs (load cases x seeds x drag models x platform variants) on "
+                                   "a Dask cluster; runs.csv gets one row of statistics and band STDs per run as "
+                                   "it finishes, summary.csv the means over seeds with Student-t confidence "
+                                   "intervals (Parquet copies when pyarrow is installed). Rerunning into the same "
+                                   "folder skips the runs already finished there.")
+    p.add_argument("--config", type=Path, help="sweep file (YAML: load_cases, seeds, drag_models, variants, run, "
+                                                "transient_s); replaces the table and run options")
+    table = p.add_argument_group("the table (without --config)")
+    table.add_argument("--load-cases", nargs="+", default=["lc5.3"], metavar="CASE",
+                       help="load cases (default %(default)s)")
+    table.add_argument("--seeds", nargs="+", type=int, default=[1], metavar="SEED",
+                       help="random phase seeds (default %(default)s)")
+    table.add_argument("--seed-count", action="store_true", help="--seeds N means seeds 1 .. N")
+    table.add_argument("--drag-models", nargs="+", choices=DRAG_MODELS, default=["constant"], metavar="MODEL",
+                       help=f"drag models, of {', '.join(DRAG_MODELS)} (default %(default)s)")
+    table.add_argument("--platforms", nargs="+", default=[DEFAULT_PLATFORM], metavar="PLATFORM",
+                       help="packaged platform names or platform YAML files (default %(default)s)")
+    table.add_argument("--cd-scales", nargs="+", type=float, default=[1.0], metavar="SCALE",
+                       help="every drag coefficient times each scale: one variant per platform and scale "
+                            "(default %(default)s)")
+    options.add(table, RunConfig, RUN_OPTIONS)
+    table.add_argument("--transient", type=float, default=0.0,
+                       help="seconds at the start left out of the statistics (default %(default)s)")
+    p.add_argument("--confidence", type=float, default=0.95, help="confidence level of the intervals over seeds "
+                                                                   "(default %(default)s)")
+    p.add_argument("--bags", action="store_true", help="also record each run's outputs to a bag under OUTPUT/bags")
+    p.add_argument("--scheduler", help="address of an existing Dask scheduler (default: a local cluster)")
+    p.add_argument("--workers", type=int, help="local cluster worker processes (default: one per core)")
+    p.add_argument("-o", "--output", default="out/sweep", help="output folder; a rerun resumes there "
+                                                                "(default %(default)s)")
+    p.add_argument("--overwrite", action="store_true", help="drop the tables already in the output folder")
+    p.set_defaults(func=sweep)

@@ -1,0 +1,152 @@
+"""``fowt-sim sweep``: a real Dask LocalCluster, real runs, real files. Each row must be what a
+single ``simulate`` run of the same settings gives; an interrupted sweep resumes without
+redoing its finished runs; the intervals over seeds are Student t's."""
+from __future__ import annotations
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import scipy.stats
+import yaml
+
+from fowt_hydro_sim.physics.config import RunConfig, SeaState, load_platform, platform_document
+from fowt_hydro_sim.physics.platform_edits import scaled_drag
+from fowt_hydro_sim.rosbag.reader import Bag
+from fowt_hydro_sim.studies import simulate
+from fowt_hydro_sim.studies.sweep import RUNS_FILE, SUMMARY_FILE, Sweep, Variant, metric_names, run_sweep
+from fowt_hydro_sim.testing import REPO
+
+DOFS = (("surge", "m"), ("sway", "m"), ("heave", "m"), ("roll", "deg"), ("pitch", "deg"), ("yaw", "deg"))
+
+
+def fowt_sim(*args: str, **kwargs) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", *args], capture_output=True, text=True,
+                          timeout=600, cwd=REPO, **kwargs)
+
+
+def read_table(path: Path) -> list[dict]:
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def expected_row(summary: dict) -> dict:
+    """A runs.csv row's statistics as ``simulate``'s summary.json gives them."""
+    out = {}
+    for name, unit in DOFS:
+        s = summary["statistics"][name]
+        out.update({f"{name}_{k}_{unit}": s[k] for k in ("mean", "std", "min", "max")})
+        out.update({f"{name}_std_{b}_{unit}": v for b, v in s["band_std"].items()})
+    out["wave_hs_4std_m"] = summary["statistics"]["wave_elevation"]["hs_4std"]
+    return out
+
+
+def test_sweep_rows_are_single_simulate_runs_and_intervals_are_student_t(tmp_path: Path):
+    """2 seeds x 2 drag models x 2 variants on a 2-worker LocalCluster, bags on; each row
+    against ``simulate`` of the same settings (the Cd-scaled variant as a platform file),
+    the summary's 90 % intervals against scipy.stats.t.interval."""
+    run = RunConfig(duration_s=150.0)
+    sweep = Sweep(("lc5.3",), (1, 2, 3), ("constant", "filtered"), (Variant("base"), Variant("cd120", cd_scale=1.2)),
+                  run, transient_s=20.0)
+    outcome = run_sweep(sweep, tmp_path / "sweep", workers=2, bags=True, level=0.9)
+    assert outcome["runs"] == outcome["new"] == 12
+    rows = read_table(tmp_path / "sweep" / RUNS_FILE)
+    assert len(rows) == 12 and len({(r["seed"], r["drag_model"], r["variant"]) for r in rows}) == 12
+
+    scaled = tmp_path / "windmoor12_cd120.yaml"
+    scaled.write_text(yaml.safe_dump(platform_document(scaled_drag(load_platform("windmoor12"), 1.2))))
+    platforms = {"base": "windmoor12", "cd120": str(scaled)}
+    for row in rows:
+        if row["seed"] == "3":
+            continue  # (two seeds against simulate are enough)
+        single = RunConfig(platform=platforms[row["variant"]], drag_model=row["drag_model"], duration_s=150.0)
+        sea = SeaState(float(row["hs_m"]), float(row["tp_s"]), float(row["gamma"]), seed=int(row["seed"]))
+        out = tmp_path / f"single_{row['seed']}_{row['drag_model']}_{row['variant']}"
+        summary = simulate.simulate(single, *simulate.sea_state_waves(sea, 150.0, "lc5.3"), out, transient_s=20.0)
+        for column, value in expected_row(summary).items():
+            assert float(row[column]) == pytest.approx(value, rel=1e-12, abs=1e-15), (row["variant"], column)
+        if row["seed"] == "1" and row["variant"] == "cd120":
+            bag = Bag(tmp_path / "sweep" / "bags" / f"lc5.3_seed1_{row['drag_model']}_cd120")
+            pose = bag.motion()
+            columns = simulate.read_run(out)
+            assert np.allclose(pose.time_s, columns["time_s"]) and np.allclose(pose.values[:, 0], columns["surge_m"],
+                                                                                atol=1e-6)
+
+    summary_rows = read_table(tmp_path / "sweep" / SUMMARY_FILE)
+    assert len(summary_rows) == 4 * len(metric_names())
+    for s in summary_rows:
+        values = np.array([float(r[s["statistic"]]) for r in rows
+                           if (r["drag_model"], r["variant"]) == (s["drag_model"], s["variant"])])
+        assert int(s["n_seeds"]) == values.size == 3
+        if np.ptp(values) == 0:
+            continue  # (e.g. a band with no bin in a short record: no spread, no interval)
+        low, high = scipy.stats.t.interval(0.9, values.size - 1, loc=values.mean(), scale=scipy.stats.sem(values))
+        assert float(s["mean"]) == pytest.approx(values.mean(), rel=1e-12)
+        assert (float(s["ci_low"]), float(s["ci_high"])) == pytest.approx((low, high), rel=1e-9, abs=1e-14)
+
+
+def test_an_interrupted_sweep_resumes_without_redoing_finished_runs(tmp_path: Path):
+    """Kill the command (and its cluster) once some rows are written, cut its last line as a
+    kill during a write would, and run it again: finished rows stay as they were."""
+    out = tmp_path / "sweep"
+    args = ("sweep", "--load-cases", "lc5.2", "lc5.3", "--seeds", "1", "2", "3", "4", "--duration", "400",
+            "--workers", "1", "-o", str(out))
+    process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", *args], cwd=REPO,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    runs = out / RUNS_FILE
+    try:
+        deadline = time.monotonic() + 400
+        while time.monotonic() < deadline and process.poll() is None:
+            if runs.exists() and runs.read_text().count("\n") >= 3:  # header and two rows
+                break
+            time.sleep(0.05)
+    finally:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait(timeout=30)
+    lines = runs.read_text().splitlines(keepends=True)
+    finished = len(lines) - 1
+    assert 2 <= finished < 8, f"{finished} runs finished before the kill: the test needs it mid-way"
+    with open(runs, "a") as f:
+        f.write(lines[-1][:40])  # a row cut short
+
+    again = fowt_sim(*args)
+    assert again.returncode == 0, again.stderr
+    assert f"8 runs ({8 - finished} new)" in again.stdout
+    after = runs.read_text().splitlines(keepends=True)
+    assert after[: len(lines)] == lines  # finished rows (their wall times too) untouched
+    keys = [tuple(row[:2]) for row in csv.reader(after[1:])]
+    assert len(after) == 9 and len(set(keys)) == 8
+
+
+def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
+    """A sweep YAML (seeds as a count, a variant by coefficient path); bad entries named."""
+    spec = {"load_cases": ["lc5.2"], "seeds": 2, "variants": [{"name": "stiff", "mooring_stiffness_scale": 1.5,
+                                                               "coefficients": {"column*.submerged.cd.constant": 0.9}}],
+            "run": {"duration_s": 60}}
+    path = tmp_path / "sweep.yaml"
+    path.write_text(yaml.safe_dump(spec))
+    done = fowt_sim("sweep", "--config", str(path), "--workers", "1", "-o", str(tmp_path / "a"))
+    assert done.returncode == 0, done.stderr
+    rows = read_table(tmp_path / "a" / RUNS_FILE)
+    assert sorted(r["seed"] for r in rows) == ["1", "2"] and {r["variant"] for r in rows} == {"stiff"}
+    settings = json.loads((tmp_path / "a" / "sweep.json").read_text())
+    assert settings["variants"]["stiff"]["mooring_stiffness_scale"] == 1.5
+
+    changed = fowt_sim("sweep", "--load-cases", "lc5.2", "--duration", "90", "-o", str(tmp_path / "a"))
+    assert changed.returncode == 2 and "other run settings" in changed.stderr
+    spec["variants"][0]["coefficients"] = {"nothing*.submerged.cd.constant": 1.0}
+    path.write_text(yaml.safe_dump(spec))
+    for args, expected in ((["--load-cases", "lc9.9"], "lc9.9"),
+                           (["--config", str(path)], "nothing*"),
+                           (["--cd-scales", "-1"], "cd_scale"),
+                           (["--seeds", "1", "1"], "duplicates")):
+        bad = fowt_sim("sweep", *args, "-o", str(tmp_path / "b"))
+        assert bad.returncode == 2, bad.stderr
+        assert expected in bad.stderr and "Traceback" not in bad.stderr and len(bad.stderr.strip().splitlines()) == 1
