@@ -283,8 +283,11 @@ def closed_loop_report(runs: list[str | Path], settings: AnalysisSettings, folde
     from fowt_hydro_sim.rosbag.reader import Bag
     from fowt_hydro_sim.studies import turbine_plots
 
+    from fowt_hydro_sim.rosbag.writer import METADATA_FILE
     rows, files = [], []
     for path in runs:
+        if not (Path(path) / METADATA_FILE).exists():  # a simulate folder: no turbine
+            continue
         bag = Bag(path)
         if not turbine_plots.has_turbine(bag):
             continue
