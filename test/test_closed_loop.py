@@ -3,7 +3,6 @@ NREL's ROSCO as child processes, recorded to one bag; and the faults: the turbin
 mid-run, ROSCO refusing its input file."""
 from __future__ import annotations
 
-import json
 import re
 import signal
 import subprocess
@@ -19,7 +18,7 @@ from rosgraph_msgs.msg import Clock  # noqa: E402
 
 from fowt_hydro_sim.ros import closed_loop  # noqa: E402
 from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
-from fowt_hydro_sim.testing import REPO  # noqa: E402
+from fowt_hydro_sim.testing import REPO, rosco_oracle  # noqa: E402
 from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
 from fowt_hydro_sim.turbine.description import load_turbine, turbine_path  # noqa: E402
 from msg_adapters import topics  # noqa: E402
@@ -55,12 +54,7 @@ def test_held_fixed_the_turbine_node_gives_rosco_simulators_trajectories(tmp_pat
     """The platform held fixed (turbine parameter fixed_platform), a wind step 10 -> 14 m/s:
     the recorded rotor speed, pitch and generator torque against rosco.toolbox.sim.Sim."""
     dt, duration, step, rpm = 0.05, 150.0, 30.0, 7.0
-    out = tmp_path / "oracle.json"
-    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.testing.rosco_oracle", str(out), "iea15_umaine",
-                           str(dt), str(duration), str(step), "10", "14", str(rpm)], cwd=REPO, capture_output=True,
-                          text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-2000:]
-    oracle = {k: np.array(v) for k, v in json.loads(out.read_text()).items()}
+    oracle = rosco_oracle.in_child_process(tmp_path, "iea15_umaine", dt, duration, step, 10.0, 14.0, rpm)
     bag_path = tmp_path / "fixed"
     result = closed_loop.run(bag_path, {"duration_s": duration, "real_time_factor": 0.0, "hs_m": 0.01, "tp_s": 10.0,
                                         "initial_state": [0.0] * 6},

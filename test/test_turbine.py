@@ -2,9 +2,6 @@
 the floating platform's steady pitch under the rotor thrust against K^-1 F."""
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -12,7 +9,7 @@ from scipy.optimize import brentq
 
 from fowt_hydro_sim.physics.config import ConfigError, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import rosco_oracle
 from fowt_hydro_sim.turbine.controller import ControllerError, Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
@@ -65,12 +62,7 @@ def test_a_wind_step_gives_rosco_simulators_trajectories(tmp_path):
     """Platform held fixed: the turbine model with ROSCO against rosco.toolbox.sim.Sim, same
     turbine, same DISCON.IN, wind 10 -> 14 m/s (each in its own process: ROSCO is global)."""
     dt, duration, step, rpm = 0.05, 300.0, 50.0, 7.0
-    out = tmp_path / "oracle.json"
-    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.testing.rosco_oracle", str(out), "iea15_umaine",
-                           str(dt), str(duration), str(step), "10", "14", str(rpm)], cwd=REPO, capture_output=True,
-                          text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-2000:]
-    oracle = {k: np.array(v) for k, v in json.loads(out.read_text()).items()}
+    oracle = rosco_oracle.in_child_process(tmp_path, "iea15_umaine", dt, duration, step, 10.0, 14.0, rpm)
     ours = run_model("iea15_umaine", dt, duration, Wind("step", 10.0, 14.0, start_s=step), rpm)
     assert np.allclose(ours["time_s"], oracle["time_s"])
     for name in ("rotor_speed_rad_s", "pitch_rad", "generator_torque_nm"):

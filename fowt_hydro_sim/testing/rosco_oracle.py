@@ -44,6 +44,21 @@ def simulate(turbine_name: str, dt_s: float, duration_s: float, step_s: float, f
             "pitch_rad": sim.bld_pitch.tolist(), "generator_torque_nm": sim.gen_torque.tolist()}
 
 
+def in_child_process(folder: Path, turbine_name: str, dt_s: float, duration_s: float, step_s: float,
+                     from_m_s: float, to_m_s: float, rotor_rpm: float) -> dict[str, np.ndarray]:
+    """``simulate`` run as this script in a child process (a fresh ROSCO), its trajectories as arrays."""
+    import subprocess
+
+    from fowt_hydro_sim.testing import REPO
+    out = Path(folder) / "oracle.json"
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.testing.rosco_oracle", str(out), turbine_name,
+                           *(str(v) for v in (dt_s, duration_s, step_s, from_m_s, to_m_s, rotor_rpm))], cwd=REPO,
+                          capture_output=True, text=True, timeout=300)
+    if done.returncode != 0:
+        raise RuntimeError(f"ROSCO's simulator failed: {done.stderr[-2000:]}")
+    return {k: np.array(v) for k, v in json.loads(out.read_text()).items()}
+
+
 if __name__ == "__main__":
     out, name, *numbers = sys.argv[1:]
     Path(out).write_text(json.dumps(simulate(name, *map(float, numbers))))
