@@ -38,13 +38,15 @@ class Setting:
     unset: Any = _NOTHING
 
     def range_text(self) -> str:
-        """The allowed values in words: '> 0', '0 to 1', 'one of a, b'."""
+        """The allowed values in words: 'a positive number', 'zero or more', '0 to 1', 'one of a, b'."""
         if self.choices:
             return "one of " + ", ".join(map(str, self.choices))
-        low = f">= {self.ge:g}" if self.ge is not None else f"> {self.gt:g}" if self.gt is not None else ""
-        high = f"<= {self.le:g}" if self.le is not None else f"< {self.lt:g}" if self.lt is not None else ""
         if self.ge is not None and self.le is not None:
             return f"{self.ge:g} to {self.le:g}"
+        if (self.le, self.lt) == (None, None) and (self.gt, self.ge) in ((0, None), (None, 0)):
+            return "a positive number" if self.gt == 0 else "zero or more"
+        low = f">= {self.ge:g}" if self.ge is not None else f"> {self.gt:g}" if self.gt is not None else ""
+        high = f"<= {self.le:g}" if self.le is not None else f"< {self.lt:g}" if self.lt is not None else ""
         return " and ".join(filter(None, (low, high)))
 
 
@@ -140,11 +142,7 @@ def _scalar(value: Any, kind: type) -> Any:
 
 def _limits(value: Any, s: Setting) -> None:
     if s.choices is not None and value not in s.choices:
-        raise SettingError(f"must be one of {', '.join(map(str, s.choices))}, got {value!r}")
-    if s.gt == 0 and s.ge is None and s.le is None and s.lt is None and not value > 0:
-        raise SettingError(f"must be a positive number, got {value:g}")
-    if s.ge == 0 and s.gt is None and s.le is None and s.lt is None and value < 0:
-        raise SettingError(f"must not be negative, got {value:g}")
+        raise SettingError(f"must be {s.range_text()}, got {value!r}")
     if ((s.ge is not None and value < s.ge) or (s.gt is not None and value <= s.gt)
             or (s.le is not None and value > s.le) or (s.lt is not None and value >= s.lt)):
         raise SettingError(f"must be {s.range_text()}, got {value:g}")

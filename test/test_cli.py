@@ -63,7 +63,7 @@ def test_bad_input_is_one_clear_line(tmp_path: Path):
     (("--hs", "4", "--tp", "10", "--dt", "0"), "--dt: must be a positive number, got 0"),
     (("--duration", "-5"), "--duration: must be a positive number, got -5"),
     (("--hs", "4", "--tp", "-10"), "--tp: must be a positive number, got -10"),
-    (("--load-case", "5.3", "--seed", "-1"), "--seed: must not be negative, got -1"),
+    (("--load-case", "5.3", "--seed", "-1"), "--seed: must be zero or more, got -1"),
 ])
 def test_out_of_range_options_are_named_with_their_range(tmp_path: Path, args: tuple, message: str):
     """Each value outside its setting's range ends the run with one line naming the option
