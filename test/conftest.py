@@ -36,6 +36,8 @@ if not HAVE_ROS and os.environ.get("FOWT_REQUIRE_ROS") == "1":
 
 def pytest_configure(config):
     config.addinivalue_line("markers", "ros: needs rclpy and the ROS message packages (skipped without them)")
+    # the kernel's literal_unroll over the load registry, on purpose (physics/loads/__init__.py)
+    config.addinivalue_line("filterwarnings", "ignore::numba.core.errors.NumbaExperimentalFeatureWarning")
 
 
 def pytest_collection_modifyitems(config, items):
