@@ -71,3 +71,13 @@ def linear_modes(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
 # damping lowers the resonant responses: surge and pitch below 0.05 Hz, heave in the wave band
 DAMPED = {"surge.std.low_frequency": -1, "pitch.std.low_frequency": -1, "heave.std.wave": -1}
 ANALYSED = (0, 2, 4)  # surge, heave, pitch: the DOFs whose per-DOF terms the effects fit
+
+
+def critical_damping(mass: np.ndarray, stiffness: np.ndarray, ratios: dict[int, float]) -> dict[int, float]:
+    """Per DOF in ``ratios``: the ratio times its critical damping 2 sqrt(K M)."""
+    return {dof: ratio * 2.0 * np.sqrt(stiffness[dof] * mass[dof]) for dof, ratio in ratios.items()}
+
+
+def per_dof(values: dict[str, float], names: tuple[str, ...]) -> dict[int, float]:
+    """The fitted values of per-DOF parameters, keyed by the analysed DOFs they belong to."""
+    return {dof: values[name] for dof, name in zip(ANALYSED, names)}

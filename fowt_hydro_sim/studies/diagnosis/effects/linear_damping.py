@@ -7,7 +7,8 @@ from dataclasses import replace
 import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.studies.diagnosis.effects.base import ANALYSED, DAMPED, Effect, Parameter, linear_modes
+from fowt_hydro_sim.studies.diagnosis.effects.base import (DAMPED, Effect, Parameter, critical_damping, linear_modes,
+                                                          per_dof)
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 NAMES = ("surge_damping_ratio", "heave_damping_ratio", "pitch_damping_ratio")
@@ -15,15 +16,12 @@ NAMES = ("surge_damping_ratio", "heave_damping_ratio", "pitch_damping_ratio")
 
 def damping_matrix(mass: np.ndarray, stiffness: np.ndarray, ratios: dict[int, float]) -> np.ndarray:
     """Diagonal B1 (6, 6) with B_ii = ratio_i 2 sqrt(K_ii M_ii)."""
-    out = np.zeros((6, 6))
-    for dof, ratio in ratios.items():
-        out[dof, dof] = ratio * 2.0 * np.sqrt(stiffness[dof] * mass[dof])
-    return out
+    critical = critical_damping(mass, stiffness, ratios)
+    return np.diag([critical.get(dof, 0.0) for dof in range(6)])
 
 
 def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
-    mass, stiffness = linear_modes(variant.platform)
-    damping = damping_matrix(mass, stiffness, {dof: values[name] for dof, name in zip(ANALYSED, NAMES)})
+    damping = damping_matrix(*linear_modes(variant.platform), per_dof(values, NAMES))
     return replace(variant, extension=variant.extension.plus(Extension(linear_damping=damping)))
 
 WHY = "radiation and viscous damping beyond the strips' drag: a few percent of critical"

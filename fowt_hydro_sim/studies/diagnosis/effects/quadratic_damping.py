@@ -8,7 +8,8 @@ from dataclasses import replace
 import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.studies.diagnosis.effects.base import ANALYSED, DAMPED, Effect, Parameter, linear_modes
+from fowt_hydro_sim.studies.diagnosis.effects.base import (DAMPED, Effect, Parameter, critical_damping, linear_modes,
+                                                          per_dof)
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 NAMES = ("surge_ratio_at_1m", "heave_ratio_at_1m", "pitch_ratio_at_1deg")
@@ -18,16 +19,13 @@ REFERENCE_AMPLITUDE = {0: 1.0, 2: 1.0, 4: np.deg2rad(1.0)}  # m, m, rad
 def quadratic_coefficients(mass: np.ndarray, stiffness: np.ndarray, ratios: dict[int, float]) -> np.ndarray:
     """B2 (6,) with 8/(3 pi) B2 omega_n a_ref = ratio 2 sqrt(K M)."""
     out = np.zeros(6)
-    for dof, ratio in ratios.items():
-        omega = np.sqrt(stiffness[dof] / mass[dof])
-        out[dof] = ratio * 2.0 * np.sqrt(stiffness[dof] * mass[dof]) * 3.0 * np.pi / (
-            8.0 * omega * REFERENCE_AMPLITUDE[dof])
+    for dof, linear in critical_damping(mass, stiffness, ratios).items():
+        out[dof] = linear * 3.0 * np.pi / (8.0 * np.sqrt(stiffness[dof] / mass[dof]) * REFERENCE_AMPLITUDE[dof])
     return out
 
 
 def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
-    mass, stiffness = linear_modes(variant.platform)
-    b2 = quadratic_coefficients(mass, stiffness, {dof: values[name] for dof, name in zip(ANALYSED, NAMES)})
+    b2 = quadratic_coefficients(*linear_modes(variant.platform), per_dof(values, NAMES))
     return replace(variant, extension=variant.extension.plus(Extension(quadratic_damping=b2)))
 
 WHY = "viscous damping beyond the strips' drag at a 1 m (1 deg) motion: tens of percent at most"
