@@ -27,6 +27,7 @@ from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+from rclpy.duration import Duration
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.serialization import deserialize_message
@@ -66,6 +67,7 @@ CONTROLLER_LOST = ("stop", "open_loop")  # lockstep: what the node does when its
 BATCH_S = 5.0  # simulated seconds stepped per compiled call when running as fast as possible
 MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
+DELIVERY_TIMEOUT_S = 5.0  # at the end of a run: wall seconds at most for subscribers to acknowledge every output
 WARNING_INTERVAL_S = 5.0  # refused inputs of one kind: at most one warning line per this many wall seconds
 
 
@@ -408,6 +410,17 @@ class SimulatorNode(Node):
         if self._recorder is not None:
             self._recorder.close()
 
+    def wait_for_delivery(self, timeout_s: float = DELIVERY_TIMEOUT_S) -> None:
+        """At the end of a run: wait until reliable subscribers have acknowledged every output
+        (DDS repairs lost samples at its heartbeats), at most ``timeout_s`` in all; said if not."""
+        deadline = time.monotonic() + timeout_s
+        late = [publisher.topic_name for publisher in self._pub.values()
+                if not publisher.wait_for_all_acked(Duration(seconds=max(0.0, deadline - time.monotonic())))]
+        if late:
+            self.get_logger().warning(f"{len(late)} output topic(s) not acknowledged by every subscriber within "
+                                      f"{timeout_s:g} s (e.g. {late[0]}): a subscriber may have missed the last "
+                                      f"messages")
+
     @property
     def recording_failed(self) -> bool:
         """Whether the recording stopped early (its bag is closed, with what was written)."""
@@ -605,6 +618,7 @@ def main(args: list[str] | None = None) -> int:
     try:
         while rclpy.ok() and not node.finished:
             executor.spin_once(timeout_sec=0.1)
+        node.wait_for_delivery()
         for _ in range(5):  # let the last messages go out
             executor.spin_once(timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException):
