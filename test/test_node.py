@@ -20,11 +20,11 @@ from rclpy.serialization import deserialize_message  # noqa: E402
 from rosgraph_msgs.msg import Clock  # noqa: E402
 
 import msg_adapters as adapt  # noqa: E402
-from msg_adapters import topics  # noqa: E402
 from fowt_hydro_sim.physics.config import load_case, load_platform  # noqa: E402
 from fowt_hydro_sim.physics.model import PlatformModel  # noqa: E402
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize  # noqa: E402
 from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
+from msg_adapters import topics  # noqa: E402
 
 
 def poses(listener: Listener) -> tuple[np.ndarray, np.ndarray]:

@@ -4,8 +4,9 @@ publishes its motion and loads (contract: docs/ros_interface.md).
 The node stays thin: parameters become a ``PlatformModel``; messages go in and out through
 ``msg_adapters``; input checks live in ``inputs.py``. The simulator owns time: ``/clock`` and
 every stamp are simulation time. A stepping thread advances the model one publish period
-at a time, paced against the wall clock (``real_time_factor``), while the executor serves
-the subscriptions.
+at a time, paced against the wall clock (``real_time_factor``), or as fast as possible in
+batches of publish periods (one compiled call each, published by a second thread while
+the next batch is computed), while the executor serves the subscriptions.
 """
 from __future__ import annotations
 
@@ -25,9 +26,9 @@ import rclpy
 from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import SetParametersResult
+from rclpy.duration import Duration
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
-from rclpy.duration import Duration
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.serialization import deserialize_message
