@@ -76,6 +76,27 @@ def test_negative_or_nan_time_raises(t):
         ma.stamp(t)
 
 
+def test_stamps_of_a_batch_are_each_times_own():
+    """The vectorised stamps (a batch's messages) against the one-message rounding, at fixed
+    steps, large, random and near-tie times, and against exact Fraction rounding at the
+    fixed steps; bad times raise."""
+    from msg_adapters import cdr
+    from msg_adapters.sim_time import nanoseconds, nanoseconds_array
+
+    steps = 0.05 * np.arange(10**7, 10**7 + 500)
+    times = np.concatenate([steps, [0.0, 1e9 + 0.123456789, 12.3456789012], RNG.uniform(0, 1e6, 500),
+                            np.arange(40) * 1e-9 + 0.5e-9])
+    expected = [nanoseconds(t) for t in times.tolist()]
+    assert nanoseconds_array(times).tolist() == expected
+    assert expected[:len(steps)] == [round(Fraction(t) * 10**9) for t in steps.tolist()]
+    raw = cdr.stamps(times).copy().view([("sec", "<i4"), ("nanosec", "<u4")])[:, 0]
+    assert raw["sec"].tolist() == [ns // 10**9 for ns in expected]
+    assert raw["nanosec"].tolist() == [ns % 10**9 for ns in expected]
+    for bad in (-0.05, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="time"):
+            nanoseconds_array(np.array([1.0, bad]))
+
+
 @pytest.mark.parametrize("trial", range(20))
 @pytest.mark.ros
 def test_round_trips(trial):
@@ -181,11 +202,14 @@ def test_a_batch_of_outputs_is_each_messages_own_serialisation():
     motion = np.hstack([rng.normal(0, 5, (n, 3)), rng.uniform(-1.2, 1.2, (n, 3))])
     velocity, acceleration = rng.normal(0, 1, (n, 6)), rng.normal(0, 1, (n, 6))
     loads, total, eta = rng.normal(0, 1e6, (n, len(PUBLISHED), 6)), rng.normal(0, 1e6, (n, 6)), rng.normal(0, 2, n)
-    batch = cdr.outputs(time_s, motion, velocity, acceleration, loads, total, eta, "world", "platform")
-    assert [len(row) for row in batch] == [len(topics.outputs(PUBLISHED))] * n
-    for i, row in enumerate(batch):
-        t = float(time_s[i])
-        expected = [cdr.clock(t), cdr.odometry(t, motion[i], velocity[i]), cdr.pose(t, motion[i]),
-                    cdr.six(t, velocity[i]), cdr.six(t, acceleration[i]), cdr.six(t, total[i]),
-                    *(cdr.six(t, loads[i, k]) for k in range(len(PUBLISHED))), cdr.point(t, 0.0, 0.0, eta[i])]
-        assert row == expected
+    for frame, child in (("world", "platform"), ("w", "p1"), ("a_longer_world_frame", "hub")):  # alignments
+        batch = cdr.outputs(time_s, motion, velocity, acceleration, loads, total, eta, frame, child)
+        assert [len(row) for row in batch] == [len(topics.outputs(PUBLISHED))] * n
+        for i, row in enumerate(batch):
+            t = float(time_s[i])
+            expected = [cdr.clock(t), cdr.odometry(t, motion[i], velocity[i], frame, child),
+                        cdr.pose(t, motion[i], frame), cdr.six(t, velocity[i], frame),
+                        cdr.six(t, acceleration[i], frame), cdr.six(t, total[i], frame),
+                        *(cdr.six(t, loads[i, k], frame) for k in range(len(PUBLISHED))),
+                        cdr.point(t, 0.0, 0.0, eta[i], frame)]
+            assert row == expected

@@ -19,7 +19,7 @@ import pytest
 import yaml
 from mcap.data_stream import RecordBuilder
 from mcap.reader import make_reader
-from mcap.records import Message
+from mcap.records import Message, MessageIndex
 from mcap_ros2.decoder import DecoderFactory
 from rosbags.highlevel import AnyReader
 
@@ -28,7 +28,7 @@ from fowt_hydro_sim.physics.loads import COMPONENTS, PUBLISHED
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.feed import run_with_elevation
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.rosbag.writer import BagError, BagWriter
+from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, message_index
 from fowt_hydro_sim.studies.wave_bags import write_wave_bag
 from fowt_hydro_sim.testing import REPO
 from fowt_hydro_sim.testing.ros import Listener, finish, start
@@ -143,6 +143,44 @@ def test_message_records_are_the_mcap_librarys(tmp_path):
     builder = RecordBuilder()
     Message(channel_id=channel, log_time=1_250_000_000, publish_time=1_250_000_000, data=data, sequence=0).write(builder)
     assert packed == builder.end()
+
+
+def test_a_batch_written_as_arrays_is_the_same_bag_as_message_by_message(tmp_path):
+    """write_blocks (the node's batches) against write_rows of the same messages: the same
+    .mcap and metadata.yaml byte for byte, over several chunks; the message indexes are
+    mcap.records.MessageIndex's bytes, and both independent readers read every message."""
+    outputs = topics.outputs(PUBLISHED)
+    bags = {}
+    for how in ("rows", "blocks"):
+        rng = np.random.default_rng(5)  # the same messages both ways
+        with BagWriter(tmp_path / how, config={"case": 1}, chunk_size_bytes=20_000, chunk_interval_s=1e9) as writer:
+            channels = [writer.add_topic(topic, kind) for topic, kind in outputs.values()]
+            for batch in range(6):
+                n = 7 + batch
+                time_s = 0.05 * np.arange(batch * 20, batch * 20 + n) + 1e5 * (batch == 5)
+                motion = np.hstack([rng.normal(0, 5, (n, 3)), rng.uniform(-1, 1, (n, 3))])
+                values = [rng.normal(0, 1e6, (n, 6)) for _ in range(2)]
+                args = (time_s, motion, *values, rng.normal(0, 1e6, (n, len(PUBLISHED), 6)), rng.normal(0, 1e6, (n, 6)),
+                        rng.normal(0, 2, n), "world", "platform")
+                if how == "rows":
+                    writer.write_rows((int(round(t * 1e9)), zip(channels, messages))
+                                      for t, messages in zip(time_s.tolist(), cdr.outputs(*args)))
+                else:
+                    writer.write_blocks(np.rint(time_s * 1e9).astype(np.int64), channels, cdr.output_blocks(*args))
+        bags[how] = tmp_path / how
+    for name in ("rows_0.mcap", "metadata.yaml"):
+        ours = (bags["blocks"] / name.replace("rows", "blocks")).read_bytes()
+        reference = (bags["rows"] / name).read_bytes()
+        assert ours == (reference.replace(b"rows_0", b"blocks_0") if name == "metadata.yaml" else reference)
+    recorded = Bag(bags["blocks"])
+    with open(bags["blocks"] / "blocks_0.mcap", "rb") as stream:
+        assert len(make_reader(stream).get_summary().chunk_indexes) > 3
+    assert recorded.message_count == len(outputs) * sum(7 + b for b in range(6))
+    with AnyReader([bags["blocks"]]) as reader:
+        assert sum(1 for _ in reader.messages()) == recorded.message_count
+    builder = RecordBuilder()
+    MessageIndex(channel_id=3, records=[(5, 17), (2**63, 9)]).write(builder)
+    assert message_index(3, [5, 2**63], [17, 9]) == builder.end()
 
 
 @pytest.fixture(scope="module")

@@ -4,11 +4,14 @@ publishes its motion and loads (contract: docs/ros_interface.md).
 The node stays thin: parameters become a ``PlatformModel``; messages go in and out through
 ``msg_adapters``; input checks live in ``inputs.py``. The simulator owns time: ``/clock`` and
 every stamp are simulation time. A stepping thread advances the model one publish period
-at a time, paced against the wall clock (``real_time_factor``), while the executor serves
-the subscriptions.
+at a time, paced against the wall clock (``real_time_factor``), or as fast as possible in
+batches of publish periods (one compiled call each, published by a second thread while
+the next batch is computed), while the executor serves the subscriptions.
 """
 from __future__ import annotations
 
+import contextlib
+import gc
 import logging
 import math
 import re
@@ -23,7 +26,8 @@ import rclpy
 from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import SetParametersResult
-from rclpy.executors import ExternalShutdownException
+from rclpy.duration import Duration
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
@@ -43,7 +47,7 @@ from fowt_hydro_sim.physics.config import (
 )
 from fowt_hydro_sim.physics.loads import PUBLISHED, ROW, SUMMED
 from fowt_hydro_sim.physics.loads.external import check_wrench
-from fowt_hydro_sim.physics.model import PlatformModel, RunResult
+from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 from fowt_hydro_sim.physics.waves.feed import WaveFeed
 from fowt_hydro_sim.ros import parameters
@@ -53,7 +57,7 @@ from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.rosbag.writer import BagWriter, RecordingStopped
 from fowt_hydro_sim.settings import like, setting
 from msg_adapters import cdr, topics
-from msg_adapters.sim_time import nanoseconds
+from msg_adapters.sim_time import nanoseconds, nanoseconds_array
 
 MESSAGE_CLASSES = {topics.type_name(c): c for c in (AccelStamped, Clock, Odometry, PointStamped, PoseStamped,
                                                     TwistStamped, WrenchStamped)}
@@ -61,9 +65,10 @@ MESSAGE_CLASSES = {topics.type_name(c): c for c in (AccelStamped, Clock, Odometr
 OUTPUTS = topics.outputs(PUBLISHED)  # every published load component has its topic
 WAVE_SOURCES = ("internal", "topic", "bag")
 CONTROLLER_LOST = ("stop", "open_loop")  # lockstep: what the node does when its controller is gone
-BATCH_S = 1.0  # simulated seconds stepped per compiled call when running as fast as possible
+BATCH_S = 5.0  # simulated seconds stepped per compiled call when running as fast as possible
 MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
+DELIVERY_TIMEOUT_S = 5.0  # at the end of a run: wall seconds at most for subscribers to acknowledge every output
 WARNING_INTERVAL_S = 5.0  # refused inputs of one kind: at most one warning line per this many wall seconds
 
 
@@ -406,6 +411,17 @@ class SimulatorNode(Node):
         if self._recorder is not None:
             self._recorder.close()
 
+    def wait_for_delivery(self, timeout_s: float = DELIVERY_TIMEOUT_S) -> None:
+        """At the end of a run: wait until reliable subscribers have acknowledged every output
+        (DDS repairs lost samples at its heartbeats), at most ``timeout_s`` in all; said if not."""
+        deadline = time.monotonic() + timeout_s
+        late = [publisher.topic_name for publisher in self._pub.values()
+                if not publisher.wait_for_all_acked(Duration(seconds=max(0.0, deadline - time.monotonic())))]
+        if late:
+            self.get_logger().warning(f"{len(late)} output topic(s) not acknowledged by every subscriber within "
+                                      f"{timeout_s:g} s (e.g. {late[0]}): a subscriber may have missed the last "
+                                      f"messages")
+
     @property
     def recording_failed(self) -> bool:
         """Whether the recording stopped early (its bag is closed, with what was written)."""
@@ -416,13 +432,13 @@ class SimulatorNode(Node):
         return not self._thread.is_alive()
 
     def _run(self) -> None:
-        start_wall, start_sim = time.monotonic(), self.model.time_s
+        start_wall, start_cpu, start_sim = time.monotonic(), time.process_time(), self.model.time_s
         try:
             self._step_until_done()
         finally:
-            wall = time.monotonic() - start_wall
+            wall, cpu = time.monotonic() - start_wall, time.process_time() - start_cpu
             report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
-                     f"simulated in {wall:.2f} s of wall time, {self.published} messages published"
+                     f"simulated in {wall:.2f} s of wall time ({cpu:.2f} s of CPU), {self.published} messages published"
             if self.lateness_s:
                 late = np.array(self.lateness_s) * 1e3
                 report += (f"; pacing lateness p50 {np.percentile(late, 50):.3f} ms, p99 "
@@ -445,6 +461,8 @@ class SimulatorNode(Node):
         if s.lockstep:
             self._wait_for_controller()
         self._wait_for_subscribers(s.wait_for_subscribers)
+        gc.collect()
+        gc.freeze()  # the set-up's objects out of the collector's way: shorter pauses while stepping
         self._publish_now()
         self._anchor = (time.monotonic(), model.time_s, self._rtf)  # pacing: wall, sim, factor
         try:
@@ -471,20 +489,26 @@ class SimulatorNode(Node):
                     continue
                 self._finish_publishing()
                 model.step(s.steps_per_publish)
-                if not self._healthy(model.time_s, model.motion, model.velocity):
+                if not self._healthy(np.array([model.time_s]), model.motion[None], model.velocity[None]):
                     return
+                outputs = self._outputs_now()  # built before the deadline, sent at it
                 self._pace(period)
-                self._publish_now()
+                self._publish(*outputs)
         finally:
             self._finish_publishing()
+            gc.unfreeze()
 
     def _step_batch(self, duration_s: float, period_s: float) -> bool:
         """Step a batch, computed (without the GIL) while the previous batch is published;
         False if it diverged."""
         result = self.model.run(duration_s, output_interval_s=period_s)
-        healthy = self._healthy_rows(result)
+        rows = slice(1, None)  # the first row is where the batch started, already published
+        healthy = self._healthy(result.time_s[rows], result.motion[rows], result.velocity[rows])
         self._finish_publishing()
-        self._published = self._publisher.submit(self._publish_batch, result, healthy)
+        outputs = self._outputs(result.time_s[rows][:healthy], result.motion[rows][:healthy],
+                                result.velocity[rows][:healthy], result.acceleration[rows][:healthy],
+                                result.loads[rows][:healthy], result.wave_elevation_m[rows][:healthy])
+        self._published = self._publisher.submit(self._publish, *outputs)
         return healthy == len(result.time_s) - 1
 
     def _finish_publishing(self) -> None:
@@ -493,7 +517,8 @@ class SimulatorNode(Node):
             self._published = None
 
     def _pace(self, period_s: float) -> None:
-        """Sleep until the wall-clock time of the current simulated time."""
+        """Sleep until the wall-clock time of the current simulated time: an absolute deadline
+        on the monotonic clock, from the anchor (so lateness does not accumulate)."""
         wall0, sim0, rtf = self._anchor
         if self._rtf != rtf:  # re-anchor after a change of speed
             wall0, sim0, rtf = time.monotonic(), self.model.time_s - period_s, self._rtf
@@ -508,63 +533,69 @@ class SimulatorNode(Node):
                 self.lateness_s.append(time.monotonic() - target)
         self._anchor = (wall0, sim0, rtf)
 
-    def _healthy(self, time_s: float, motion: np.ndarray, velocity: np.ndarray) -> bool:
-        if np.all(np.isfinite(motion)) and np.all(np.isfinite(velocity)) and np.all(np.abs(motion) < MOTION_LIMITS):
-            return True
-        self.get_logger().error(f"the state diverged at t = {time_s:.3f} s (motion {motion.tolist()}): "
+    def _healthy(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray) -> int:
+        """How many rows of states (n, 6) are healthy: all, or those before the first that is
+        not (logged, and the stepping stops)."""
+        bad = ~(np.isfinite(motion).all(axis=1) & np.isfinite(velocity).all(axis=1)
+                & (np.abs(motion) < MOTION_LIMITS).all(axis=1))
+        if not bad.any():
+            return len(time_s)
+        first = int(np.argmax(bad))
+        self.get_logger().error(f"the state diverged at t = {time_s[first]:.3f} s (motion {motion[first].tolist()}): "
                                 f"stepping stopped, nothing more is published")
         self._stop.set()
-        return False
+        return first
 
-    def _healthy_rows(self, result: RunResult) -> int:
-        """How many of a batch's samples after its first row are healthy (all, or up to the
-        first that is not, which is logged and stops the stepping)."""
-        for i in range(1, len(result.time_s)):
-            if not self._healthy(float(result.time_s[i]), result.motion[i], result.velocity[i]):
-                return i - 1
-        return len(result.time_s) - 1
-
-    def _publish_batch(self, result: RunResult, n_rows: int) -> None:
-        """Publish a batch's first ``n_rows`` samples after its first row (where it started)."""
-        rows = slice(1, n_rows + 1)
-        self._publish(result.time_s[rows], result.motion[rows], result.velocity[rows], result.acceleration[rows],
-                      result.loads[rows], result.wave_elevation_m[rows])
+    def _outputs_now(self) -> tuple[np.ndarray, list[np.ndarray]]:
+        m = self.model
+        return self._outputs(np.array([m.time_s]), m.motion[None], m.velocity[None], m.acceleration[None],
+                             m.loads[None], np.array([float(m.wave_elevation(m.time_s)[0])]))
 
     def _publish_now(self) -> None:
-        m = self.model
-        self._publish(np.array([m.time_s]), m.motion[None], m.velocity[None], m.acceleration[None], m.loads[None],
-                      np.array([float(m.wave_elevation(m.time_s)[0])]))
+        self._publish(*self._outputs_now())
 
-    def _publish(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
-                 loads: np.ndarray, elevation_m: np.ndarray) -> None:
-        """Every output of each sample (rows), as pre-serialised CDR, published and recorded."""
+    def _outputs(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
+                 loads: np.ndarray, elevation_m: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]]:
+        """Every output of each sample (row): the times and one block of CDR messages per topic."""
         total = loads[:, self._total_rows].sum(axis=1)
-        samples = cdr.outputs(time_s, motion, velocity, acceleration, loads[:, self._load_rows], total, elevation_m,
-                              self.settings.world_frame_id, self.settings.platform_frame_id)
-        send, names = self._send, self._output_names
-        for messages in samples:
-            for name, data in zip(names, messages):
-                send(name, data)
-        self.published += len(samples) * len(names)
+        return time_s, cdr.output_blocks(time_s, motion, velocity, acceleration, loads[:, self._load_rows], total,
+                                         elevation_m, self.settings.world_frame_id, self.settings.platform_frame_id)
+
+    def _publish(self, time_s: np.ndarray, blocks: list[np.ndarray]) -> None:
+        """Publish each sample's messages (row by row, topics in contract order), then record them."""
+        if not len(time_s):
+            return
+        self._send(blocks)
+        self.published += len(time_s) * len(blocks)
         if self._recorder is not None:
-            channels = self._output_channels
             try:
-                self._recorder.write_rows((nanoseconds(t), zip(channels, messages))
-                                          for t, messages in zip(time_s.tolist(), samples))
+                self._recorder.write_blocks(nanoseconds_array(time_s), self._output_channels, blocks)
             except RecordingStopped as exc:
                 self._recording_stopped(exc)
 
-    def _send(self, name: str, data: bytes) -> None:
-        """Publish; a reliable subscriber too slow for an accelerated run makes DDS refuse the
-        write after blocking: the message is dropped and counted, the node goes on."""
-        try:
-            self._pub[name].publish(data)
-        except _rclpy.RCLError as exc:
-            self.dropped += 1
-            if self.dropped == 1 or self.dropped % 1000 == 0:
-                self.get_logger().warning(f"{self.dropped} message(s) dropped, e.g. on {self._pub[name].topic_name} "
-                                          f"({str(exc).split(',')[0]}): a subscriber cannot keep up; lower "
-                                          f"real_time_factor or publish_rate_hz")
+    def _send(self, blocks: list[np.ndarray]) -> None:
+        """Publish the CDR bytes straight through rclpy's publisher handles (held for the
+        batch, as ``Publisher.publish`` holds its own for each message). A reliable subscriber
+        too slow for an accelerated run makes DDS refuse the write after blocking: the
+        message is dropped and counted, the node goes on."""
+        publishers = [self._pub[name] for name in self._output_names]
+        with contextlib.ExitStack() as held:
+            for publisher in publishers:
+                held.enter_context(publisher.handle)
+            sends = [publisher.handle.publish_raw for publisher in publishers]
+            for row in zip(*map(cdr.messages, blocks)):
+                for send, data, publisher in zip(sends, row, publishers):
+                    try:
+                        send(data)
+                    except _rclpy.RCLError as exc:
+                        self._dropped(publisher.topic_name, exc)
+
+    def _dropped(self, topic: str, exc: Exception) -> None:
+        self.dropped += 1
+        if self.dropped == 1 or self.dropped % 1000 == 0:
+            self.get_logger().warning(f"{self.dropped} message(s) dropped, e.g. on {topic} "
+                                      f"({str(exc).split(',')[0]}): a subscriber cannot keep up; lower "
+                                      f"real_time_factor or publish_rate_hz")
 
 
 def main(args: list[str] | None = None) -> int:
@@ -582,16 +613,20 @@ def main(args: list[str] | None = None) -> int:
         log.error(f"fowt-sim node: {exc}".splitlines()[0])
         rclpy.try_shutdown()
         return 2
+    executor = SingleThreadedExecutor()  # one executor: no wait set rebuilt at every spin
+    executor.add_node(node)
     node.start()
     try:
         while rclpy.ok() and not node.finished:
-            rclpy.spin_once(node, timeout_sec=0.1)
+            executor.spin_once(timeout_sec=0.1)
+        node.wait_for_delivery()
         for _ in range(5):  # let the last messages go out
-            rclpy.spin_once(node, timeout_sec=0.1)
+            executor.spin_once(timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         node.stop()
+        executor.shutdown(timeout_sec=1.0)
         node.destroy_node()
         rclpy.try_shutdown()
     return 1 if node.recording_failed else 0

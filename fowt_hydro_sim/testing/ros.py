@@ -15,16 +15,22 @@ from pathlib import Path
 from fowt_hydro_sim.testing import REPO
 
 
-def start(command: str, **parameters) -> subprocess.Popen:
-    """``fowt-sim <command> --ros-args -p k:=v ...`` in a child process (stderr: its log)."""
+def command_line(command: str, **parameters) -> list[str]:
+    """``fowt-sim <command> --ros-args -p k:=v ...`` as arguments."""
     args = [sys.executable, "-m", "fowt_hydro_sim.cli", command, "--ros-args"]
     for name, value in parameters.items():
         text = str(value).lower() if isinstance(value, bool) else str(value)
         args += ["-p", f"{name}:={text}"]
+    return args
+
+
+def start(command: str, *, prefix: tuple[str, ...] = (), **parameters) -> subprocess.Popen:
+    """``fowt-sim <command> --ros-args -p k:=v ...`` in a child process (stderr: its log),
+    after ``prefix`` (e.g. ``("chrt", "-f", "50")``)."""
     if os.environ.get("ROS_AUTOMATIC_DISCOVERY_RANGE") != "LOCALHOST":
         raise RuntimeError("set ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST (and a ROS_DOMAIN_ID of your own) first")
-    return subprocess.Popen(args, cwd=REPO, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True)
+    return subprocess.Popen([*prefix, *command_line(command, **parameters)], cwd=REPO, stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
 
 def finish(process: subprocess.Popen, timeout_s: float = 60.0) -> str:
@@ -95,12 +101,19 @@ class Listener:
 
 def node_speed(duration_s: float, drag: str, record: Path | None = None) -> float:
     """Simulated seconds per wall second of one node run."""
+    sim, wall, _ = node_run(duration_s, drag, record)
+    return sim / wall
+
+
+def node_run(duration_s: float, drag: str, record: Path | None = None) -> tuple[float, float, float]:
+    """Simulated seconds, wall seconds and CPU seconds of the stepping of one node run as
+    fast as possible."""
     params = {"real_time_factor": 0.0, "duration_s": duration_s, "drag_model": drag}
     if record is not None:
         params.update(record=str(record), record_overwrite=True)
     output = finish(start("node", **params), 3600.0)
-    done = re.search(r"([\d.]+) s simulated in ([\d.]+) s of wall time", output)
+    done = re.search(r"([\d.]+) s simulated in ([\d.]+) s of wall time \(([\d.]+) s of CPU\)", output)
     if not done:
         raise RuntimeError(f"the node did not report its speed:\n{output}")
-    sim, wall = map(float, done.groups())
-    return sim / wall
+    sim, wall, cpu = map(float, done.groups())
+    return sim, wall, cpu
