@@ -128,7 +128,7 @@ class Progress:
     def line(self) -> str:
         left = self.seconds_left()
         share = self.work_done_s / self.work_expected_s if self.work_expected_s else 1.0
-        return (f"diagnosis: {self.runs_done}/{max(self.runs_done, self.runs_expected)} model runs "
+        return (f"diagnosis: {self.runs_done}/{self.runs_expected} model runs "
                 f"({min(1.0, share):.0%} of the replayed time), "
                 + ("time left unknown" if math.isnan(left) else f"{left / 60:.1f} min left"))
 
@@ -455,6 +455,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         progress.done(0, 0.0, final=True)
         return diagnosis
 
+    progress.expect(n_tuning if window else 0, sum(fit_run_s) if window else 0.0)
     window_before = ([g for g, _ in evaluate([(None, {}, i, False, window) for i in range(n_tuning)],
                                              "plain model, fit window")] if window else [])
     diagnosis.model_runs += len(window_before)
