@@ -27,7 +27,7 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.studies.cluster import dask_client, map_with_progress
 from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
 from fowt_hydro_sim.studies.diagnosis.diagnose import (FIT_WINDOW_S, REPLAY_DT_S, cluster_evaluate, diagnose,
-                                                       job_s)
+                                                       job_duration_s, job_s)
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
 from fowt_hydro_sim.studies.replay import PREROLL_S, Variant, replay
 
@@ -70,8 +70,8 @@ class Recorder:
         results = self.evaluate(jobs, description)
         seconds = [job_s(j, self.runs) for j in jobs]
         self.calls.append((description, len(jobs), max(seconds), time.perf_counter() - start))
-        self.whole += sum(j[4] is None for j in jobs)
-        self.window += sum(j[4] is not None for j in jobs)
+        self.whole += sum(job_duration_s(j) is None for j in jobs)
+        self.window += sum(job_duration_s(j) is not None for j in jobs)
         self.replayed_s += sum(seconds)
         return results
 

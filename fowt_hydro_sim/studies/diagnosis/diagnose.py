@@ -59,7 +59,7 @@ FIT_WINDOW_S = 1800.0  # longer tuning records are fitted on their first FIT_WIN
 SCREEN_CLOSURE = 0.25  # closing less than this in the fit window: not replayed at full length
 PROGRESS_EVERY_S = 10.0  # at most one progress line this often
 
-Job = tuple  # (effect name or None, parameter values, run index, with spectra, duration [s] or None: whole)
+Job = tuple  # (effect name or None, parameter values, run index, with spectra[, duration [s]: a part of the record])
 
 
 def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
@@ -67,7 +67,8 @@ def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: 
     """One model run (a cluster task): run ``index`` replayed by the plain model or with an
     effect at the given values (over the whole record, or its first ``duration`` seconds);
     its gap, and its spectra if asked."""
-    name, values, index, with_spectra, duration_s = job
+    name, values, index, with_spectra = job[:4]
+    duration_s = job_duration_s(job)
     run = runs[index]
     variant = Variant(platform)
     if name is not None:
@@ -123,7 +124,9 @@ class Progress:
 
     def seconds_left(self) -> float:
         elapsed = time.monotonic() - self.start
-        return elapsed * max(0.0, self.work_expected_s - self.work_done_s) / self.work_done_s if self.work_done_s else math.nan
+        if not self.work_done_s:
+            return math.nan
+        return elapsed * max(0.0, self.work_expected_s - self.work_done_s) / self.work_done_s
 
     def line(self) -> str:
         left = self.seconds_left()
@@ -142,9 +145,15 @@ def tracked(evaluate: Callable, runs: list[MeasuredRun], progress: Progress) -> 
     return run
 
 
+def job_duration_s(job: Job) -> float | None:
+    """The part of the record a job replays [s] (None: the whole record)."""
+    return job[4] if len(job) > 4 else None
+
+
 def job_s(job: Job, runs: list[MeasuredRun]) -> float:
     """Model seconds a job replays, pre-roll included."""
-    return PREROLL_S + (job[4] if job[4] is not None else record_s(runs[job[2]]))
+    duration_s = job_duration_s(job)
+    return PREROLL_S + (duration_s if duration_s is not None else record_s(runs[job[2]]))
 
 
 # ---------------------------------------------------------------------- fitting one candidate
@@ -251,7 +260,7 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
 
     def gaps_at(us: list[np.ndarray]) -> list[list[Gap]]:
         todo = list({u.tobytes(): u for u in us if u.tobytes() not in cache}.values())
-        jobs = [(effect.name, values(u), i, False, window_s) for u in todo for i in tuning]
+        jobs = [(effect.name, values(u), i, False) + ((window_s,) if window_s else ()) for u in todo for i in tuning]
         results = evaluate(jobs, description) if jobs else []
         for k, u in enumerate(todo):
             cache[u.tobytes()] = [g for g, _ in results[k * len(tuning):(k + 1) * len(tuning)]]
@@ -437,8 +446,17 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     evaluate = tracked(evaluate, runs, progress)
     whole_s = [PREROLL_S + record_s(r) for r in runs]
     fit_run_s = [PREROLL_S + (window if window else record_s(r)) for r in tuning]
-    progress.expect(2 * len(runs), 2 * sum(whole_s))  # the plain model, and the chosen effect on every run
-    first = evaluate([(None, {}, i, i < n_tuning, None) for i in range(len(runs))], "plain model")
+
+    def expect_fits(sign: int = 1) -> None:
+        """Every candidate's most runs: its fit's points, then its whole records."""
+        budget = sum(fit_budget(e, max_evaluations) for e in effects.values())
+        progress.expect(sign * (budget * n_tuning + (len(effects) * n_tuning if window else 0)),
+                        sign * (budget * sum(fit_run_s) + (len(effects) * sum(whole_s[:n_tuning]) if window else 0.0)))
+
+    # the plain model, the fit window's plain model, the fits, and the chosen effect on every run
+    progress.expect(2 * len(runs) + (n_tuning if window else 0), 2 * sum(whole_s) + (sum(fit_run_s) if window else 0.0))
+    expect_fits()
+    first = evaluate([(None, {}, i, i < n_tuning) for i in range(len(runs))], "plain model")
     baseline = [g for g, _ in first]
     measured = [measured_spectra(r, settings) for r in tuning]
     model_spectra = [s for _, s in first[:n_tuning]]
@@ -451,11 +469,11 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     diagnosis.mismatches = baseline_mismatches(tuning, diagnosis.tuning_before, settings)
     if not any(g.flagged.any() for g in diagnosis.tuning_before):
         diagnosis.reason = "no cell of the tuning runs is both significant and beyond its tolerance"
-        progress.expect(-len(runs), -sum(whole_s))
+        progress.expect(-len(runs) - (n_tuning if window else 0), -sum(whole_s) - (sum(fit_run_s) if window else 0.0))
+        expect_fits(-1)
         progress.done(0, 0.0, final=True)
         return diagnosis
 
-    progress.expect(n_tuning if window else 0, sum(fit_run_s) if window else 0.0)
     window_before = ([g for g, _ in evaluate([(None, {}, i, False, window) for i in range(n_tuning)],
                                              "plain model, fit window")] if window else [])
     diagnosis.model_runs += len(window_before)
@@ -463,8 +481,6 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         def fit(effect: Effect) -> CandidateFit:
             budget = fit_budget(effect, max_evaluations)
-            progress.expect(budget * n_tuning + (n_tuning if window else 0),
-                            budget * sum(fit_run_s) + (sum(whole_s[:n_tuning]) if window else 0.0))
             values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
                                              mask, window)
             progress.expect(count - budget * n_tuning, (count / n_tuning - budget) * sum(fit_run_s))
@@ -475,7 +491,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                     progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
                     return CandidateFit(effect.name, values, gaps, score(gaps, p, mask), in_window, count,
                                         window_s=window)
-                results = evaluate([(effect.name, values, i, False, None) for i in range(n_tuning)],
+                results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
                                    f"{effect.name}: whole records")
                 gaps, count = [g for g, _ in results], count + n_tuning
             return CandidateFit(effect.name, values, gaps, score(gaps, p, mask),
@@ -504,6 +520,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         diagnosis.fit_cells = remaining
         diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining)
         if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
+            expect_fits()
             candidates = fit_all(remaining)
         else:
             for c in candidates:
@@ -525,7 +542,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             return _with_mismatches(diagnosis, None)
         chosen, reason = _choose(fitting, effects, deficit, settings)
         diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
-        jobs = [(chosen.effect, chosen.values, i, i < n_tuning, None) for i in range(len(runs))]
+        jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
         if not first_choice:
             progress.expect(len(runs), sum(whole_s))
         first_choice = False
