@@ -105,7 +105,7 @@ def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: f
 def fast_table_step(waves: WaveComponents) -> float:
     """A kinematics table step at most ``table_step``'s that divides the repeat period into a
     number of samples the FFT handles fast (a record's own length often has a large prime
-    factor: a 3-hour record's table then takes 14 s instead of 1 s)."""
+    factor: a 3-hour record's table then took 10 s instead of 2.5 s)."""
     step = table_step(waves)
     return waves.period_s / scipy.fft.next_fast_len(int(round(waves.period_s / step)), real=True)
 
