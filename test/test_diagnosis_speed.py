@@ -21,6 +21,7 @@ from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
 from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, in_process
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
+from fowt_hydro_sim.studies.diagnosis.report import summary_lines
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant, fast_table_step, replay
 from fowt_hydro_sim.testing import REPO
 
@@ -58,6 +59,7 @@ def test_long_records_fitted_on_their_first_part_name_the_effect(platform, caplo
     assert drift.window_s is None and drift.closure > 0.8  # judged on the whole records
     delay = diagnosis.candidate("wave_measurement_delay")
     assert delay.window_s == WINDOW_S and not delay.fits and delay.closure < 0.25
+    assert any("wave_measurement_delay" in line and "(screened: closes" in line for line in summary_lines(diagnosis))
     whole = [j for j in jobs if len(j) == 4]
     assert all(j[0] != "wave_measurement_delay" for j in whole)
     assert len(whole) == 2 + 2 + 2  # plain model, slow drift at its fitted values, slow drift "after"
