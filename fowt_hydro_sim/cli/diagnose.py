@@ -9,7 +9,7 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
-from fowt_hydro_sim.studies.diagnosis.diagnose import REPLAY_DT_S
+from fowt_hydro_sim.studies.diagnosis.diagnose import FIT_WINDOW_S, REPLAY_DT_S
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
 
 
@@ -35,7 +35,7 @@ def diagnose_command(args: argparse.Namespace) -> int:
     from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose_bags
     platform, settings, effects, dt_s = _common(args)
     lines = diagnose_bags(args.measured, args.blind or [], platform, settings, effects, args.output, args.heading,
-                          args.max_evaluations, dt_s, args.scheduler, args.workers)
+                          args.max_evaluations, dt_s, args.scheduler, args.workers, args.fit_window)
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
 
@@ -73,6 +73,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--blind", nargs="+", help="blind bags: the chosen effect is checked on them, not refitted")
     p.add_argument("--heading", type=float, default=0.0, help="wave direction of the records [deg] (default 0)")
     _add_common(p)
+    p.add_argument("--fit-window", type=float, default=FIT_WINDOW_S,
+                   help="tuning records longer than this [s] are fitted on their first part, then replayed whole; "
+                        "0: fit on whole records (default %(default)s)")
     p.add_argument("-o", "--output", default="out/diagnosis", help="report folder (default %(default)s)")
     p.set_defaults(func=diagnose_command)
     b = sub.add_parser("diagnose-benchmark", help="score the diagnosis on runs whose effect is withheld",

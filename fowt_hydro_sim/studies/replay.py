@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import scipy.fft
 
 from fowt_hydro_sim.physics.config import Platform
 from fowt_hydro_sim.physics.loads.extension import Extension
@@ -25,7 +26,7 @@ from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, table_step
 OUTPUT_INTERVAL_S = 0.25  # motion samples of a replayed run
 PREROLL_S = 600.0  # model time before the record: with the 300 s transient, three decay times of the surge resonance
 WAVE_F_MAX_HZ = 0.5  # elevation components kept
-TABLES_KEPT = 6  # kinematics tables kept for further replays of the same runs
+TABLE_BUDGET_BYTES = 3.2e9  # kinematics tables kept for further replays (seven 3-hour records: 0.41 GB each)
 _tables: OrderedDict[bytes, KinematicsTable] = OrderedDict()
 
 
@@ -91,8 +92,9 @@ def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: f
     waves = from_elevation_record(run.elevation_time_s - run.elevation_time_s[0], run.elevation_m,
                                   *run.point_xy_m, run.heading_deg, env.water_depth_m, env.gravity_m_s2,
                                   f_max_hz=WAVE_F_MAX_HZ).delayed(preroll_s)
-    model = PlatformModel(platform, waves, dt_s=dt_s, drag_model=variant.drag_model,
-                          extension=variant.extension.delayed(preroll_s), kinematics=kinematics_table(platform, waves))
+    table = kinematics_table(platform, waves)
+    model = PlatformModel(platform, waves, dt_s=dt_s, drag_model=variant.drag_model, wave_table_dt_s=table.step_s,
+                          extension=variant.extension.delayed(preroll_s), kinematics=table)
     start = run.elevation_time_s[0] + variant.elevation_shift_s
     duration = duration_s if duration_s is not None else float(run.motion_time_s[-1] - start)
     result = model.run(preroll_s + duration, output_interval_s=OUTPUT_INTERVAL_S)
@@ -100,12 +102,22 @@ def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: f
     return result.time_s[keep] - preroll_s + start, result.motion[keep]
 
 
+def fast_table_step(waves: WaveComponents) -> float:
+    """A kinematics table step at most ``table_step``'s that divides the repeat period into a
+    number of samples the FFT handles fast (a record's own length often has a large prime
+    factor: a 3-hour record's table then took 10 s instead of 2.5 s)."""
+    step = table_step(waves)
+    return waves.period_s / scipy.fft.next_fast_len(int(round(waves.period_s / step)), real=True)
+
+
 def kinematics_table(platform: Platform, waves: WaveComponents) -> KinematicsTable:
     """The waves' kinematics at the platform's points, kept for the next replays of the same
-    run (a fit replays each run many times with other coefficients, same points)."""
+    run (a fit replays each run many times with other coefficients, same points): the
+    latest used within ``TABLE_BUDGET_BYTES``, so that a diagnosis cycling over its runs
+    does not rebuild each table on every replay (a count limit below the runs would)."""
     env = platform.environment
     points = discretise(platform).points_m
-    step = table_step(waves)
+    step = fast_table_step(waves)
     digest = hashlib.blake2b(digest_size=16)
     for array in (waves.frequency_hz, waves.amplitude_m, waves.phase_rad, waves.direction_rad, points,
                   np.array([step, env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3])):
@@ -116,6 +128,6 @@ def kinematics_table(platform: Platform, waves: WaveComponents) -> KinematicsTab
         return _tables[key]
     table = KinematicsTable.build(waves, points, step, env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
     _tables[key] = table
-    while len(_tables) > TABLES_KEPT:
+    while len(_tables) > 1 and sum(t.values.nbytes for t in _tables.values()) > TABLE_BUDGET_BYTES:
         _tables.popitem(last=False)
     return table

@@ -19,11 +19,19 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
 
 Model runs go through ``evaluate(jobs) -> results`` (in process, or on a Dask cluster);
 each candidate's fit runs in its own thread so that every candidate's runs are in flight
-together.
+together. Records longer than the fit window are fitted on their first ``FIT_WINDOW_S``
+(the replays of the least-squares steps and Jacobians are short); the fitted values are
+then replayed over the whole records, which score and judge the candidate. A candidate
+that closes less than ``SCREEN_CLOSURE`` of the gap in the fit window cannot be named and is
+not replayed at full length (it keeps its fit-window figures). Progress (model runs done
+of those expected, time left) is logged as single lines.
 """
 from __future__ import annotations
 
+import logging
 import math
+import threading
+import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Callable
@@ -34,7 +42,9 @@ import scipy.optimize
 from fowt_hydro_sim.physics.config import Platform
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, gap, spectra
-from fowt_hydro_sim.studies.replay import MeasuredRun, Variant, replay
+from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun, Variant, replay
+
+log = logging.getLogger(__name__)
 
 REPLAY_DT_S = 0.1  # the replays' step (a basin's motion at 4 Hz needs no finer one)
 FLOOR = 0.25  # residual floor in tolerance units: fits closer than this are not told apart
@@ -45,20 +55,25 @@ COHERENCE_DEFICIT = 0.1  # measured low-frequency coherence this far below the m
 FD_STEP = 0.1  # forward-difference step, in units of each parameter's scale
 EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) sits at the edge
 BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
+FIT_WINDOW_S = 1800.0  # longer tuning records are fitted on their first FIT_WINDOW_S, then replayed whole
+SCREEN_CLOSURE = 0.25  # closing less than this in the fit window: not replayed at full length
+PROGRESS_EVERY_S = 10.0  # at most one progress line this often
 
-Job = tuple  # (effect name or None, parameter values, run index, with spectra)
+Job = tuple  # (effect name or None, parameter values, run index, with spectra[, duration [s]: a part of the record])
 
 
 def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
                effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S) -> tuple[Gap, dict | None]:
     """One model run (a cluster task): run ``index`` replayed by the plain model or with an
-    effect at the given values; its gap, and its spectra if asked."""
-    name, values, index, with_spectra = job
+    effect at the given values (over the whole record, or its first ``duration`` seconds);
+    its gap, and its spectra if asked."""
+    name, values, index, with_spectra = job[:4]
+    duration_s = job_duration_s(job)
     run = runs[index]
     variant = Variant(platform)
     if name is not None:
         variant = (effects or CATALOGUE)[name].apply(variant, run, values)
-    time_s, motion = replay(variant, run, dt_s)
+    time_s, motion = replay(variant, run, dt_s, duration_s)
     result = gap(run.name, (run.motion_time_s, run.motion), (time_s, motion), settings)
     return result, spectra((run.elevation_time_s, run.elevation_m), (time_s, motion), settings) if with_spectra else None
 
@@ -67,6 +82,78 @@ def in_process(runs: list[MeasuredRun], platform: Platform, settings: GapSetting
                effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S) -> Callable[[list[Job], str], list]:
     """``evaluate`` that runs every job here, one after another."""
     return lambda jobs, description="": [replay_job(j, runs, platform, settings, effects, dt_s) for j in jobs]
+
+
+def record_s(run: MeasuredRun) -> float:
+    """The span a whole-record replay covers (elevation start to last motion sample)."""
+    return float(run.motion_time_s[-1] - run.elevation_time_s[0])
+
+
+def fit_window(runs: list[MeasuredRun], window_s: float | None) -> float | None:
+    """The fit window if every run is longer than it, else None (fit on whole records)."""
+    return window_s if window_s and all(record_s(r) > window_s for r in runs) else None
+
+
+class Progress:
+    """Model runs done of those expected and the time left at the pace so far (in replayed
+    seconds, pre-roll included), logged as one line at most every ``every_s``. The expected
+    runs are each phase's most; ``expect`` with a negative count gives back what a phase
+    did not use."""
+
+    def __init__(self, every_s: float = PROGRESS_EVERY_S):
+        self.every_s = every_s
+        self.runs_done = self.runs_expected = 0
+        self.work_done_s = self.work_expected_s = 0.0
+        self.start = time.monotonic()
+        self._last = -math.inf
+        self._lock = threading.Lock()
+
+    def expect(self, runs: int, work_s: float) -> None:
+        with self._lock:
+            self.runs_expected += runs
+            self.work_expected_s += work_s
+
+    def done(self, runs: int, work_s: float, final: bool = False) -> None:
+        with self._lock:
+            self.runs_done += runs
+            self.work_done_s += work_s
+            now = time.monotonic()
+            if final or now - self._last >= self.every_s:
+                self._last = now
+                log.info(self.line())
+
+    def seconds_left(self) -> float:
+        elapsed = time.monotonic() - self.start
+        if not self.work_done_s:
+            return math.nan
+        return elapsed * max(0.0, self.work_expected_s - self.work_done_s) / self.work_done_s
+
+    def line(self) -> str:
+        left = self.seconds_left()
+        share = self.work_done_s / self.work_expected_s if self.work_expected_s else 1.0
+        return (f"diagnosis: {self.runs_done}/{self.runs_expected} model runs "
+                f"({min(1.0, share):.0%} of the replayed time), "
+                + ("time left unknown" if math.isnan(left) else f"{left / 60:.1f} min left"))
+
+
+def tracked(evaluate: Callable, runs: list[MeasuredRun], progress: Progress) -> Callable:
+    """``evaluate`` that counts its finished jobs in ``progress``."""
+    def run(jobs: list[Job], description: str = "") -> list:
+        results = evaluate(jobs, description)
+        progress.done(len(jobs), sum(job_s(j, runs) for j in jobs))
+        return results
+    return run
+
+
+def job_duration_s(job: Job) -> float | None:
+    """The part of the record a job replays [s] (None: the whole record)."""
+    return job[4] if len(job) > 4 else None
+
+
+def job_s(job: Job, runs: list[MeasuredRun]) -> float:
+    """Model seconds a job replays, pre-roll included."""
+    duration_s = job_duration_s(job)
+    return PREROLL_S + (duration_s if duration_s is not None else record_s(runs[job[2]]))
 
 
 # ---------------------------------------------------------------------- fitting one candidate
@@ -82,10 +169,19 @@ class CandidateFit:
     model_runs: int
     fits: bool = False  # beats the plain model, closes enough, and raises no concern
     concerns: list[str] = field(default_factory=list)  # why the fit is not physically plausible
+    window_s: float | None = None  # screened out: gaps, score and closure on the fit window only
+
+    @property
+    def screened(self) -> str:
+        """Why the candidate was not replayed at full length ('' if it was)."""
+        return "" if self.window_s is None else (
+            f"closes {self.closure:.0%} in the first {self.window_s:g} s, less than {SCREEN_CLOSURE:.0%}: "
+            "not replayed at full length")
 
     def as_dict(self, settings: GapSettings) -> dict:
         return {"effect": self.effect, "values": self.values, "score": self.score, "closure": self.closure,
                 "fits": self.fits, "concerns": self.concerns, "model_runs": self.model_runs,
+                "window_s": self.window_s, "screened": self.screened,
                 "gaps": [g.as_dict(settings) for g in self.gaps]}
 
 
@@ -105,6 +201,18 @@ def closure(before: list[Gap], after: list[Gap], mask: np.ndarray | None = None)
         num += float(np.sum(a.residual[cells] ** 2))
         den += float(np.sum(b.residual[cells] ** 2))
     return 1.0 - num / den if den > 0 else 0.0
+
+
+def window_closure(flagged: list[Gap], before: list[Gap], after: list[Gap], mask: np.ndarray | None = None) -> float:
+    """``closure`` in a fit window: over the cells flagged on the whole records (``flagged``)
+    or beyond tolerance after, the residuals of the window's gaps; NaN if the window shows
+    none of it."""
+    num = den = 0.0
+    for f, b, a in zip(flagged, before, after):
+        cells = (f.flagged | a.material) & (mask if mask is not None else True)
+        num += float(np.sum(a.residual[cells] ** 2))
+        den += float(np.sum(b.residual[cells] ** 2))
+    return 1.0 - num / den if den > 0 else math.nan
 
 
 def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
@@ -135,9 +243,10 @@ def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settin
 
 
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
-               description: str = "", mask: np.ndarray | None = None) -> tuple[dict[str, float], list[Gap], int]:
-    """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all):
-    (values, gaps at them, model runs)."""
+               description: str = "", mask: np.ndarray | None = None,
+               window_s: float | None = None) -> tuple[dict[str, float], list[Gap], int]:
+    """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all), on
+    the runs' first ``window_s`` (default: whole records): (values, gaps at them, model runs)."""
     keep = slice(None) if mask is None else mask
     params = effect.parameters
     off = np.array([p.off for p in params])
@@ -151,7 +260,7 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
 
     def gaps_at(us: list[np.ndarray]) -> list[list[Gap]]:
         todo = list({u.tobytes(): u for u in us if u.tobytes() not in cache}.values())
-        jobs = [(effect.name, values(u), i, False) for u in todo for i in tuning]
+        jobs = [(effect.name, values(u), i, False) + ((window_s,) if window_s else ()) for u in todo for i in tuning]
         results = evaluate(jobs, description) if jobs else []
         for k, u in enumerate(todo):
             cache[u.tobytes()] = [g for g, _ in results[k * len(tuning):(k + 1) * len(tuning)]]
@@ -308,14 +417,45 @@ def check_runs(runs: list[MeasuredRun], settings: GapSettings) -> None:
                              f"{run.elevation_time_s[-1]:.0f} s)")
 
 
+def check_window(fit_window_s: float | None, settings: GapSettings) -> None:
+    """ValueError if the fit window is too short to measure a gap in."""
+    if fit_window_s and fit_window_s < settings.transient_s + 300.0:
+        raise ValueError(f"fit window {fit_window_s:g} s: needs the {settings.transient_s:g} s transient plus at "
+                         "least 300 s (or 0: fit on whole records)")
+
+
+def fit_budget(effect: Effect, max_evaluations: int) -> int:
+    """The most points a fit evaluates: each least-squares evaluation and its Jacobian's steps."""
+    return max_evaluations * (1 + len(effect.parameters))
+
+
 def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Callable, settings: GapSettings,
-             effects: dict[str, Effect] | None = None, max_evaluations: int = 4) -> Diagnosis:
+             effects: dict[str, Effect] | None = None, max_evaluations: int = 4,
+             fit_window_s: float | None = FIT_WINDOW_S) -> Diagnosis:
     """Diagnose the gap between the model and the measured runs. ``evaluate(jobs,
-    description)`` runs replay jobs (``replay_job``) over ``tuning + blind`` in that order."""
+    description)`` runs replay jobs (``replay_job``) over ``tuning + blind`` in that order.
+    Tuning records longer than ``fit_window_s`` are fitted on their first ``fit_window_s``
+    (None or 0: whole records)."""
     check_runs(tuning + blind, settings)
+    check_window(fit_window_s, settings)
     effects = effects or CATALOGUE
     n_tuning = len(tuning)
     runs = tuning + blind
+    window = fit_window(tuning, fit_window_s)
+    progress = Progress()
+    evaluate = tracked(evaluate, runs, progress)
+    whole_s = [PREROLL_S + record_s(r) for r in runs]
+    fit_run_s = [PREROLL_S + (window if window else record_s(r)) for r in tuning]
+
+    def expect_fits(sign: int = 1) -> None:
+        """Every candidate's most runs: its fit's points, then its whole records."""
+        budget = sum(fit_budget(e, max_evaluations) for e in effects.values())
+        progress.expect(sign * (budget * n_tuning + (len(effects) * n_tuning if window else 0)),
+                        sign * (budget * sum(fit_run_s) + (len(effects) * sum(whole_s[:n_tuning]) if window else 0.0)))
+
+    # the plain model, the fit window's plain model, the fits, and the chosen effect on every run
+    progress.expect(2 * len(runs) + (n_tuning if window else 0), 2 * sum(whole_s) + (sum(fit_run_s) if window else 0.0))
+    expect_fits()
     first = evaluate([(None, {}, i, i < n_tuning) for i in range(len(runs))], "plain model")
     baseline = [g for g, _ in first]
     measured = [measured_spectra(r, settings) for r in tuning]
@@ -329,13 +469,32 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     diagnosis.mismatches = baseline_mismatches(tuning, diagnosis.tuning_before, settings)
     if not any(g.flagged.any() for g in diagnosis.tuning_before):
         diagnosis.reason = "no cell of the tuning runs is both significant and beyond its tolerance"
+        progress.expect(-len(runs) - (n_tuning if window else 0), -sum(whole_s) - (sum(fit_run_s) if window else 0.0))
+        expect_fits(-1)
+        progress.done(0, 0.0, final=True)
         return diagnosis
+
+    window_before = ([g for g, _ in evaluate([(None, {}, i, False, window) for i in range(n_tuning)],
+                                             "plain model, fit window")] if window else [])
+    diagnosis.model_runs += len(window_before)
 
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         def fit(effect: Effect) -> CandidateFit:
+            budget = fit_budget(effect, max_evaluations)
             values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
-                                             mask)
-            return CandidateFit(effect.name, values, gaps, score(gaps, len(effect.parameters), mask),
+                                             mask, window)
+            progress.expect(count - budget * n_tuning, (count / n_tuning - budget) * sum(fit_run_s))
+            p = len(effect.parameters)
+            if window:
+                in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
+                if in_window < SCREEN_CLOSURE:
+                    progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
+                    return CandidateFit(effect.name, values, gaps, score(gaps, p, mask), in_window, count,
+                                        window_s=window)
+                results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
+                                   f"{effect.name}: whole records")
+                gaps, count = [g for g, _ in results], count + n_tuning
+            return CandidateFit(effect.name, values, gaps, score(gaps, p, mask),
                                 closure(diagnosis.tuning_before, gaps, mask), count)
 
         with ThreadPoolExecutor(max_workers=len(effects)) as pool:
@@ -343,9 +502,10 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         base = score(diagnosis.tuning_before, 0, mask)
         for c in fitted:
             c.concerns = concerns(effects[c.effect], c.values, diagnosis.tuning_before, settings, mask)
-            c.fits = c.score < base - MIN_EVIDENCE and c.closure >= MIN_CLOSURE and not c.concerns
+            c.fits = (c.score < base - MIN_EVIDENCE and c.closure >= MIN_CLOSURE and not c.concerns
+                      and c.window_s is None)
         diagnosis.model_runs += sum(c.model_runs for c in fitted)
-        return sorted(fitted, key=lambda c: (bool(c.concerns), c.score))  # plausible fits rank first
+        return sorted(fitted, key=rank)  # plausible fits rank first, screened ones last
 
     candidates = fit_all(None)
     # mismatches in every run that no candidate closes are the baseline's own: set them aside
@@ -360,11 +520,13 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         diagnosis.fit_cells = remaining
         diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining)
         if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
+            expect_fits()
             candidates = fit_all(remaining)
         else:
             for c in candidates:
                 c.fits = False
     diagnosis.candidates = candidates
+    first_choice = True
     while True:
         fitting = [c for c in candidates if c.fits]
         if not fitting:
@@ -372,23 +534,37 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             diagnosis.verdict, diagnosis.chosen = "unexplained", None
             diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence and plausible "
                                 f"values; the nearest, {best.effect}, closes {best.closure:.0%}"
+                                + (f" in the first {best.window_s:g} s" if best.window_s else "")
                                 + (f" ({'; '.join(best.concerns)})" if best.concerns else ""))
+            if first_choice:
+                progress.expect(-len(runs), -sum(whole_s))
+            progress.done(0, 0.0, final=True)
             return _with_mismatches(diagnosis, None)
         chosen, reason = _choose(fitting, effects, deficit, settings)
         diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
         jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
+        if not first_choice:
+            progress.expect(len(runs), sum(whole_s))
+        first_choice = False
         after = evaluate(jobs, f"{chosen.effect}: all runs")
         diagnosis.model_runs += len(jobs)
         diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
         for r, (_, s) in zip(tuning, after[:n_tuning]):
             diagnosis.spectra[r.name]["model + effect"] = s
         if not blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
+            progress.done(0, 0.0, final=True)
             return _with_mismatches(diagnosis, chosen)
         chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} of its "
                                f"tuning closure, {chosen.closure:.0%}")
         chosen.fits = False
         diagnosis.blind_after = []
-        candidates.sort(key=lambda c: (bool(c.concerns), c.score))
+        candidates.sort(key=rank)
+
+
+def rank(c: CandidateFit) -> tuple:
+    """Candidates' order: plausible before those with a concern, fully replayed before
+    screened ones, then by score."""
+    return bool(c.concerns), c.window_s is not None, c.score
 
 
 def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagnosis:
@@ -430,22 +606,21 @@ def _choose(fitting: list[CandidateFit], effects: dict[str, Effect], deficit: fl
 def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
                      effects: dict[str, Effect] | None = None,
                      dt_s: float = REPLAY_DT_S) -> Callable[[list[Job], str], list]:
-    """``evaluate`` that sends the jobs to a Dask cluster (the runs and platform sent once),
-    with a progress bar per description (one per candidate: their fits run together)."""
-    from fowt_hydro_sim.studies.cluster import map_with_progress, scatter
+    """``evaluate`` that sends the jobs to a Dask cluster (the runs and platform sent once;
+    the diagnosis logs the progress of all candidates' runs together)."""
+    from fowt_hydro_sim.studies.cluster import scatter
     shared = {"runs": scatter(client, runs), "platform": scatter(client, platform),
               "settings": scatter(client, settings), "effects": scatter(client, effects), "dt_s": dt_s}
-    positions: dict[str, int] = {}
 
     def evaluate(jobs: list[Job], description: str = "") -> list:
-        position = positions.setdefault(description, len(positions))
-        return map_with_progress(client, replay_job, jobs, description, position, **shared)
+        return client.gather(client.map(replay_job, jobs, pure=False, **shared))
     return evaluate
 
 
 def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, settings: GapSettings,
                   effects: dict[str, Effect], output: str, heading_deg: float = 0.0, max_evaluations: int = 4,
-                  dt_s: float = REPLAY_DT_S, scheduler: str | None = None, workers: int | None = None) -> list[str]:
+                  dt_s: float = REPLAY_DT_S, scheduler: str | None = None, workers: int | None = None,
+                  fit_window_s: float | None = FIT_WINDOW_S) -> list[str]:
     """``fowt-sim diagnose``: measured bags diagnosed on a Dask cluster, the report written to
     ``output``; returns the summary's lines."""
     from fowt_hydro_sim.studies.cluster import dask_client
@@ -454,7 +629,8 @@ def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, setti
     tuning_runs = [measured_run(p, heading_deg) for p in tuning]
     blind_runs = [measured_run(p, heading_deg) for p in blind]
     check_runs(tuning_runs + blind_runs, settings)  # before any cluster starts
+    check_window(fit_window_s, settings)
     with dask_client(scheduler, workers) as client:
         evaluate = cluster_evaluate(client, tuning_runs + blind_runs, platform, settings, effects, dt_s)
-        diagnosis = diagnose(tuning_runs, blind_runs, evaluate, settings, effects, max_evaluations)
+        diagnosis = diagnose(tuning_runs, blind_runs, evaluate, settings, effects, max_evaluations, fit_window_s)
     return summary_lines(diagnosis) + [f"report: {write_report(diagnosis, output)}"]

@@ -142,7 +142,8 @@ def summary_lines(diagnosis: Diagnosis) -> list[str]:
     if diagnosis.candidates:
         lines.append(f"{'candidate':<26}{'score':>9}{'closure':>9}  parameters")
         lines += [f"{c.effect:<26}{c.score:>9.1f}{100 * c.closure:>8.0f}%  "
-                  + ", ".join(f"{k} {v:.4g}" for k, v in c.values.items()) for c in diagnosis.candidates]
+                  + ", ".join(f"{k} {v:.4g}" for k, v in c.values.items())
+                  + (f"  (screened: {c.screened})" if c.screened else "") for c in diagnosis.candidates]
     lines.append(f"verdict: {diagnosis.verdict}" + (f": {diagnosis.chosen}" if diagnosis.chosen else "")
                  + f" ({diagnosis.reason})")
     if diagnosis.blind_after:
@@ -205,7 +206,8 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
         for c in d.candidates:
             values = ", ".join(f"{k} = {v:.4g}" for k, v in c.values.items())
             lines.append(f"| {c.effect} | {values} | {c.score:.1f} | {100 * c.closure:.0f} % | "
-                         f"{'yes' if c.fits else 'no'} | {'; '.join(c.concerns) or '-'} |")
+                         f"{'yes' if c.fits else 'no'} | "
+                         f"{'; '.join(c.concerns + [c.screened] * bool(c.screened)) or '-'} |")
         lines.append("")
     if d.chosen:
         chosen = d.candidate(d.chosen)
