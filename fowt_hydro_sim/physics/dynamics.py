@@ -43,7 +43,7 @@ N_MODULE_COMPONENTS = N_LOADS - FIRST_MODULE_ROW
 
 
 class WaveTable(NamedTuple):
-    values: np.ndarray  # (n_samples, n_points, 7) float32, periodic
+    values: np.ndarray  # (n_samples, n_points, 7) float64, periodic (a ring of blocks, or one period)
     step_s: float
 
 
