@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import scipy.fft
 
-from fowt_hydro_sim.physics.config import SeaState, load_platform
+from fowt_hydro_sim.physics.config import RunConfig, SeaState, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.strips import discretise
 from fowt_hydro_sim.physics.waves.components import synthesize
@@ -17,6 +17,7 @@ from fowt_hydro_sim.physics.waves.kinematics import (
     point_kinematics,
     table_step,
 )
+from fowt_hydro_sim.studies.simulate import read_run, run_model, sea_state_waves, simulate, statistics
 
 G, RHO, DEPTH = 9.80665, 1025.0, 150.0
 
@@ -135,3 +136,18 @@ def test_prescribed_motion_across_blocks_equals_one_shot(runs) -> None:
     expected = table_model.prescribed_motion_loads(t, motion, velocity, acceleration)
     got = blocked.prescribed_motion_loads(t, motion, velocity, acceleration)
     assert relative_difference(got, expected) <= 1e-12
+
+
+def test_simulate_streams_the_same_run_as_one_call(tmp_path) -> None:
+    """Oracle: ``run_model`` (the whole run in memory, as ``fowt-sim sweep`` runs it): the time
+    series ``simulate`` writes part by part has its rows and the summary its statistics,
+    exactly."""
+    run = RunConfig(platform="windmoor12", drag_model="filtered", duration_s=1500.0, output_interval_s=0.5)
+    waves, info = sea_state_waves(SeaState(6.19, 12.0, 1.23, seed=3), run.duration_s)
+    summary = simulate(run, waves, info, tmp_path, transient_s=100.0)
+    result, _, _ = run_model(load_platform("windmoor12"), run, waves)
+    assert summary["statistics"] == statistics(result, 100.0)
+    written = read_run(tmp_path)
+    np.testing.assert_array_equal(written["time_s"], result.time_s)
+    np.testing.assert_allclose(written["heave_m"], result.motion[:, 2], rtol=1e-8, atol=1e-12)
+    np.testing.assert_allclose(written["mooring_fx_n"], result.load("mooring")[:, 0], rtol=1e-8)

@@ -9,6 +9,7 @@ hydrostatics, mooring, gravity and an external wrench into a 6-DOF time-domain s
 from __future__ import annotations
 
 import logging
+from collections.abc import Iterator
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -346,6 +347,17 @@ class PlatformModel:
         states = np.vstack([first[1], y])
         return RunResult(time, states[:, 0:6], states[:, 6:12], np.vstack([first[2], acc]),
                          np.concatenate([first[3][None], loads]), self.wave_elevation(time))
+
+    def run_parts(self, duration_s: float, output_interval_s: float | None = None,
+                  part_s: float = WAVE_BLOCK_S) -> Iterator[RunResult]:
+        """``run`` in consecutive parts of about ``part_s`` (whole output intervals), each as
+        ``run`` returns it (its first row is the previous part's last): the same numbers,
+        bit for bit, with the outputs of one part in memory at a time."""
+        n_steps = int(round(duration_s / self.dt_s))
+        every = max(1, int(round((output_interval_s or self.dt_s) / self.dt_s)))
+        part_steps = max(1, int(round(part_s / self.dt_s)) // every) * every
+        for first in range(0, max(n_steps, 1), part_steps):  # a 0 s run: its one row
+            yield self.run(min(part_steps, n_steps - first) * self.dt_s, output_interval_s)
 
     def _advance(self, n_steps: int, every: int) -> tuple[np.ndarray, ...]:
         """Integrate n steps, recording every ``every``-th; with a blocked wave table, in parts

@@ -153,7 +153,8 @@ class BlockSynthesis:
 
     a linear convolution done by FFT of length L >= K + M - 1, O(L log L) per point and
     channel; every phase is reduced modulo 2N in integers first, so the long chirps keep
-    full precision. A block costs about (K + M) / M times a row of the one-shot inverse
+    full precision. A long-crested sea (one direction) takes five transforms per point, not
+    seven: the horizontal velocity and acceleration along the heading, split after. A block costs about (K + M) / M times a row of the one-shot inverse
     FFT: the cost per simulated second grows with the repeat period (K is proportional to
     it), the memory does not.
     """
@@ -173,6 +174,8 @@ class BlockSynthesis:
         self._first_harmonic = int(waves.harmonic.min())
         self._offsets = waves.harmonic - self._first_harmonic  # j of each component
         self._unique = np.unique(self._offsets).size == self._offsets.size
+        heading = waves.direction_rad[0]
+        self._heading = (np.cos(heading), np.sin(heading)) if np.all(waves.direction_rad == heading) else None
         n_harmonics = int(self._offsets.max()) + 1
         self._fft_rows = scipy.fft.next_fast_len(n_harmonics + self.block_rows - 1)
         lag = np.arange(self._fft_rows, dtype=np.int64)  # lags 0..M-1, then -(L-M)..-1
@@ -193,15 +196,24 @@ class BlockSynthesis:
         into = self._phase(2 * j * start + j * j)[self._offsets]  # per component
         out_phase = self._phase(2 * self._first_harmonic * ((start + m) % n) + m * m)
         out = np.empty((self.block_rows, self.points_m.shape[0], N_CHANNELS))
-        spectrum = np.zeros((N_CHANNELS, self._fft_rows), dtype=complex)
+        n_transforms = N_CHANNELS if self._heading is None else N_CHANNELS - 2
+        spectrum = np.zeros((n_transforms, self._fft_rows), dtype=complex)
         for i, point in enumerate(self.points_m):  # one point at a time bounds the temporaries
             amp = _channel_amplitudes(self._components, point[None], *self._depth)[0] * into
+            if self._heading is not None:  # u_x, u_y = cos, sin u_h (a_x, a_y likewise)
+                cos_b, sin_b = self._heading
+                amp = np.stack([cos_b * amp[0] + sin_b * amp[1], amp[2], cos_b * amp[3] + sin_b * amp[4],
+                                amp[5], amp[6]])
             spectrum[:] = 0.0
             if self._unique:
                 spectrum[:, self._offsets] = amp
             else:
                 np.add.at(spectrum, (slice(None), self._offsets), amp)
-            convolved = scipy.fft.ifft(scipy.fft.fft(spectrum, axis=1, overwrite_x=True) * self._chirp_spectrum,
-                                       axis=1, overwrite_x=True)
-            out[:, i, :] = (convolved[:, :self.block_rows] * out_phase).real.T
+            convolved = scipy.fft.ifft(scipy.fft.fft(spectrum, axis=1) * self._chirp_spectrum, axis=1,
+                                       overwrite_x=True)
+            values = (convolved[:, :self.block_rows] * out_phase).real.T
+            if self._heading is None:
+                out[:, i, :] = values
+            else:
+                out[:, i, :] = values[:, [0, 0, 1, 2, 2, 3, 4]] * np.array([cos_b, sin_b, 1.0, cos_b, sin_b, 1.0, 1.0])
         return out
