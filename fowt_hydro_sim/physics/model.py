@@ -37,7 +37,14 @@ from fowt_hydro_sim.physics.dynamics import (
 from fowt_hydro_sim.physics.loads import N_LOADS, ROW, ComponentInputs, component_data, external, params_of
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
-from fowt_hydro_sim.physics.morison import added_mass_about, added_mass_tensors, lever_arms, relative_velocities
+from fowt_hydro_sim.physics.morison import (
+    added_mass_about,
+    added_mass_tensors,
+    deep_added_mass,
+    lever_arms,
+    relative_velocities,
+    wetted_fractions,
+)
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_table
@@ -143,12 +150,17 @@ class PlatformModel:
         mass = self.platform.mass
         params, tables = component_data(ComponentInputs(self.platform, self.geometry, self.hydrostatics,
                                                         self.extension, self.options))
+        strip_6x6 = added_mass_about(s.centre_m, strip_3x3)
+        wet = np.empty(len(s.length_m))
+        wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, wet)
+        deep = wet == 1.0
         return KernelData(
             waves=WaveTable(table, step),
             strips=StripData(s.centre_m, s.axis, s.directions, s.length_m, s.inertia_kg_m, s.added_mass_kg_m,
-                             strip_3x3, added_mass_about(s.centre_m, strip_3x3), s.drag_kg_m2,
+                             strip_3x3, strip_6x6, s.drag_kg_m2,
                              s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
-                             s.filtered & filtered, s.kinematics_point.astype(np.int64)),
+                             s.filtered & filtered, s.kinematics_point.astype(np.int64), deep,
+                             deep_added_mass(s.length_m, strip_6x6, deep)),
             plates=PlateData(plates.centre_m, plates.normal, plates.pressure_area_m2, plates.added_mass_kg,
                              plates.drag_kg_m, plate_3x3, added_mass_about(plates.centre_m, plate_3x3),
                              plates.kinematics_point.astype(np.int64)),
@@ -210,6 +222,7 @@ class PlatformModel:
         self._state[N_BODY_STATES:] = self._steady_filter_states().ravel()
         self._step_index = 0
         self._loads = np.zeros((N_LOADS, 6))
+        self._masses = np.zeros((N_MODULE_COMPONENTS, 6, 6))  # the derivative's scratch
         self._restart_history()
 
     def _steady_filter_states(self) -> np.ndarray:
@@ -255,7 +268,7 @@ class PlatformModel:
         self._history = np.full((4, self._state.size), np.nan)
         self._newest = np.zeros(1, dtype=np.int64)  # the ring's latest row
         self._hold_times(self.time_s, self.time_s)
-        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._history[0])
+        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._masses, self._history[0])
 
     def set_external_wrench(self, wrench: np.ndarray, frame: str = "world") -> None:
         """Hold a wrench [Fx, Fy, Fz, Mx, My, Mz] until the next call.
@@ -267,7 +280,8 @@ class PlatformModel:
                             self.platform.hub_point_m)
         # the derivative at the current time changes with the input
         self._hold_times(self.time_s, self.time_s)
-        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._history[self._newest[0]])
+        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._masses,
+                            self._history[self._newest[0]])
 
     def use_streamed_waves(self, step_s: float, n_rows: int = 256) -> None:
         """Take the wave kinematics from ``write_waves`` (a stream, e.g. a wave topic) instead of
