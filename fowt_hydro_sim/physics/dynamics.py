@@ -32,6 +32,7 @@ from fowt_hydro_sim.physics.morison import (
 from fowt_hydro_sim.physics.rigid_body import (
     euler_rates,
     mass_matrix_and_bias,
+    matvec,
     rotate_inertia,
     rotation_matrix,
     solve_spd,
@@ -159,8 +160,8 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
                     plates.added_mass, plates.drag, plate_6x6, plates.point, body[0], body[1], body[2],
                     added_mass_body)
     for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
-        loads[row, 0:3] = frame @ body[c, 0:3]
-        loads[row, 3:6] = frame @ body[c, 3:6]
+        loads[row, 0:3] = matvec(frame, body[c, 0:3])
+        loads[row, 3:6] = matvec(frame, body[c, 3:6])
     component_loads(t, y, rotation, d.component_params, d.component_tables, loads, masses)
     added_mass = np.empty((6, 6))
     for r in range(0, 6, 3):
@@ -172,9 +173,9 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
 @njit(cache=True)
 def react(loads: np.ndarray, added_mass: np.ndarray, masses: np.ndarray, acceleration: np.ndarray) -> None:
     """Each left-hand-side mass's reaction -M a into its row."""
-    loads[ADDED_MASS] -= added_mass @ acceleration
+    loads[ADDED_MASS] -= matvec(added_mass, acceleration)
     for k in range(masses.shape[0]):
-        loads[FIRST_MODULE_ROW + k] -= masses[k] @ acceleration
+        loads[FIRST_MODULE_ROW + k] -= matvec(masses[k], acceleration)
 
 
 @njit(cache=True)
