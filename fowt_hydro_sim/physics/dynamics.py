@@ -21,6 +21,7 @@ from fowt_hydro_sim.physics.drag_filters import band_velocities, drag_per_length
 from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, N_LOADS, ROW, component_loads
 from fowt_hydro_sim.physics.morison import (
     added_mass_about,
+    deep_added_mass,
     end_plate_loads,
     lever_arms,
     relative_velocities,
@@ -31,6 +32,7 @@ from fowt_hydro_sim.physics.morison import (
 from fowt_hydro_sim.physics.rigid_body import (
     euler_rates,
     mass_matrix_and_bias,
+    matvec,
     rotate_inertia,
     rotation_matrix,
     solve_spd,
@@ -43,7 +45,7 @@ N_MODULE_COMPONENTS = N_LOADS - FIRST_MODULE_ROW
 
 
 class WaveTable(NamedTuple):
-    values: np.ndarray  # (n_samples, n_points, 7) float32, periodic
+    values: np.ndarray  # (n_samples, n_points, 7) float64, periodic (a ring of blocks, or one period)
     step_s: float
 
 
@@ -62,6 +64,8 @@ class StripData(NamedTuple):
     band_drag: np.ndarray  # (n, n_bands, 2): 0.5 rho Cd_b b per drag band; no bands: constant Cd
     filtered: np.ndarray  # (n, 2) bool: the direction's drag is summed over the bands
     point: np.ndarray  # (n,) index of the kinematics point
+    deep: np.ndarray  # (n,) bool: fully wet at rest (morison.strip_loads)
+    deep_added_mass_6x6: np.ndarray  # (6, 6) their added mass fully wet, body axes, about the reference point
 
 
 class PlateData(NamedTuple):
@@ -130,12 +134,13 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
         arm, plate_arm = lever_arms(rotation, s.centre), lever_arms(rotation, plates.centre)
         strip_6x6 = added_mass_about(arm, s.added_mass_3x3)
         plate_6x6 = added_mass_about(plate_arm, plates.added_mass_3x3)
+        added_mass_body = deep_added_mass(s.length, strip_6x6, s.deep)
     else:  # body axes
         frame, arm, plate_arm = rotation, s.centre, plates.centre
         strip_6x6, plate_6x6 = s.added_mass_6x6, plates.added_mass_6x6
+        added_mass_body = s.deep_added_mass_6x6.copy()
     wet_pose, wet_z = (np.eye(3), 0.0) if d.options.undisplaced_wetting else (rotation, position[2])
     body = np.zeros((3, 6))  # drag, inertia, centripetal added mass, frame axes
-    added_mass_body = np.zeros((6, 6))
     n_strips = s.length.size
     wet, v_rel, a_fluid = np.empty(n_strips), np.empty((n_strips, 2)), np.empty((n_strips, 2))
     wetted_fractions(wet_pose, wet_z, s.centre, s.axis, s.length, wet)
@@ -150,13 +155,13 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
     drag = np.empty((n_strips, 2))
     drag_per_length(v_rel, v_band, s.band_drag, s.drag, s.filtered, drag)
     strip_loads(frame, omega, wet, a_fluid, drag, arm, s.directions, s.length, s.inertia, s.added_mass,
-                strip_6x6, body[0], body[1], body[2], added_mass_body)
+                strip_6x6, s.deep, body[0], body[1], body[2], added_mass_body)
     end_plate_loads(frame, velocity, omega, kinematics, plate_arm, plates.normal, submerged, plates.pressure_area,
                     plates.added_mass, plates.drag, plate_6x6, plates.point, body[0], body[1], body[2],
                     added_mass_body)
     for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
-        loads[row, 0:3] = frame @ body[c, 0:3]
-        loads[row, 3:6] = frame @ body[c, 3:6]
+        loads[row, 0:3] = matvec(frame, body[c, 0:3])
+        loads[row, 3:6] = matvec(frame, body[c, 3:6])
     component_loads(t, y, rotation, d.component_params, d.component_tables, loads, masses)
     added_mass = np.empty((6, 6))
     for r in range(0, 6, 3):
@@ -168,16 +173,17 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
 @njit(cache=True)
 def react(loads: np.ndarray, added_mass: np.ndarray, masses: np.ndarray, acceleration: np.ndarray) -> None:
     """Each left-hand-side mass's reaction -M a into its row."""
-    loads[ADDED_MASS] -= added_mass @ acceleration
+    loads[ADDED_MASS] -= matvec(added_mass, acceleration)
     for k in range(masses.shape[0]):
-        loads[FIRST_MODULE_ROW + k] -= masses[k] @ acceleration
+        loads[FIRST_MODULE_ROW + k] -= matvec(masses[k], acceleration)
 
 
 @njit(cache=True)
-def derivative(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, out: np.ndarray) -> None:
+def derivative(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, masses: np.ndarray,
+               out: np.ndarray) -> None:
     """Write dy/dt at time t to ``out`` (entries 6-12 are the accelerations); fill ``loads``,
-    whose rows then include the reactions -M a of the masses on the left-hand side."""
-    masses = np.empty((N_MODULE_COMPONENTS, 6, 6))
+    whose rows then include the reactions -M a of the masses on the left-hand side, and
+    ``masses`` (N_MODULE_COMPONENTS, 6, 6; the caller's scratch) with the components' masses."""
     added_mass = applied_loads(t, y, d, loads, masses, out[N_BODY_STATES:])
     rotation = rotation_matrix(y[3], y[4], y[5])
     mass6, bias = mass_matrix_and_bias(d.body.mass, d.body.cog, d.body.inertia_cog, rotation, y[9:12])
@@ -207,11 +213,12 @@ def prescribed_motion_loads(times: np.ndarray, states: np.ndarray, accelerations
 
 
 @njit(cache=True)
-def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, loads: np.ndarray) -> None:
+def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, loads: np.ndarray,
+         masses: np.ndarray) -> None:
     k2, k3, k4 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
-    derivative(t + 0.5 * dt, y + 0.5 * dt * k1, d, loads, k2)
-    derivative(t + 0.5 * dt, y + 0.5 * dt * k2, d, loads, k3)
-    derivative(t + dt, y + dt * k3, d, loads, k4)
+    derivative(t + 0.5 * dt, y + 0.5 * dt * k1, d, loads, masses, k2)
+    derivative(t + 0.5 * dt, y + 0.5 * dt * k2, d, loads, masses, k3)
+    derivative(t + dt, y + dt * k3, d, loads, masses, k4)
     y += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
 
 
@@ -230,6 +237,7 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
     outputs; returns the number written.
     """
     loads = np.zeros((N_LOADS, 6))
+    masses = np.empty((N_MODULE_COMPONENTS, 6, 6))
     predicted, fp = np.empty_like(y), np.empty_like(y)
     h = dt / 24.0
     written = 0
@@ -239,15 +247,15 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
         i0 = newest[0]
         f0, f1, f2, f3 = history[i0], history[(i0 + 3) % 4], history[(i0 + 2) % 4], history[(i0 + 1) % 4]
         if np.isnan(f3[0]):
-            _rk4(t, dt, y, f0, d, loads)
+            _rk4(t, dt, y, f0, d, loads, masses)
         else:
             for m in range(y.size):  # (loops: no temporaries over the filter states)
                 predicted[m] = y[m] + h * (55.0 * f0[m] - 59.0 * f1[m] + 37.0 * f2[m] - 9.0 * f3[m])
-            derivative(t_next, predicted, d, loads, fp)
+            derivative(t_next, predicted, d, loads, masses, fp)
             for m in range(y.size):
                 y[m] += h * (9.0 * fp[m] + 19.0 * f0[m] - 5.0 * f1[m] + f2[m])
         newest[0] = (i0 + 1) % 4  # the oldest row takes the new derivative
-        derivative(t_next, y, d, loads, history[newest[0]])
+        derivative(t_next, y, d, loads, masses, history[newest[0]])
         if (n + 1) % record_every == 0:
             out_t[written] = t_next
             out_y[written] = y[:N_BODY_STATES]

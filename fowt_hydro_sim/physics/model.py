@@ -9,6 +9,7 @@ hydrostatics, mooring, gravity and an external wrench into a 6-DOF time-domain s
 from __future__ import annotations
 
 import logging
+from collections.abc import Iterator
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -36,16 +37,24 @@ from fowt_hydro_sim.physics.dynamics import (
 from fowt_hydro_sim.physics.loads import N_LOADS, ROW, ComponentInputs, component_data, external, params_of
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
-from fowt_hydro_sim.physics.morison import added_mass_about, added_mass_tensors, lever_arms, relative_velocities
+from fowt_hydro_sim.physics.morison import (
+    added_mass_about,
+    added_mass_tensors,
+    deep_added_mass,
+    lever_arms,
+    relative_velocities,
+    wetted_fractions,
+)
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
-from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, complex_amplitudes, table_step
+from fowt_hydro_sim.physics.waves.kinematics import BlockSynthesis, KinematicsTable, complex_amplitudes, table_step
 
 log = logging.getLogger(__name__)
 
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+WAVE_BLOCK_S = 600.0  # kinematics synthesised per block of this length (two blocks held)
 
 
 @dataclass(frozen=True)
@@ -81,7 +90,9 @@ class PlatformModel:
     relative velocity into the platform's drag bands (drag_filters.py). ``extension`` adds
     loads beyond the Morison model (extension.py; the gap diagnosis's effects).
     ``kinematics``: the table of these waves at this platform's points, built before (replays
-    of one run share it). ``options``: how the moving body's hydrodynamics are taken
+    of one run share it); without it the table is synthesised in blocks of ``wave_block_s``
+    as the run advances (waves.kinematics.BlockSynthesis: the same rows, two blocks held in
+    a ring, so that the memory does not grow with the repeat period). ``options``: how the moving body's hydrodynamics are taken
     (config.HydroOptions; default today's: displaced wetted length, rotating directions,
     linear hydrostatics; config.HYDRODYN is HydroDyn's).
     """
@@ -89,7 +100,7 @@ class PlatformModel:
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
                  drag_model: str = "constant", wave_table_dt_s: float | None = None,
                  extension: Extension | None = None, kinematics: KinematicsTable | None = None,
-                 options: HydroOptions | None = None):
+                 options: HydroOptions | None = None, wave_block_s: float = WAVE_BLOCK_S):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
         if drag_model == "filtered" and not platform.drag_bands:
@@ -105,17 +116,25 @@ class PlatformModel:
         self.filter_bank: StateSpace = bank_state_space(bands)
         self.hydrostatics: Hydrostatics = hydrostatics(platform, self.geometry.strips)
         env = platform.environment
+        n_points = len(self.geometry.points_m)
+        self._synthesis: BlockSynthesis | None = None
+        self._ring_blocks = [None, None]  # the block held in each half of the ring table
         if waves is None or waves.frequency_hz.size == 0:
-            table = np.zeros((4, len(self.geometry.points_m), 7), dtype=np.float32)
+            table = np.zeros((4, n_points, 7))
             step, self._elevation = 1.0, np.zeros((4, 1, 1))
         else:
             step = wave_table_dt_s or table_step(waves)
-            if kinematics is None:
-                kinematics = KinematicsTable.build(waves, self.geometry.points_m, step, env.water_depth_m,
-                                                   env.gravity_m_s2, env.water_density_kg_m3)
-            elif kinematics.step_s != step or not np.array_equal(kinematics.points_m, self.geometry.points_m):
-                raise ValueError("kinematics table: built for other points or another step")
-            table = kinematics.values
+            if kinematics is not None:
+                if kinematics.step_s != step or not np.array_equal(kinematics.points_m, self.geometry.points_m):
+                    raise ValueError("kinematics table: built for other points or another step")
+                table = np.asarray(kinematics.values, dtype=np.float64)  # the kernel's one table type
+            else:
+                if not wave_block_s > 0:
+                    raise ValueError(f"wave block: must be > 0 s, got {wave_block_s}")
+                block_rows = max(8, int(np.ceil(wave_block_s / step)))
+                self._synthesis = BlockSynthesis(waves, self.geometry.points_m, step, block_rows,
+                                                 env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
+                table = np.zeros((2 * block_rows, n_points, 7))
             self._elevation = waves.elevation_series(0.0, 0.0, step, env.water_depth_m, env.gravity_m_s2)[:, None, None]
         self.wave_table_step_s = step
         self.extension = extension or Extension()
@@ -131,12 +150,17 @@ class PlatformModel:
         mass = self.platform.mass
         params, tables = component_data(ComponentInputs(self.platform, self.geometry, self.hydrostatics,
                                                         self.extension, self.options))
+        strip_6x6 = added_mass_about(s.centre_m, strip_3x3)
+        wet = np.empty(len(s.length_m))
+        wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, wet)
+        deep = wet == 1.0
         return KernelData(
             waves=WaveTable(table, step),
             strips=StripData(s.centre_m, s.axis, s.directions, s.length_m, s.inertia_kg_m, s.added_mass_kg_m,
-                             strip_3x3, added_mass_about(s.centre_m, strip_3x3), s.drag_kg_m2,
+                             strip_3x3, strip_6x6, s.drag_kg_m2,
                              s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
-                             s.filtered & filtered, s.kinematics_point.astype(np.int64)),
+                             s.filtered & filtered, s.kinematics_point.astype(np.int64), deep,
+                             deep_added_mass(s.length_m, strip_6x6, deep)),
             plates=PlateData(plates.centre_m, plates.normal, plates.pressure_area_m2, plates.added_mass_kg,
                              plates.drag_kg_m, plate_3x3, added_mass_about(plates.centre_m, plate_3x3),
                              plates.kinematics_point.astype(np.int64)),
@@ -149,6 +173,44 @@ class PlatformModel:
     def n_strips(self) -> int:
         return len(self.geometry.strips.length_m)
 
+    # ------------------------------------------------------------------ blocked wave table
+    def _table_row(self, t: float) -> int:
+        """The table row at or before time t, as the kernel's interpolation computes it."""
+        return int(np.floor(t / self.wave_table_step_s))
+
+    def _hold_rows(self, first_row: int, last_row: int) -> None:
+        """Synthesise into the ring the blocks holding table rows first..last (at most two
+        consecutive blocks; block b in half b mod 2). No-op for a whole-period table."""
+        if self._synthesis is None:
+            return
+        m = self._synthesis.block_rows
+        if last_row // m - first_row // m > 1:
+            raise ValueError(f"wave table rows {first_row}..{last_row}: span more than two blocks")
+        for block in range(first_row // m, last_row // m + 1):
+            half = block % 2
+            if self._ring_blocks[half] != block:
+                self._data.waves.values[half * m:(half + 1) * m] = self._synthesis.rows(block * m)
+                self._ring_blocks[half] = block
+
+    def _hold_times(self, first_s: float, last_s: float) -> None:
+        """The rows the interpolation reads between these times (4 points around each)."""
+        self._hold_rows(self._table_row(first_s) - 1, self._table_row(last_s) + 2)
+
+    def _steps_held(self, first_step: int, n_steps: int) -> int:
+        """How many of the next n steps from ``first_step`` the ring can hold at once (two
+        blocks from the one the current time needs), after synthesising them; all of them
+        for a whole-period table."""
+        if self._synthesis is None:
+            return n_steps
+        m = self._synthesis.block_rows
+        first_row = self._table_row(first_step * self.dt_s) - 1
+        last_row = (first_row // m + 2) * m - 1  # the end of the next block
+        n = min(n_steps, max(0, int((last_row - 3) * self.wave_table_step_s / self.dt_s) - first_step))
+        while n > 0 and self._table_row((first_step + n) * self.dt_s) + 2 > last_row:
+            n -= 1
+        self._hold_rows(first_row, self._table_row((first_step + n) * self.dt_s) + 2)
+        return n
+
     def reset(self, motion: np.ndarray | None = None, velocity: np.ndarray | None = None) -> None:
         """Restart at t = 0 from a 6-DOF offset and velocity (default: at rest), with the drag
         filters in steady state."""
@@ -160,6 +222,7 @@ class PlatformModel:
         self._state[N_BODY_STATES:] = self._steady_filter_states().ravel()
         self._step_index = 0
         self._loads = np.zeros((N_LOADS, 6))
+        self._masses = np.zeros((N_MODULE_COMPONENTS, 6, 6))  # the derivative's scratch
         self._restart_history()
 
     def _steady_filter_states(self) -> np.ndarray:
@@ -174,10 +237,12 @@ class PlatformModel:
         states += np.linalg.solve(-bank.a, bank.b)[:, None, None] * v_body
         if self.waves is not None and self.waves.frequency_hz.size:
             env = self.platform.environment
-            velocity = complex_amplitudes(self.waves, self.geometry.points_m, env.water_depth_m,
-                                          env.gravity_m_s2, env.water_density_kg_m3)[:, 0:3]
             response = state_response(bank, 2 * np.pi * self.waves.frequency_hz)  # (n_freq, n_states)
-            at_points = np.einsum("pcf,fj->pcj", velocity, response).real  # (points, 3, n_states)
+            at_points = np.empty((len(self.geometry.points_m), 3, bank.n_states))
+            for i, point in enumerate(self.geometry.points_m):  # one point at a time bounds the temporaries
+                velocity = complex_amplitudes(self.waves, point, env.water_depth_m, env.gravity_m_s2,
+                                              env.water_density_kg_m3)[0, 0:3]
+                at_points[i] = (velocity @ response).real  # (3, n_states)
             directions = s.directions @ self._frame().T  # world axes
             states += np.einsum("nkc,ncj->jnk", directions, at_points[s.kinematics_point])
         return states
@@ -202,7 +267,8 @@ class PlatformModel:
         """Forget the integrator's past derivatives (after a jump in state)."""
         self._history = np.full((4, self._state.size), np.nan)
         self._newest = np.zeros(1, dtype=np.int64)  # the ring's latest row
-        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._history[0])
+        self._hold_times(self.time_s, self.time_s)
+        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._masses, self._history[0])
 
     def set_external_wrench(self, wrench: np.ndarray, frame: str = "world") -> None:
         """Hold a wrench [Fx, Fy, Fz, Mx, My, Mz] until the next call.
@@ -213,7 +279,9 @@ class PlatformModel:
         external.set_wrench(params_of("external", self._data.component_params), wrench, frame,
                             self.platform.hub_point_m)
         # the derivative at the current time changes with the input
-        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._history[self._newest[0]])
+        self._hold_times(self.time_s, self.time_s)
+        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._masses,
+                            self._history[self._newest[0]])
 
     def use_streamed_waves(self, step_s: float, n_rows: int = 256) -> None:
         """Take the wave kinematics from ``write_waves`` (a stream, e.g. a wave topic) instead of
@@ -222,11 +290,12 @@ class PlatformModel:
         before stepping; a row is reused ``n_rows`` steps later."""
         if n_rows < 8 or step_s <= 0:
             raise ValueError(f"streamed waves: need step_s > 0 and n_rows >= 8, got {step_s}, {n_rows}")
-        table = np.zeros((n_rows, len(self.geometry.points_m), 7), dtype=np.float32)
+        table = np.zeros((n_rows, len(self.geometry.points_m), 7))
         self._data = self._data._replace(waves=WaveTable(table, float(step_s)))
         self._elevation = np.zeros((n_rows, 1, 1))
         self.wave_table_step_s = float(step_s)
         self.waves = None
+        self._synthesis = None
         self._restart_history()  # the derivative at t changes with the table
 
     def write_waves(self, time_s: float, kinematics: np.ndarray, elevation_m: float) -> None:
@@ -258,6 +327,7 @@ class PlatformModel:
         """Transverse relative velocity of each strip (n_strips, 2: d1, d2, member frame) and
         its band velocities (n_strips, n_bands, 2) at the current time."""
         waves, bank = self._data.waves, self._data.filters
+        self._hold_times(self.time_s, self.time_s)
         v_rel = self._relative_velocities(interpolate_table(waves.values, waves.step_s, self.time_s))
         v_band = np.empty((bank.d.size, 2 * self.n_strips))
         states = self._state[N_BODY_STATES:].reshape(self.filter_bank.n_states, 2 * self.n_strips)
@@ -292,15 +362,38 @@ class PlatformModel:
         return RunResult(time, states[:, 0:6], states[:, 6:12], np.vstack([first[2], acc]),
                          np.concatenate([first[3][None], loads]), self.wave_elevation(time))
 
+    def run_parts(self, duration_s: float, output_interval_s: float | None = None,
+                  part_s: float = WAVE_BLOCK_S) -> Iterator[RunResult]:
+        """``run`` in consecutive parts of about ``part_s`` (whole output intervals), each as
+        ``run`` returns it (its first row is the previous part's last): the same numbers,
+        bit for bit, with the outputs of one part in memory at a time."""
+        n_steps = int(round(duration_s / self.dt_s))
+        every = max(1, int(round((output_interval_s or self.dt_s) / self.dt_s)))
+        part_steps = max(1, int(round(part_s / self.dt_s)) // every) * every
+        for first in range(0, max(n_steps, 1), part_steps):  # a 0 s run: its one row
+            yield self.run(min(part_steps, n_steps - first) * self.dt_s, output_interval_s)
+
     def _advance(self, n_steps: int, every: int) -> tuple[np.ndarray, ...]:
+        """Integrate n steps, recording every ``every``-th; with a blocked wave table, in parts
+        of whole recording intervals that the ring holds."""
         n_out = n_steps // every
         out_t = np.empty(n_out)
         out_y = np.empty((n_out, N_BODY_STATES))
         out_acc = np.empty((n_out, 6))
         out_loads = np.empty((n_out, N_LOADS, 6))
-        dynamics.integrate(self._state, self._step_index, self.dt_s, n_steps, every, self._data,
-                           self._history, self._newest, out_t, out_y, out_acc, out_loads)
-        self._step_index += n_steps
+        done, written = 0, 0
+        while done < n_steps:
+            part = self._steps_held(self._step_index, n_steps - done)
+            if part < n_steps - done:
+                part -= part % every
+            if part <= 0:
+                raise ValueError(f"output interval {every * self.dt_s:g} s: longer than the wave table's "
+                                 f"blocks hold; use a longer wave_block_s")
+            written += dynamics.integrate(self._state, self._step_index, self.dt_s, part, every, self._data,
+                                          self._history, self._newest, out_t[written:], out_y[written:],
+                                          out_acc[written:], out_loads[written:])
+            self._step_index += part
+            done += part
         if n_out:
             self._loads[:] = out_loads[-1]
         return out_t, out_y, out_acc, out_loads
@@ -319,16 +412,36 @@ class PlatformModel:
             if np.shape(arr) != (n, 6):
                 raise ValueError(f"prescribed motion: {name} must have shape ({n}, 6), got {np.shape(arr)}")
         states = np.ascontiguousarray(np.hstack([motion, velocity]), dtype=float)
+        acceleration = np.ascontiguousarray(acceleration, dtype=float)
         out = np.zeros((n, N_LOADS, 6))
-        dynamics.prescribed_motion_loads(time_s, states, np.ascontiguousarray(acceleration, dtype=float),
-                                         self._data, out)
+        for part in self._held_parts(time_s):
+            self._hold_times(time_s[part].min(), time_s[part].max())
+            dynamics.prescribed_motion_loads(time_s[part], states[part], acceleration[part], self._data, out[part])
         return out
+
+    def _held_parts(self, time_s: np.ndarray) -> list[slice]:
+        """Consecutive runs of times whose table rows the ring holds at once (all of them
+        for a whole-period table)."""
+        if self._synthesis is None or time_s.size == 0:
+            return [slice(0, time_s.size)]
+        m = self._synthesis.block_rows
+        rows = np.floor(time_s / self.wave_table_step_s).astype(np.int64)
+        parts, start = [], 0
+        low = high = rows[0]
+        for i in range(1, rows.size):
+            low, high = min(low, rows[i]), max(high, rows[i])
+            if (high + 2) // m - (low - 1) // m > 1:
+                parts.append(slice(start, i))
+                start, low, high = i, rows[i], rows[i]
+        parts.append(slice(start, rows.size))
+        return parts
 
     def mass_matrix(self) -> np.ndarray:
         """Rigid-body plus added mass (and any load component's mass) at rest, 6x6 about the
         reference point."""
         loads, masses = np.zeros((N_LOADS, 6)), np.zeros((N_MODULE_COMPONENTS, 6, 6))
         rest = np.zeros_like(self._state)
+        self._hold_times(0.0, 0.0)
         added = dynamics.applied_loads(0.0, rest, self._data, loads, masses, np.empty(rest.size - N_BODY_STATES))
         body = self._data.body
         rigid, _ = dynamics.mass_matrix_and_bias(body.mass, body.cog, body.inertia_cog, np.eye(3), np.zeros(3))

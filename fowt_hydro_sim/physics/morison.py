@@ -141,32 +141,53 @@ def relative_velocities(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarr
 def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: np.ndarray,
                 drag_per_length: np.ndarray, arm: np.ndarray,
                 directions: np.ndarray, length: np.ndarray, inertia: np.ndarray,
-                added_mass: np.ndarray, added_mass_6x6: np.ndarray,
+                added_mass: np.ndarray, added_mass_6x6: np.ndarray, deep: np.ndarray,
                 out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
                 out_added_mass: np.ndarray) -> None:
     """Add the strips' drag, fluid-inertia and centripetal added-mass wrenches (frame axes,
     about the reference point) and their 6x6 added mass (frame axes) to the outputs.
 
     ``drag_per_length`` (n, 2) is the transverse drag per unit wetted length of the drag
-    model (drag_filters.drag_per_length).
+    model (drag_filters.drag_per_length). ``out_added_mass`` comes holding the 6x6 added
+    mass of the ``deep`` strips fully wet (``deep_added_mass``): a deep strip adds only its
+    difference from that (none while it stays under water), so the step loop does not sum
+    the 6x6 matrices of the strips that are always wet.
     """
     w_body = _to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
+        if deep[i] and wet[i] != 1.0:
+            _add_scaled(out_added_mass, (wet[i] - 1.0) * length[i], added_mass_6x6[i])
         if wet[i] == 0.0:
             continue
         c = arm[i]
         wet_length = wet[i] * length[i]
         centripetal = _cross(w_body, _cross(w_body, (c[0], c[1], c[2])))
-        for k in range(2):
-            d = directions[i, k]
-            drag = drag_per_length[i, k] * wet_length
-            fluid = inertia[i, k] * a_fluid[i, k] * wet_length
-            spin = -added_mass[i, k] * wet_length * (
-                centripetal[0] * d[0] + centripetal[1] * d[1] + centripetal[2] * d[2])
-            _add_wrench(out_drag, c, drag * d[0], drag * d[1], drag * d[2])
-            _add_wrench(out_inertia, c, fluid * d[0], fluid * d[1], fluid * d[2])
-            _add_wrench(out_centripetal, c, spin * d[0], spin * d[1], spin * d[2])
-        _add_scaled(out_added_mass, wet_length, added_mass_6x6[i])
+        d1, d2 = directions[i, 0], directions[i, 1]
+        drag1, drag2 = drag_per_length[i, 0] * wet_length, drag_per_length[i, 1] * wet_length
+        fluid1, fluid2 = inertia[i, 0] * a_fluid[i, 0] * wet_length, inertia[i, 1] * a_fluid[i, 1] * wet_length
+        spin1 = -added_mass[i, 0] * wet_length * (centripetal[0] * d1[0] + centripetal[1] * d1[1]
+                                                   + centripetal[2] * d1[2])
+        spin2 = -added_mass[i, 1] * wet_length * (centripetal[0] * d2[0] + centripetal[1] * d2[1]
+                                                   + centripetal[2] * d2[2])
+        # both directions' forces first, then one moment per wrench
+        _add_wrench(out_drag, c, drag1 * d1[0] + drag2 * d2[0], drag1 * d1[1] + drag2 * d2[1],
+                    drag1 * d1[2] + drag2 * d2[2])
+        _add_wrench(out_inertia, c, fluid1 * d1[0] + fluid2 * d2[0], fluid1 * d1[1] + fluid2 * d2[1],
+                    fluid1 * d1[2] + fluid2 * d2[2])
+        _add_wrench(out_centripetal, c, spin1 * d1[0] + spin2 * d2[0], spin1 * d1[1] + spin2 * d2[1],
+                    spin1 * d1[2] + spin2 * d2[2])
+        if not deep[i]:
+            _add_scaled(out_added_mass, wet_length, added_mass_6x6[i])
+
+
+@njit(cache=True)
+def deep_added_mass(length: np.ndarray, added_mass_6x6: np.ndarray, deep: np.ndarray) -> np.ndarray:
+    """Sum of the ``deep`` strips' 6x6 added mass, fully wet (strip_loads' starting value)."""
+    out = np.zeros((6, 6))
+    for i in range(length.size):
+        if deep[i]:
+            _add_scaled(out, length[i], added_mass_6x6[i])
+    return out
 
 
 @njit(cache=True)

@@ -32,6 +32,19 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 @njit(cache=True)
+def matvec(matrix: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """matrix @ x written out: numba's ``@`` calls BLAS, whose call costs more than a 3x3 or
+    6x6 product (the step made about 25 of them per right-hand side)."""
+    out = np.empty(matrix.shape[0])
+    for i in range(matrix.shape[0]):
+        acc = 0.0
+        for j in range(x.size):
+            acc += matrix[i, j] * x[j]
+        out[i] = acc
+    return out
+
+
+@njit(cache=True)
 def skew(r: np.ndarray) -> np.ndarray:
     return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
 

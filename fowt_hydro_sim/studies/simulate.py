@@ -1,15 +1,19 @@
 """Offline runs of the platform model (``fowt-sim simulate``): waves from a sea state, an
 OpenFAST ``.Comp`` file, a measured elevation record or none; the run; its statistics; and
 its plain columnar output, ``timeseries.csv`` (one column per channel, SI units in the
-names) and ``summary.json`` (configuration and statistics). A free-decay run (still water,
+names, written part by part as the run advances, so that a long run holds only the
+motion and the elevation it needs for its statistics) and ``summary.json`` (configuration
+and statistics). A free-decay run (still water,
 an initial offset) reports the fitted period and damping ratio of each DOF it displaced."""
 from __future__ import annotations
 
 import json
 import resource
 import time
+from collections.abc import Iterable
 from dataclasses import asdict
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import scipy.signal
@@ -60,7 +64,15 @@ def elevation_record_waves(path: Path, point_xy_m: tuple[float, float], heading_
 
 
 # ---------------------------------------------------------------------- the run
-def statistics(result: RunResult, transient_s: float) -> dict:
+class MotionRecord(NamedTuple):
+    """What the statistics and the free-decay fit read of a run."""
+
+    time_s: np.ndarray
+    motion: np.ndarray
+    wave_elevation_m: np.ndarray
+
+
+def statistics(result: RunResult | MotionRecord, transient_s: float) -> dict:
     """Per DOF: mean, std, extremes and the paper's band STDs, leaving out the first
     ``transient_s`` seconds."""
     keep = result.time_s >= result.time_s[0] + transient_s
@@ -98,7 +110,7 @@ def fit_free_decay(time_s: np.ndarray, x: np.ndarray) -> dict | None:
             "damping_ratio": zeta, "cycles": int(len(peaks) - 1)}
 
 
-def free_decay(result: RunResult, initial_state: tuple[float, ...]) -> dict:
+def free_decay(result: RunResult | MotionRecord, initial_state: tuple[float, ...]) -> dict:
     """Fitted decay of each DOF given an initial offset (see ``fit_free_decay``)."""
     fits = {}
     for j, name in enumerate(DOF_NAMES):
@@ -115,37 +127,50 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
     if output.exists() and any(output.iterdir()) and not overwrite:
         raise ConfigError(f"{output}: exists and is not empty (pass --overwrite to replace its files)")
     platform = load_platform(run.platform)
-    result, performance, wave_table_step_s = run_model(platform, run, waves)
+    start = time.perf_counter()
+    model = model_for(platform, run, waves)
+    built = time.perf_counter()
+    result = write_timeseries(output, model.run_parts(run.duration_s, run.output_interval_s))
+    performance = performance_of(run, start, built, time.perf_counter())
     summary = {
         "software": {"name": "fowt_hydro_sim", "version": __version__},
         "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
         "waves": wave_info,
         "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
-                "initial_state": list(run.initial_state), "wave_table_step_s": wave_table_step_s,
+                "initial_state": list(run.initial_state), "wave_table_step_s": model.wave_table_step_s,
                 "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
         "performance": performance,
         "statistics": statistics(result, transient_s),
     }
     if waves is None and any(run.initial_state):
         summary["free_decay"] = free_decay(result, run.initial_state)
-    write_run(output, result, summary)
+    (output / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     return summary
+
+
+def model_for(platform: Platform, run: RunConfig, waves: WaveComponents | None) -> PlatformModel:
+    """The model of a run of ``platform`` (``run.platform`` is not read) at its initial state."""
+    model = PlatformModel(platform, waves, dt_s=run.dt_s, drag_model=run.drag_model,
+                          wave_table_dt_s=run.wave_table_dt_s, options=run.hydro_options)
+    model.reset(motion=np.array(run.initial_state))
+    return model
+
+
+def performance_of(run: RunConfig, start: float, built: float, end: float) -> dict:
+    """A run's performance figures from its start, end of set-up and end (perf_counter)."""
+    return {"wall_time_s": end - start, "set_up_s": built - start,
+            "real_time_factor": run.duration_s / (end - built),
+            "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
 
 
 def run_model(platform: Platform, run: RunConfig, waves: WaveComponents | None) -> tuple[RunResult, dict, float]:
     """One run of ``platform`` (``run.platform`` is not read): its result, its performance
     figures and the kinematics table step used [s]."""
     start = time.perf_counter()
-    model = PlatformModel(platform, waves, dt_s=run.dt_s, drag_model=run.drag_model,
-                          wave_table_dt_s=run.wave_table_dt_s, options=run.hydro_options)
+    model = model_for(platform, run, waves)
     built = time.perf_counter()
-    model.reset(motion=np.array(run.initial_state))
     result = model.run(run.duration_s, output_interval_s=run.output_interval_s)
-    end = time.perf_counter()
-    performance = {"wall_time_s": end - start, "set_up_s": built - start,
-                   "real_time_factor": run.duration_s / (end - built),
-                   "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
-    return result, performance, model.wave_table_step_s
+    return result, performance_of(run, start, built, time.perf_counter()), model.wave_table_step_s
 
 
 def summary_text(summary: dict, output: Path) -> str:
@@ -184,13 +209,20 @@ def column_names() -> list[str]:
     return names
 
 
-def write_run(folder: Path, result: RunResult, summary: dict) -> None:
+def write_timeseries(folder: Path, parts: Iterable[RunResult]) -> MotionRecord:
+    """Write consecutive parts of a run (``PlatformModel.run_parts``) to ``timeseries.csv`` as
+    they come; return the run's motion record."""
     folder.mkdir(parents=True, exist_ok=True)
-    table = np.column_stack([result.time_s, result.motion, result.velocity, result.acceleration,
-                             result.loads.reshape(len(result.time_s), -1), result.wave_elevation_m])
-    np.savetxt(folder / "timeseries.csv", table, delimiter=",", header=",".join(column_names()),
-               comments="", fmt="%.9g")
-    (folder / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    kept: list[MotionRecord] = []
+    with (folder / "timeseries.csv").open("w") as out:
+        out.write(",".join(column_names()) + "\n")
+        for part in parts:
+            rows = slice(1 if kept else 0, None)  # a later part's first row is the last one written
+            table = np.column_stack([part.time_s, part.motion, part.velocity, part.acceleration,
+                                     part.loads.reshape(len(part.time_s), -1), part.wave_elevation_m])[rows]
+            np.savetxt(out, table, delimiter=",", fmt="%.9g")
+            kept.append(MotionRecord(part.time_s[rows], part.motion[rows], part.wave_elevation_m[rows]))
+    return MotionRecord(*(np.concatenate(column) for column in zip(*kept)))
 
 
 def read_run(folder: Path) -> dict[str, np.ndarray]:

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 from numba import njit
 
+from fowt_hydro_sim.physics.rigid_body import matvec
 from fowt_hydro_sim.physics.tables import interpolate_table
 
 
@@ -87,6 +88,6 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
     """f(t) - B1 v - B2 |v| v - K q - K3 q^3, and M_x on the left-hand side."""
     q, v = y[0:6], y[6:12]
     force = interpolate_table(table.reshape((table.shape[0], 1, table.shape[1])), params[0], t)[0]
-    linear = params[1:37].reshape((6, 6)) @ v + params[43:79].reshape((6, 6)) @ q
+    linear = matvec(params[1:37].reshape((6, 6)), v) + matvec(params[43:79].reshape((6, 6)), q)
     out += force - linear - (params[37:43] * np.abs(v) * v + params[79:85] * q ** 3)
     mass += params[85:121].reshape((6, 6))

@@ -8,7 +8,7 @@ from numba import njit
 
 from fowt_hydro_sim.frames import WRENCH_FRAMES
 from fowt_hydro_sim.physics.config import InputError
-from fowt_hydro_sim.physics.rigid_body import cross
+from fowt_hydro_sim.physics.rigid_body import cross, matvec
 
 MAX_FORCE_N = 1e9  # 100,000 t: an absurd load on a 14,000 t platform
 MAX_MOMENT_NM = 1e11
@@ -47,6 +47,6 @@ def set_wrench(params: np.ndarray, wrench: np.ndarray, frame: str, hub_point_m) 
 @njit(cache=True)
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
-    force_body = rotation @ params[6:9]
+    force_body = matvec(rotation, params[6:9])
     out[0:3] += params[0:3] + force_body
-    out[3:6] += params[3:6] + rotation @ params[9:12] + cross(rotation @ params[12:15], force_body)
+    out[3:6] += params[3:6] + matvec(rotation, params[9:12]) + cross(matvec(rotation, params[12:15]), force_body)

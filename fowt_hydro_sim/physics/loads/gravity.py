@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.rigid_body import cross
+from fowt_hydro_sim.physics.rigid_body import cross, matvec
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
@@ -18,4 +18,4 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
            out: np.ndarray, mass: np.ndarray) -> None:
     weight = np.array([0.0, 0.0, -params[0]])
     out[0:3] += weight
-    out[3:6] += cross(rotation @ params[1:4], weight)
+    out[3:6] += cross(matvec(rotation, params[1:4]), weight)

@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.physics.config import ConfigError, Member, Platform
-from fowt_hydro_sim.physics.rigid_body import cross
+from fowt_hydro_sim.physics.rigid_body import cross, matvec
 from fowt_hydro_sim.physics.strips import Strips, transverse_directions
 
 N_RADIAL, N_ANGULAR, N_SIDE = 6, 24, 8  # section quadrature (circle: radial x angular; rectangle: side^2)
@@ -160,11 +160,11 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
     displaced centre of buoyancy, about the displaced reference point."""
     if params[0] == 0.0:
         stiffness = params[8:44].reshape((6, 6))
-        out += params[2:8] - stiffness @ y[0:6]
+        out += params[2:8] - matvec(stiffness, y[0:6])
         return
     volume, moment = submerged_volume(rotation, y[2], table)
     if volume <= 0.0:
         return
     force = np.array([0.0, 0.0, params[1] * volume])
     out[0:3] += force
-    out[3:6] += cross(rotation @ (moment / volume), force)
+    out[3:6] += cross(matvec(rotation, moment / volume), force)

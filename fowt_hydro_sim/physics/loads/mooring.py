@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.rigid_body import cross
+from fowt_hydro_sim.physics.rigid_body import cross, matvec
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
@@ -30,9 +30,9 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
     anchors = params[3 + 3 * n:].reshape((n, 3))
     position = y[0:3]
     for i in range(n):
-        r = rotation @ fairleads[i]
+        r = matvec(rotation, fairleads[i])
         line = anchors[i] - (position + r)
-        length = np.sqrt(line @ line)
+        length = np.sqrt(line[0] * line[0] + line[1] * line[1] + line[2] * line[2])
         tension = pretension + stiffness * (length - unstretched)
         force = tension * line / length
         out[0:3] += force

@@ -9,11 +9,14 @@ the kinematics at z = 0 (no stretching, as HydroDyn with WaveStMod = 0).
 
 ``KinematicsTable`` precomputes the seven channels (u_x, u_y, u_z, a_x, a_y, a_z, p) at the
 undisplaced strip points (HydroDyn's WaveDisp = 0) over one repeat period by inverse FFT,
-and is read with 4-point (cubic) Lagrange interpolation in time.
+and is read with 4-point (cubic) Lagrange interpolation in time. ``BlockSynthesis`` gives
+the same table's rows a block at a time (a chirp-z transform of the component sum), so that
+a run holds one or two blocks instead of the whole period.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import scipy.fft
@@ -39,15 +42,35 @@ def depth_factors(k: np.ndarray, z_m: np.ndarray, depth_m: float) -> tuple[np.nd
     return c, s, p
 
 
+class _Components(NamedTuple):
+    """The per-component quantities of the kinematics that do not depend on the point."""
+
+    amplitude_m: np.ndarray
+    phase_rad: np.ndarray
+    omega: np.ndarray
+    k: np.ndarray
+    cos_b: np.ndarray
+    sin_b: np.ndarray
+
+    @classmethod
+    def of(cls, waves: WaveComponents, depth_m: float, gravity_m_s2: float) -> "_Components":
+        omega = 2 * np.pi * waves.frequency_hz
+        return cls(waves.amplitude_m, waves.phase_rad, omega, wavenumber(omega, depth_m, gravity_m_s2),
+                   np.cos(waves.direction_rad), np.sin(waves.direction_rad))
+
+
 def complex_amplitudes(waves: WaveComponents, points_m: np.ndarray, depth_m: float,
                        gravity_m_s2: float, density_kg_m3: float) -> np.ndarray:
     """Complex amplitudes (n_points, 7 channels, n_components) of the kinematics."""
-    points = np.atleast_2d(points_m)
-    omega = 2 * np.pi * waves.frequency_hz
-    k = wavenumber(omega, depth_m, gravity_m_s2)
-    cos_b, sin_b = np.cos(waves.direction_rad), np.sin(waves.direction_rad)
+    return _channel_amplitudes(_Components.of(waves, depth_m, gravity_m_s2), np.atleast_2d(points_m), depth_m,
+                               gravity_m_s2, density_kg_m3)
+
+
+def _channel_amplitudes(comp: _Components, points: np.ndarray, depth_m: float, gravity_m_s2: float,
+                        density_kg_m3: float) -> np.ndarray:
+    omega, k, cos_b, sin_b = comp.omega, comp.k, comp.cos_b, comp.sin_b
     s = points[:, :1] * cos_b + points[:, 1:2] * sin_b
-    amp = waves.amplitude_m * np.exp(1j * (waves.phase_rad - k * s))  # (n_points, n_freq)
+    amp = comp.amplitude_m * np.exp(1j * (comp.phase_rad - k * s))  # (n_points, n_freq)
     c, sh, p = depth_factors(k, points[:, 2:3], depth_m)
     out = np.empty((points.shape[0], N_CHANNELS, omega.size), dtype=complex)
     u_h, acc_h = amp * omega * c, amp * 1j * omega**2 * c
@@ -114,3 +137,83 @@ class KinematicsTable:
     @property
     def period_s(self) -> float:
         return self.values.shape[0] * self.step_s
+
+
+class BlockSynthesis:
+    """Rows of the kinematics table of ``KinematicsTable.build`` (same points, step and time
+    grid), ``block_rows`` consecutive rows at a time, for any first row (row r is time r step,
+    past the repeat period too): a run holds one block at a time, not the whole period.
+
+    Each block is the component sum evaluated exactly, as a chirp-z transform (Bluestein's
+    algorithm): with the components on harmonics k0 + j of 1/T (j < K) and rows n0 + m
+    (m < M) of the N-row period,
+
+        sum_j X_j e^{2 pi i (k0+j)(n0+m)/N}
+            = e^{i pi (2 k0 (n0+m) + m^2)/N} sum_j [X_j e^{i pi (2 j n0 + j^2)/N}] e^{-i pi (m-j)^2/N},
+
+    a linear convolution done by FFT of length L >= K + M - 1, O(L log L) per point and
+    channel; every phase is reduced modulo 2N in integers first, so the long chirps keep
+    full precision. A long-crested sea (one direction) takes five transforms per point, not
+    seven: the horizontal velocity and acceleration along the heading, split after. A block costs about (K + M) / M times a row of the one-shot inverse
+    FFT: the cost per simulated second grows with the repeat period (K is proportional to
+    it), the memory does not.
+    """
+
+    def __init__(self, waves: WaveComponents, points_m: np.ndarray, step_s: float, block_rows: int,
+                 depth_m: float, gravity_m_s2: float, density_kg_m3: float):
+        self.points_m = np.atleast_2d(np.asarray(points_m, dtype=float))
+        self.n_samples = int(round(waves.period_s / step_s))
+        if abs(self.n_samples * step_s - waves.period_s) > 1e-6 * waves.period_s:
+            raise ValueError(f"wave table step {step_s:g} s does not divide the repeat period "
+                             f"{waves.period_s:g} s")
+        if block_rows < 1 or waves.harmonic.size == 0:
+            raise ValueError("block synthesis: needs wave components and at least one row per block")
+        self.step_s, self.block_rows = float(step_s), int(block_rows)
+        self._depth = (depth_m, gravity_m_s2, density_kg_m3)
+        self._components = _Components.of(waves, depth_m, gravity_m_s2)
+        self._first_harmonic = int(waves.harmonic.min())
+        self._offsets = waves.harmonic - self._first_harmonic  # j of each component
+        self._unique = np.unique(self._offsets).size == self._offsets.size
+        heading = waves.direction_rad[0]
+        self._heading = (np.cos(heading), np.sin(heading)) if np.all(waves.direction_rad == heading) else None
+        n_harmonics = int(self._offsets.max()) + 1
+        self._fft_rows = scipy.fft.next_fast_len(n_harmonics + self.block_rows - 1)
+        lag = np.arange(self._fft_rows, dtype=np.int64)  # lags 0..M-1, then -(L-M)..-1
+        lag[lag >= self.block_rows] -= self._fft_rows
+        self._chirp_spectrum = scipy.fft.fft(self._phase(-(lag * lag)))
+        self._harmonics = np.arange(n_harmonics, dtype=np.int64)
+        self._rows = np.arange(self.block_rows, dtype=np.int64)
+
+    def _phase(self, numerator: np.ndarray) -> np.ndarray:
+        """e^{i pi numerator / N} for integer numerators, reduced modulo 2N first."""
+        return np.exp(1j * np.pi * (numerator % (2 * self.n_samples)) / self.n_samples)
+
+    def rows(self, first_row: int) -> np.ndarray:
+        """Rows first_row .. first_row + block_rows - 1: (block_rows, n_points, 7), float64."""
+        n = self.n_samples
+        start = int(first_row) % n
+        j, m = self._harmonics, self._rows
+        into = self._phase(2 * j * start + j * j)[self._offsets]  # per component
+        out_phase = self._phase(2 * self._first_harmonic * ((start + m) % n) + m * m)
+        out = np.empty((self.block_rows, self.points_m.shape[0], N_CHANNELS))
+        n_transforms = N_CHANNELS if self._heading is None else N_CHANNELS - 2
+        spectrum = np.zeros((n_transforms, self._fft_rows), dtype=complex)
+        for i, point in enumerate(self.points_m):  # one point at a time bounds the temporaries
+            amp = _channel_amplitudes(self._components, point[None], *self._depth)[0] * into
+            if self._heading is not None:  # u_x, u_y = cos, sin u_h (a_x, a_y likewise)
+                cos_b, sin_b = self._heading
+                amp = np.stack([cos_b * amp[0] + sin_b * amp[1], amp[2], cos_b * amp[3] + sin_b * amp[4],
+                                amp[5], amp[6]])
+            spectrum[:] = 0.0
+            if self._unique:
+                spectrum[:, self._offsets] = amp
+            else:
+                np.add.at(spectrum, (slice(None), self._offsets), amp)
+            convolved = scipy.fft.ifft(scipy.fft.fft(spectrum, axis=1) * self._chirp_spectrum, axis=1,
+                                       overwrite_x=True)
+            values = (convolved[:, :self.block_rows] * out_phase).real.T
+            if self._heading is None:
+                out[:, i, :] = values
+            else:
+                out[:, i, :] = values[:, [0, 0, 1, 2, 2, 3, 4]] * np.array([cos_b, sin_b, 1.0, cos_b, sin_b, 1.0, 1.0])
+        return out
