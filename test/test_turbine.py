@@ -87,7 +87,7 @@ def steady_above_rated(turbine, coefficients, wind_m_s: float) -> tuple[float, f
     return pitch, aero_loads(turbine, coefficients, wind_m_s, speed, pitch)[0]
 
 
-# windmoor12 as its spec gives it (shared/spec/platform_windmoor12.md), for the static oracle
+# windmoor12 as its spec gives it (docs/platform_windmoor12.md), for the static oracle
 RHO_KG_M3, G_M_S2 = 1025.0, 9.80665
 COLUMN_RADIUS_M, KEEL_Z_M = 7.5, -15.5
 COLUMN_CENTRES_M = ((-35.2184, 0.0), (17.6092, 30.5), (17.6092, -30.5))
