@@ -178,11 +178,9 @@ def test_imported_deck_held_fixed_in_waves_matches_hydrodyn(tmp_path):
 
 @pytest.mark.parametrize("edit, message", [
     (lambda text: text.replace("             0   PotMod", "             1   PotMod", 1), "potential-flow"),
-    (lambda text: text.replace("    1        15.0000        0.0500", "    1        15.0000        0.0500\n"
-                               "    2        12.0000        0.0500", 1).replace(
-        "1   NPropSetsCyl", "2   NPropSetsCyl", 1).replace(
-        "   1          1          2           1            1          1", "   1          1          2           1"
-                                                                          "            2          1", 1), "tapered"),
+    (lambda text: text.replace("             0   NMGDepths", "             1   NMGDepths", 1).replace(
+        "(m)        (m)         (kg/m^3)", "(m)        (m)         (kg/m^3)\n-10.0      0.1         1100.0", 1),
+     "marine growth"),
     (lambda text: text.replace("0.5         1         2        FALSE", "0.5         2         2        FALSE", 1),
      "depth-based"),
 ])

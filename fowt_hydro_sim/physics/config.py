@@ -119,6 +119,17 @@ class Member:
     zones: tuple[Zone, ...]
     end_a_plate: EndPlate | None = None
     end_b_plate: EndPlate | None = None
+    diameter_b_m: float | None = None  # circular only: the diameter at end b of a tapered member
+    taper_axial: EndPlate = EndPlate(ca=0.0, cp=1.0, cd=0.0)  # HydroDyn's member AxCa, AxCp, AxCd
+
+    @property
+    def tapered(self) -> bool:
+        return self.diameter_b_m is not None and self.diameter_b_m != self.width_m
+
+    def diameter_at(self, fraction: float) -> float:
+        """Diameter (circular) at ``fraction`` of the way from end a to end b: linear taper."""
+        end_b = self.width_m if self.diameter_b_m is None else self.diameter_b_m
+        return self.width_m + fraction * (end_b - self.width_m)
 
 
 @dataclass(frozen=True)
@@ -418,6 +429,9 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         width = height = f.number("diameter_m", positive=True)
     else:
         width, height = f.number("width_m", positive=True), f.number("height_m", positive=True)
+    diameter_b = f.optional_number("diameter_b_m", positive=True) if section == "circular" else None
+    taper_axial = _end_plate(f.sub("taper_axial")) if f.data.get("taper_axial") else EndPlate(0.0, 1.0, 0.0)
+    f.used.add("taper_axial")
     a, b = f.vector("end_a_m"), f.vector("end_b_m")
     if math.dist(a, b) <= 0:
         raise ConfigError(f"{f.path}: end_a_m and end_b_m are the same point")
@@ -428,6 +442,7 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         zones=tuple(_zone(z, section, i == len(zones) - 1, bands) for i, z in enumerate(zones)),
         end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
+        diameter_b_m=diameter_b, taper_axial=taper_axial,
     )
     f.used.update({"end_a_plate", "end_b_plate"})
     if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
@@ -505,6 +520,8 @@ def platform_document(platform: Platform) -> dict:
     members = []
     for m in platform.members:
         size = {"diameter_m": m.width_m} if m.section == "circular" else {"width_m": m.width_m, "height_m": m.height_m}
+        if m.tapered:
+            size.update(diameter_b_m=m.diameter_b_m, taper_axial=vars(m.taper_axial).copy())
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
                   "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
                   "zones": [_zone_document(z, m.section, bands) for z in m.zones]}
