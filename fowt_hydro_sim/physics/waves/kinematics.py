@@ -76,6 +76,9 @@ def table_step(waves: WaveComponents) -> float:
     return waves.period_s / np.ceil(waves.period_s * 2 * np.pi * f_max / _MAX_OMEGA_STEP)
 
 
+_CHUNK_BYTES = 32e6
+
+
 @dataclass
 class KinematicsTable:
     """Kinematics at fixed points over one repeat period, sampled every ``step_s``.
@@ -103,12 +106,15 @@ class KinematicsTable:
         values = np.zeros((n_samples, points.shape[0], N_CHANNELS), dtype=np.float32)
         if harmonic.size == 0:
             return cls(values, step_s, points)
-        spectrum = np.zeros((N_CHANNELS, n_samples // 2 + 1), dtype=complex)
-        for i, point in enumerate(points):  # one point at a time bounds the temporaries
-            amp = complex_amplitudes(waves, point, depth_m, gravity_m_s2, density_kg_m3)[0]
-            spectrum[:] = 0.0
-            np.add.at(spectrum, (slice(None), harmonic), amp * (n_samples / 2.0))
-            values[:, i, :] = scipy.fft.irfft(spectrum, n_samples, axis=1, workers=-1).T
+        # points in chunks: one transform per chunk (few calls), the spectrum bounded to ~32 MB
+        chunk = max(1, int(_CHUNK_BYTES // (16 * N_CHANNELS * (n_samples // 2 + 1))))
+        for start in range(0, points.shape[0], chunk):
+            part = points[start:start + chunk]
+            amp = complex_amplitudes(waves, part, depth_m, gravity_m_s2, density_kg_m3)  # (p, 7, f)
+            spectrum = np.zeros((n_samples // 2 + 1, part.shape[0] * N_CHANNELS), dtype=complex)
+            np.add.at(spectrum, harmonic, amp.reshape(-1, harmonic.size).T * (n_samples / 2.0))
+            signal = scipy.fft.irfft(spectrum, n_samples, axis=0)
+            values[:, start:start + part.shape[0], :] = signal.reshape(n_samples, part.shape[0], N_CHANNELS)
         return cls(values, step_s, points)
 
     @property
