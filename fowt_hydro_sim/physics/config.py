@@ -26,6 +26,7 @@ SECTIONS = ("circular", "rectangular")
 WETTED_LENGTHS = ("displaced", "undisplaced")
 LOAD_DIRECTIONS = ("rotating", "fixed")
 HYDROSTATICS = ("linear", "nonlinear")
+KINEMATICS = ("undisplaced", "displaced")
 
 
 class ConfigError(ValueError):
@@ -192,8 +193,9 @@ class SeaState:
 @dataclass(frozen=True)
 class HydroOptions:
     """How the strip model treats a moving body: choices HydroDyn makes one way and today's
-    model made another, silently. Fluid kinematics are always taken at the undisplaced
-    strip points (HydroDyn's WaveDisp 0). The defaults keep the model's earlier behaviour;
+    model made another, silently. Fluid kinematics are taken at the undisplaced strip points
+    (HydroDyn's WaveDisp 0) except for a prescribed motion with ``kinematics="displaced"``
+    (``PlatformModel.prescribed_motion_loads``). The defaults keep the model's earlier behaviour;
     ``HYDRODYN`` is HydroDyn v5's (WaveDisp 0, WaveStMod 0, member hydrostatics)."""
 
     wetted_length: str = setting(
@@ -208,6 +210,10 @@ class HydroOptions:
         "linear", "hydrostatics: linear about the undisplaced position (W0 - C q, WAMIT's C) or nonlinear, "
                   "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
                   "member hydrostatics, MHstLMod 1)", choices=HYDROSTATICS)
+    kinematics: str = setting(
+        "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
+                       "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
+                       "motion only: fowt-sim loads)", choices=KINEMATICS)
 
     def __post_init__(self) -> None:
         _validate(self, "hydro options")

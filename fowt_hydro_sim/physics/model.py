@@ -13,6 +13,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from fowt_hydro_sim.frames import rotation_matrix as rotation_matrices
 from fowt_hydro_sim.physics import dynamics
 from fowt_hydro_sim.physics.config import DRAG_MODELS, ConfigError, HydroOptions, Platform
 from fowt_hydro_sim.physics.drag_filters import (
@@ -41,7 +42,8 @@ from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
-from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, complex_amplitudes, table_step
+from fowt_hydro_sim.physics.waves.kinematics import (KinematicsTable, complex_amplitudes, moving_point_kinematics,
+                                                     table_step)
 
 log = logging.getLogger(__name__)
 
@@ -293,6 +295,9 @@ class PlatformModel:
                          np.concatenate([first[3][None], loads]), self.wave_elevation(time))
 
     def _advance(self, n_steps: int, every: int) -> tuple[np.ndarray, ...]:
+        if self.options.kinematics == "displaced":
+            raise ConfigError("kinematics 'displaced': implemented for a prescribed motion only (fowt-sim loads, "
+                              "PlatformModel.prescribed_motion_loads), not for time stepping")
         n_out = n_steps // every
         out_t = np.empty(n_out)
         out_y = np.empty((n_out, N_BODY_STATES))
@@ -319,10 +324,33 @@ class PlatformModel:
             if np.shape(arr) != (n, 6):
                 raise ValueError(f"prescribed motion: {name} must have shape ({n}, 6), got {np.shape(arr)}")
         states = np.ascontiguousarray(np.hstack([motion, velocity]), dtype=float)
+        data = self._data
+        if self.options.kinematics == "displaced" and self.waves is not None and self.waves.frequency_hz.size:
+            data = data._replace(waves=self._displaced_table(time_s, np.asarray(motion, dtype=float)))
         out = np.zeros((n, N_LOADS, 6))
-        dynamics.prescribed_motion_loads(time_s, states, np.ascontiguousarray(acceleration, dtype=float),
-                                         self._data, out)
+        dynamics.prescribed_motion_loads(time_s, states, np.ascontiguousarray(acceleration, dtype=float), data, out)
         return out
+
+    def _displaced_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:
+        """A kinematics table whose row i holds, at time t_i = i dt, the kinematics at the
+        points' displaced positions (x + R p; z at most 0, as the undisplaced points): what the
+        kernel's table look-up then returns at t_i (WaveDisp 1). The times must be multiples
+        of one step."""
+        step = float(time_s[1] - time_s[0]) if time_s.size > 1 else 1.0
+        rows = np.round(time_s / step).astype(np.int64)
+        if time_s.size < 2 or step <= 0 or np.max(np.abs(rows * step - time_s)) > 1e-6 * step or rows[0] < 0:
+            raise ConfigError("prescribed motion with displaced kinematics: the times must be multiples of one "
+                              "constant step from t >= 0")
+        points = self.geometry.points_m
+        rotation = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
+        world = motion[:, None, 0:3] + np.einsum("ijn,pj->npi", rotation, points)
+        world[:, :, 2] = np.minimum(world[:, :, 2], 0.0)  # no kinematics above the water line
+        env = self.platform.environment
+        values = moving_point_kinematics(self.waves, world.reshape(-1, 3), np.repeat(time_s, len(points)),
+                                         env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
+        table = np.zeros((rows[-1] + 3, len(points), 7), dtype=np.float32)
+        table[rows] = values.reshape(time_s.size, len(points), 7)
+        return WaveTable(table, step)
 
     def mass_matrix(self) -> np.ndarray:
         """Rigid-body plus added mass (and any load component's mass) at rest, 6x6 about the

@@ -67,6 +67,21 @@ def point_kinematics(waves: WaveComponents, points_m: np.ndarray, t_s: np.ndarra
     return np.einsum("pcf,tf->tpc", amp, phasor).real
 
 
+def moving_point_kinematics(waves: WaveComponents, points_m: np.ndarray, t_s: np.ndarray, depth_m: float,
+                            gravity_m_s2: float, density_kg_m3: float, chunk: int = 2048) -> np.ndarray:
+    """Kinematics (n, 7) at n points each at its own time (a point moving with the body), by
+    direct summation over the components: exact, cost n x components."""
+    points = np.atleast_2d(np.asarray(points_m, dtype=float))
+    t = np.asarray(t_s, dtype=float)
+    omega = 2 * np.pi * waves.frequency_hz
+    out = np.empty((points.shape[0], N_CHANNELS))
+    for start in range(0, points.shape[0], chunk):
+        part = slice(start, start + chunk)
+        amp = complex_amplitudes(waves, points[part], depth_m, gravity_m_s2, density_kg_m3)
+        out[part] = np.einsum("pcf,pf->pc", amp, np.exp(1j * np.outer(t[part], omega))).real
+    return out
+
+
 def table_step(waves: WaveComponents) -> float:
     """The longest step that divides the repeat period and keeps the interpolation error below
     1e-3 at the highest wave frequency (it need not be a multiple of the model's dt)."""
