@@ -15,7 +15,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import scipy.fft
 
 from fowt_hydro_sim.physics.config import ConfigError, SeaState
 from fowt_hydro_sim.physics.waves.spectra import spectrum
@@ -87,7 +86,7 @@ class WaveComponents:
         s = x_m * np.cos(self.direction_rad) + y_m * np.sin(self.direction_rad)
         spectrum = np.zeros(n // 2 + 1, dtype=complex)
         np.add.at(spectrum, self.harmonic, self.amplitude_m * np.exp(1j * (self.phase_rad - k * s)) * n / 2.0)
-        return scipy.fft.irfft(spectrum, n)
+        return np.fft.irfft(spectrum, n)
 
     def delayed(self, delay_s: float) -> "WaveComponents":
         """The same sea, arriving ``delay_s`` later (a phase shift of -w delay)."""

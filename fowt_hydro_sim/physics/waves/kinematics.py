@@ -18,7 +18,6 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
-import scipy.fft
 from numba import njit
 
 from fowt_hydro_sim.physics.waves.components import WaveComponents, wavenumber
@@ -147,12 +146,17 @@ class KinematicsTable:
             return cls(values, step_s, points)
         # points in chunks: one transform per chunk (few calls), the spectrum bounded to ~32 MB
         chunk = max(1, int(_CHUNK_BYTES // (16 * N_CHANNELS * (n_samples // 2 + 1))))
+        unique = np.unique(harmonic).size == harmonic.size
         for start in range(0, points.shape[0], chunk):
             part = points[start:start + chunk]
             amp = complex_amplitudes(waves, part, depth_m, gravity_m_s2, density_kg_m3)  # (p, 7, f)
             spectrum = np.zeros((n_samples // 2 + 1, part.shape[0] * N_CHANNELS), dtype=complex)
-            np.add.at(spectrum, harmonic, amp.reshape(-1, harmonic.size).T * (n_samples / 2.0))
-            signal = scipy.fft.irfft(spectrum, n_samples, axis=0)
+            terms = amp.reshape(-1, harmonic.size).T * (n_samples / 2.0)
+            if unique:
+                spectrum[harmonic] = terms
+            else:  # components sharing a frequency add up
+                np.add.at(spectrum, harmonic, terms)
+            signal = np.fft.irfft(spectrum, n_samples, axis=0)  # numpy's: no scipy import at start-up
             values[:, start:start + part.shape[0], :] = signal.reshape(n_samples, part.shape[0], N_CHANNELS)
         return cls(values, step_s, points)
 
