@@ -25,7 +25,7 @@ FILTER_KINDS = ("lowpass", "highpass", "bandpass", "allpass")
 SECTIONS = ("circular", "rectangular")
 WETTED_LENGTHS = ("displaced", "undisplaced")
 LOAD_DIRECTIONS = ("rotating", "fixed")
-HYDROSTATICS = ("linear", "nonlinear")
+HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
 
 
@@ -209,7 +209,10 @@ class HydroOptions:
     hydrostatics: str = setting(
         "linear", "hydrostatics: linear about the undisplaced position (W0 - C q, WAMIT's C) or nonlinear, "
                   "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
-                  "member hydrostatics, MHstLMod 1)", choices=HYDROSTATICS)
+                  "member hydrostatics, MHstLMod 1), or free_surface, the still-water pressure -rho g z over "
+                  "the displaced member surfaces up to the instantaneous free surface (a plane per element; "
+                  "HydroDyn's MHstLMod 2 with wave stretching; rectangular members, prescribed motion only: "
+                  "fowt-sim loads)", choices=HYDROSTATICS)
     kinematics: str = setting(
         "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
                        "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
@@ -253,6 +256,9 @@ class RunConfig:
 
     def __post_init__(self) -> None:
         _validate(self, "run")
+        if self.hydrostatics == "free_surface":
+            raise ConfigError("run: hydrostatics 'free_surface' is implemented for a prescribed motion only "
+                              "(fowt-sim loads), not for time stepping")
 
 
 def _validate(instance, where: str) -> None:

@@ -15,6 +15,7 @@ import numpy as np
 
 from fowt_hydro_sim.frames import rotation_matrix as rotation_matrices
 from fowt_hydro_sim.physics import dynamics
+from fowt_hydro_sim.physics import free_surface_hydrostatics as free_surface
 from fowt_hydro_sim.physics.config import DRAG_MODELS, ConfigError, HydroOptions, Platform
 from fowt_hydro_sim.physics.drag_filters import (
     StateSpace,
@@ -298,6 +299,9 @@ class PlatformModel:
         if self.options.kinematics == "displaced":
             raise ConfigError("kinematics 'displaced': implemented for a prescribed motion only (fowt-sim loads, "
                               "PlatformModel.prescribed_motion_loads), not for time stepping")
+        if self.options.hydrostatics == "free_surface":
+            raise ConfigError("hydrostatics 'free_surface': implemented for a prescribed motion only (fowt-sim "
+                              "loads, PlatformModel.prescribed_motion_loads), not for time stepping")
         n_out = n_steps // every
         out_t = np.empty(n_out)
         out_y = np.empty((n_out, N_BODY_STATES))
@@ -329,6 +333,12 @@ class PlatformModel:
             data = data._replace(waves=self._displaced_table(time_s, np.asarray(motion, dtype=float)))
         out = np.zeros((n, N_LOADS, 6))
         dynamics.prescribed_motion_loads(time_s, states, np.ascontiguousarray(acceleration, dtype=float), data, out)
+        if self.options.hydrostatics == "free_surface":
+            env = self.platform.environment
+            eta = free_surface.wave_elevation(self.waves, env.water_depth_m, env.gravity_m_s2)
+            out[:, ROW["hydrostatic"]] = free_surface.prescribed_motion_wrenches(
+                free_surface.platform_members(self.platform), eta, time_s, np.asarray(motion, dtype=float),
+                env.water_density_kg_m3, env.gravity_m_s2)
         return out
 
     def _displaced_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:

@@ -160,7 +160,8 @@ def submerged_volume(rotation: np.ndarray, position_z_m: float, lines: np.ndarra
 
 
 # --------------------------------------------------------------------------- load component
-MODES = {"linear": 0.0, "nonlinear": 1.0}
+# free_surface: the kernel computes the linear load; PlatformModel.prescribed_motion_loads replaces it
+MODES = {"linear": 0.0, "nonlinear": 1.0, "free_surface": 0.0}
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
