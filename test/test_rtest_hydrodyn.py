@@ -265,11 +265,11 @@ def test_free_surface_hydrostatics_in_still_water_equal_the_nonlinear_member_hyd
     assert np.allclose(loads["free_surface"], loads["nonlinear"], rtol=0, atol=1e-9 * scale)
 
 
-def test_fowt_sim_loads_with_free_surface_hydrostatics_in_a_regular_wave(tmp_path):
-    """``fowt-sim loads --hydrostatics free_surface`` with a .Comp wave: the hydrostatic columns are
-    the free-surface integral along the prescribed motion (global axes, about the displaced
-    reference point); HydroDyn's total includes them. A platform with a circular member and a
-    time-stepping run are refused in one line."""
+def test_fowt_sim_loads_with_free_surface_hydrostatics_in_a_regular_wave(tmp_path, capsys):
+    """``fowt-sim loads --stretching vertical --hydrostatics free_surface`` with a .Comp wave: the
+    hydrostatic columns are the free-surface integral along the prescribed motion (global axes,
+    about the displaced reference point); HydroDyn's total includes them. A platform with a
+    circular member and a time-stepping run are refused in one line."""
     platform = rectangular_column()
     platform_file = tmp_path / "column.yaml"
     from fowt_hydro_sim.physics.config import platform_document
@@ -284,7 +284,10 @@ def test_fowt_sim_loads_with_free_surface_hydrostatics_in_a_regular_wave(tmp_pat
     np.savetxt(tmp_path / "prp.dat", np.column_stack([t, motion, rates, rates]))
     out = tmp_path / "loads.csv"
     assert main(["loads", "--platform", str(platform_file), "--motion", str(tmp_path / "prp.dat"), "--waves-comp",
-                 str(tmp_path / "wave.Comp"), "--hydrodyn", "--hydrostatics", "free_surface", "-o", str(out)]) == 0
+                 str(tmp_path / "wave.Comp"), "--hydrodyn", "--hydrostatics", "free_surface", "--stretching",
+                 "vertical", "-o", str(out)]) == 0
+    said = capsys.readouterr().out
+    assert "hydrostatics='free_surface'" in said and "stretching='vertical'" in said, said
     table = np.genfromtxt(out, delimiter=",", names=True)
     env = platform.environment
     eta = fsh.wave_elevation(waves, env.water_depth_m, env.gravity_m_s2)
@@ -298,3 +301,41 @@ def test_fowt_sim_loads_with_free_surface_hydrostatics_in_a_regular_wave(tmp_pat
     from fowt_hydro_sim.physics.config import ConfigError, RunConfig
     with pytest.raises(ConfigError, match="prescribed motion only"):
         RunConfig(hydrostatics="free_surface")
+
+
+# ------------------------------------------------------------- vertical wave stretching (WaveStMod 1)
+@pytest.mark.parametrize("stretching", ["none", "vertical"])
+def test_vertical_stretching_wets_a_column_up_to_the_elevation_with_the_kinematics_at_z0(stretching):
+    """A vertical column (no drag, no added mass) held in a regular wave: its horizontal
+    Froude-Krylov force is rho A int a_x(z) dz over the wetted length: up to z = 0 without
+    stretching, up to eta with vertical stretching, a_x above z = 0 being a_x(0) (closed form,
+    Airy kinematics at x = 0 where eta = A cos(omega t))."""
+    p = load_platform("windmoor12")
+    zone = dataclasses.replace(p.members[0].zones[0], below_z_m=math.inf, ca=(0.0, 0.0))
+    zone = dataclasses.replace(zone, cd=tuple(dataclasses.replace(c, constant=0.0) for c in zone.cd))
+    radius, draft = 3.0, 20.0
+    column = dataclasses.replace(p.members[0], end_a_m=(0.0, 0.0, -draft), end_b_m=(0.0, 0.0, 10.0),
+                                 width_m=2 * radius, height_m=2 * radius, diameter_b_m=None, zones=(zone,),
+                                 strip_length_m=0.05, end_a_plate=None, end_b_plate=None)
+    platform = dataclasses.replace(p, members=(column,))
+    period_s, amplitude_m, depth = 12.0, 2.0, platform.environment.water_depth_m
+    waves = WaveComponents(np.array([1 / period_s]), np.array([amplitude_m]), np.array([0.0]), np.array([0.0]),
+                           period_s)
+    options = dataclasses.replace(HYDRODYN, stretching=stretching)
+    model = PlatformModel(platform, waves, options=options, wave_table_dt_s=period_s / 960)
+    t = np.linspace(0.0, period_s, 25)[:-1]
+    rest = np.zeros((t.size, 6))
+    fx = model.prescribed_motion_loads(t, rest, rest, rest)[:, ROW["inertia"], 0]
+    omega = 2 * math.pi / period_s
+    k = optimize_wavenumber(omega, depth)
+
+    def a_x(z, time):  # eta = A cos(omega t): u = omega A cosh(k(z+d))/sinh(kd) cos(omega t)
+        return -omega**2 * amplitude_m * math.cosh(k * (z + depth)) / math.sinh(k * depth) * math.sin(omega * time)
+
+    expected = []
+    for time in t:
+        eta = amplitude_m * math.cos(omega * time) if stretching == "vertical" else 0.0
+        below = integrate.quad(lambda z: a_x(z, time), -draft, min(eta, 0.0), epsabs=1e-12)[0]
+        expected.append(RHO * math.pi * radius**2 * (below + max(eta, 0.0) * a_x(0.0, time)))
+    expected = np.array(expected)
+    assert np.max(np.abs(fx - expected)) < 1e-5 * np.max(np.abs(expected))  # measured 8e-8, 4e-7

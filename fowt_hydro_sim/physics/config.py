@@ -27,6 +27,7 @@ WETTED_LENGTHS = ("displaced", "undisplaced")
 LOAD_DIRECTIONS = ("rotating", "fixed")
 HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
+STRETCHING = ("none", "vertical")
 
 
 class ConfigError(ValueError):
@@ -217,6 +218,11 @@ class HydroOptions:
         "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
                        "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
                        "motion only: fowt-sim loads)", choices=KINEMATICS)
+    stretching: str = setting(
+        "none", "wave stretching of the Morison loads: none (strips wetted up to z = 0, HydroDyn's WaveStMod 0) "
+                "or vertical (each strip and end plate wetted up to the instantaneous elevation at its x, y, "
+                "kinematics above z = 0 those at z = 0: WaveStMod 1; prescribed motion only: fowt-sim loads)",
+        choices=STRETCHING)
 
     def __post_init__(self) -> None:
         _validate(self, "hydro options")

@@ -146,7 +146,8 @@ class PlatformModel:
             filters=FilterBank(bank.a, nonzero_entries(bank.a), bank.b, bank.c, nonzero_entries(bank.c), bank.d),
             body=RigidBody(mass.mass_kg, np.array(mass.cog_m), np.array(mass.inertia_about_cog_kg_m2)),
             options=HydroFlags(self.options.load_directions == "fixed", self.options.wetted_length == "undisplaced"),
-            component_params=params, component_tables=tables)
+            component_params=params, component_tables=tables,
+            still_surface=np.zeros(len(s.length_m) + len(plates.centre_m)))
 
     @property
     def n_strips(self) -> int:
@@ -302,6 +303,9 @@ class PlatformModel:
         if self.options.hydrostatics == "free_surface":
             raise ConfigError("hydrostatics 'free_surface': implemented for a prescribed motion only (fowt-sim "
                               "loads, PlatformModel.prescribed_motion_loads), not for time stepping")
+        if self.options.stretching != "none":
+            raise ConfigError(f"stretching {self.options.stretching!r}: implemented for a prescribed motion only "
+                              "(fowt-sim loads, PlatformModel.prescribed_motion_loads), not for time stepping")
         n_out = n_steps // every
         out_t = np.empty(n_out)
         out_y = np.empty((n_out, N_BODY_STATES))
@@ -332,7 +336,9 @@ class PlatformModel:
         if self.options.kinematics == "displaced" and self.waves is not None and self.waves.frequency_hz.size:
             data = data._replace(waves=self._displaced_table(time_s, np.asarray(motion, dtype=float)))
         out = np.zeros((n, N_LOADS, 6))
-        dynamics.prescribed_motion_loads(time_s, states, np.ascontiguousarray(acceleration, dtype=float), data, out)
+        surfaces = self._surfaces(time_s, np.asarray(motion, dtype=float))
+        dynamics.prescribed_motion_loads(time_s, states, np.ascontiguousarray(acceleration, dtype=float), data,
+                                         surfaces, out)
         if self.options.hydrostatics == "free_surface":
             env = self.platform.environment
             eta = free_surface.wave_elevation(self.waves, env.water_depth_m, env.gravity_m_s2)
@@ -340,6 +346,22 @@ class PlatformModel:
                 free_surface.platform_members(self.platform), eta, time_s, np.asarray(motion, dtype=float),
                 env.water_density_kg_m3, env.gravity_m_s2)
         return out
+
+    def _surfaces(self, time_s: np.ndarray, motion: np.ndarray) -> np.ndarray:
+        """(n, n_strips + n_plates): the water surface height each strip and end plate is wetted
+        up to: 0, or with vertical stretching the elevation at its x, y (displaced or undisplaced,
+        as the wetted length)."""
+        centres = np.vstack([self.geometry.strips.centre_m, self.geometry.plates.centre_m])
+        surfaces = np.zeros((time_s.size, len(centres)))
+        if self.options.stretching == "none" or self.waves is None or not self.waves.frequency_hz.size:
+            return surfaces
+        env = self.platform.environment
+        for i, t in enumerate(time_s):
+            xy = centres[:, 0:2]
+            if self.options.wetted_length == "displaced":
+                xy = motion[i, 0:2] + centres @ rotation_matrices(*motion[i, 3:6])[0:2].T
+            surfaces[i] = self.waves.elevation_at(xy, t, env.water_depth_m, env.gravity_m_s2)
+        return surfaces
 
     def _displaced_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:
         """A kinematics table whose row i holds, at time t_i = i dt, the kinematics at the
@@ -367,7 +389,8 @@ class PlatformModel:
         reference point."""
         loads, masses = np.zeros((N_LOADS, 6)), np.zeros((N_MODULE_COMPONENTS, 6, 6))
         rest = np.zeros_like(self._state)
-        added = dynamics.applied_loads(0.0, rest, self._data, loads, masses, np.empty(rest.size - N_BODY_STATES))
+        added = dynamics.applied_loads(0.0, rest, self._data, loads, masses, np.empty(rest.size - N_BODY_STATES),
+                                       self._data.still_surface)
         body = self._data.body
         rigid, _ = dynamics.mass_matrix_and_bias(body.mass, body.cog, body.inertia_cog, np.eye(3), np.zeros(3))
         return rigid + added + masses.sum(axis=0)
@@ -385,7 +408,8 @@ class PlatformModel:
             for sign in (1.0, -1.0):
                 y = np.zeros_like(self._state)
                 y[j] = sign * step
-                dynamics.applied_loads(0.0, y, data, loads, masses, np.empty(y.size - N_BODY_STATES))
+                dynamics.applied_loads(0.0, y, data, loads, masses, np.empty(y.size - N_BODY_STATES),
+                                       data.still_surface)
                 wrench.append(loads[restoring].sum(axis=0))
             out[:, j] = -(wrench[0] - wrench[1]) / (2 * step)
         return out

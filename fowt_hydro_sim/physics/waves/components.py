@@ -78,6 +78,13 @@ class WaveComponents:
         theta = np.outer(np.atleast_1d(t_s), omega) - k * s + self.phase_rad
         return np.cos(theta) @ self.amplitude_m
 
+    def elevation_at(self, xy_m: np.ndarray, t_s: float, depth_m: float, gravity_m_s2: float) -> np.ndarray:
+        """Elevation at time ``t_s`` at the points ``xy_m`` (p, 2), by direct summation."""
+        omega = 2 * np.pi * self.frequency_hz
+        k = wavenumber(omega, depth_m, gravity_m_s2)
+        s = np.outer(xy_m[:, 0], np.cos(self.direction_rad)) + np.outer(xy_m[:, 1], np.sin(self.direction_rad))
+        return np.cos(omega * t_s - k * s + self.phase_rad) @ self.amplitude_m
+
     def elevation_series(self, x_m: float, y_m: float, step_s: float, depth_m: float,
                          gravity_m_s2: float) -> np.ndarray:
         """Elevation at one point every ``step_s`` over one repeat period, by inverse FFT."""
