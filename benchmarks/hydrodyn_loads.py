@@ -4,12 +4,16 @@ cache load, set-up, loads, CSV), in still water and in the reference's 169 JONSW
 components, against the HydroDyn v5 driver's wall times on this kind of machine (62 s still
 water, 103 s waves; reference READMEs).
 
-Prints the wall time of each case (best of ``--repeats``) and HydroDyn's time over ours.
+Prints the wall and CPU (user + system) time of each case (best of ``--repeats``), HydroDyn's
+time over each, and the load average: on a shared machine the wall time grows with the other
+users' load, the CPU time much less.
 Run: python benchmarks/hydrodyn_loads.py [--repeats N]
 """
 from __future__ import annotations
 
 import argparse
+import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -42,14 +46,19 @@ def main() -> None:
                    "--motion", str(folder / "prp.dat"), "--hydrodyn", "--overwrite", "-o", str(folder / "out.csv")]
         cases = {"still water": ["--still-water"], "waves": ["--waves-comp", str(comp), "--wave-table-dt", "0.05"]}
         subprocess.run(command + cases["waves"], check=True, cwd=REPO, capture_output=True)  # fill the numba cache
+        print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
         for name, extra in cases.items():
-            best = float("inf")
+            wall, cpu = float("inf"), float("inf")
             for _ in range(args.repeats):
-                start = time.perf_counter()
+                before, start = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
                 subprocess.run(command + extra, check=True, cwd=REPO, capture_output=True)
-                best = min(best, time.perf_counter() - start)
-            print(f"{name:12s} fowt-sim loads {best:6.2f} s wall (fresh process), HydroDyn "
-                  f"{HYDRODYN_WALL_S[name]:.0f} s: {HYDRODYN_WALL_S[name] / best:5.1f}x faster")
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                wall = min(wall, time.perf_counter() - start)
+                cpu = min(cpu, after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+            hd = HYDRODYN_WALL_S[name]
+            print(f"{name:12s} fowt-sim loads {wall:6.2f} s wall, {cpu:5.2f} s CPU (fresh process), HydroDyn "
+                  f"{hd:.0f} s: {hd / wall:5.1f}x on wall, {hd / cpu:5.1f}x on CPU")
+        print(f"load average {os.getloadavg()[0]:.1f}")
 
 
 if __name__ == "__main__":

@@ -178,11 +178,9 @@ def test_imported_deck_held_fixed_in_waves_matches_hydrodyn(tmp_path):
 
 @pytest.mark.parametrize("edit, message", [
     (lambda text: text.replace("             0   PotMod", "             1   PotMod", 1), "potential-flow"),
-    (lambda text: text.replace("    1        15.0000        0.0500", "    1        15.0000        0.0500\n"
-                               "    2        12.0000        0.0500", 1).replace(
-        "1   NPropSetsCyl", "2   NPropSetsCyl", 1).replace(
-        "   1          1          2           1            1          1", "   1          1          2           1"
-                                                                          "            2          1", 1), "tapered"),
+    (lambda text: text.replace("             0   NMGDepths", "             1   NMGDepths", 1).replace(
+        "(m)        (m)         (kg/m^3)", "(m)        (m)         (kg/m^3)\n-10.0      0.1         1100.0", 1),
+     "marine growth"),
     (lambda text: text.replace("0.5         1         2        FALSE", "0.5         2         2        FALSE", 1),
      "depth-based"),
 ])
@@ -243,3 +241,52 @@ def test_run_files_take_the_hydro_options(tmp_path):
     bad.write_text("platform: windmoor12\nrun: {load_directions: sideways}\n")
     with pytest.raises(ConfigError, match="load_directions: must be one of rotating, fixed"):
         load_run_file(bad)
+
+
+# ---------------------------------------------------------------------- displaced kinematics (WaveDisp 1)
+def _offset_column(offset_m, yaw_rad: float = 0.0):
+    """A windmoor12 column placed at (20, 10) in the body frame, then yawed and shifted by
+    ``offset_m`` (x, y): the platform a displaced one is at."""
+    p = load_platform("windmoor12")
+    c, s = math.cos(yaw_rad), math.sin(yaw_rad)
+
+    def place(point):
+        x, y = point[0] + 20.0, point[1] + 10.0
+        return (c * x - s * y + offset_m[0], s * x + c * y + offset_m[1], point[2])
+
+    column = dataclasses.replace(p.members[0], end_a_m=place((0.0, 0.0, -15.5)), end_b_m=place((0.0, 0.0, 15.0)),
+                                 strip_length_m=0.5)
+    return dataclasses.replace(p, members=(column,))
+
+
+@pytest.mark.parametrize("yaw_rad", [0.0, 0.3])
+def test_displaced_kinematics_of_an_offset_body_are_those_of_the_body_built_there(yaw_rad):
+    """A body held at a surge/sway offset (and yaw) with kinematics at the displaced points
+    (WaveDisp 1) gets the loads of the same body built at that place with undisplaced
+    kinematics (moments moved to the displaced reference point); at the undisplaced points
+    it does not."""
+    from fowt_hydro_sim.physics.waves.components import WaveComponents
+    waves = WaveComponents(np.array([0.08, 0.1, 0.13]), np.array([1.0, 1.5, 0.5]), np.array([0.3, 1.1, 2.0]),
+                           np.array([0.0, 0.4, -0.2]), 100.0)
+    offset = (7.0, -3.0)
+    t = np.round(np.arange(0.0, 20.0, 0.1), 10)
+    pose = np.tile([offset[0], offset[1], 0.0, 0.0, 0.0, yaw_rad], (t.size, 1))
+    still = np.zeros((t.size, 6))
+    loads = {}
+    for kinematics in ("displaced", "undisplaced"):
+        model = PlatformModel(_offset_column((0.0, 0.0)), waves, wave_table_dt_s=0.1,
+                              options=dataclasses.replace(HYDRODYN, kinematics=kinematics))
+        loads[kinematics] = hydro_channels(model.prescribed_motion_loads(t, pose, still, still))
+    there = PlatformModel(_offset_column(offset, yaw_rad), waves, wave_table_dt_s=0.1, options=HYDRODYN)
+    reference = hydro_channels(there.prescribed_motion_loads(t, still, still, still))
+    arm = np.array([offset[0], offset[1], 0.0])
+    reference[:, 3:6] -= np.cross(arm, reference[:, 0:3])
+    scale = np.abs(reference).max(axis=0)
+    assert np.max(np.abs(loads["displaced"] - reference) / scale) < 1e-5
+    assert np.max(np.abs(loads["undisplaced"] - reference)[:, :2] / scale[:2]) > 0.1
+
+
+def test_displaced_kinematics_are_refused_for_time_stepping():
+    model = PlatformModel(_offset_column((0.0, 0.0)), options=dataclasses.replace(HYDRODYN, kinematics="displaced"))
+    with pytest.raises(ValueError, match="prescribed motion only"):
+        model.run(1.0)

@@ -246,6 +246,8 @@ def test_batches_publish_every_stamp_in_order_and_record_them_all(tmp_path):
     ({"publish_rate_hz": 7.0}, "parameter publish_rate_hz"),
     ({"load_case": "lc9.9"}, "load case 'lc9.9': unknown"),
     ({"hydrostatics": "exact"}, "parameter hydrostatics: must be one of linear, nonlinear"),
+    ({"hydrostatics": "free_surface"}, "parameter hydrostatics: 'free_surface' is implemented for a prescribed "
+                                       "motion only"),
 ])
 def test_bad_parameters_end_with_one_line(args: dict, message: str):
     node = start("node", **args)

@@ -3,14 +3,24 @@ function of the studies, bags or ROS packages that tests and Python users call d
 
 Errors in the user's input end the command with one line naming the problem (exit 2),
 never a traceback.
+
+Only the chosen command's module is imported (start-up time: the modules import numba,
+scipy and the model); ``fowt-sim --help`` and an unknown command import them all.
 """
 from __future__ import annotations
 
 import argparse
+import importlib
 import logging
 import sys
 
-from fowt_hydro_sim.cli import analyze, bags, calibrate, diagnose, kernels, loads, platform, simulate, sweep
+# each subcommand and the module (fowt_hydro_sim.cli.<module>) whose add_parsers defines it
+COMMAND_MODULES = {
+    "simulate": "simulate", "load-cases": "simulate", "waves": "bags", "recover": "bags", "info": "bags",
+    "analyze": "analyze", "calibrate": "calibrate", "diagnose": "diagnose", "diagnose-benchmark": "diagnose",
+    "loads": "loads", "platform": "platform", "sweep": "sweep", "compile": "kernels",
+}
+MODULE_ORDER = ("simulate", "bags", "analyze", "calibrate", "diagnose", "loads", "platform", "sweep", "kernels")
 
 # commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')
 ROS_COMMANDS = {
@@ -77,12 +87,20 @@ def say_defaults(parser: argparse.ArgumentParser) -> None:
             action.help += f" ({_default_text(action)})"
 
 
-def parser() -> argparse.ArgumentParser:
+def chosen_command(argv: list[str]) -> str | None:
+    """The subcommand named in ``argv`` (its first word that is not an option), if known."""
+    word = next((a for a in argv if not a.startswith("-")), None)
+    return word if word in COMMAND_MODULES else None
+
+
+def parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser: with ``command``, only that command's module is imported
+    and defines its subcommands; without, every command's."""
     top = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
     top.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for module in (simulate, bags, analyze, calibrate, diagnose, loads, platform, sweep, kernels):
-        module.add_parsers(sub)
+    for name in (COMMAND_MODULES[command],) if command else MODULE_ORDER:
+        importlib.import_module(f"fowt_hydro_sim.cli.{name}").add_parsers(sub)
     for command in sub.choices.values():
         say_defaults(command)
     for name, text in ROS_COMMANDS.items():
@@ -94,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] and argv[0] in ROS_COMMANDS:
         return _ros_command(argv[0], argv[1:])
-    args = parser().parse_args(argv)
+    args = parser(chosen_command(argv)).parse_args(argv)
     logging.basicConfig(level=logging.DEBUG if args.verbose else logging.INFO,
                         format="%(levelname)s %(name)s: %(message)s")
     try:

@@ -11,13 +11,15 @@ from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, HYDRODYN, ConfigEr
 from fowt_hydro_sim.studies import loads as study
 from fowt_hydro_sim.studies.simulate import comp_file_waves, sea_state_waves
 
+OPTION_NAMES = (*HYDRO_OPTION_NAMES, "kinematics", "stretching")  # these two: prescribed motion only
+
 
 def loads(args: argparse.Namespace) -> int:
     out = Path(args.output)
     if out.exists() and not args.overwrite:
         raise ConfigError(f"{out}: exists (pass --overwrite to replace it)")
     base = HYDRODYN if args.hydrodyn else HydroOptions()
-    given = {k: v for k, v in options.values(args, HydroOptions, HYDRO_OPTION_NAMES).items() if v is not None}
+    given = {k: v for k, v in options.values(args, HydroOptions, OPTION_NAMES).items() if v is not None}
     hydro = dataclasses.replace(base, **given)
     platform = load_platform(args.platform)
     motion = study.read_prp_motion(args.motion)
@@ -52,6 +54,6 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                    help="kinematics table step [s] (default: chosen for 1e-3 interpolation error)")
     p.add_argument("--hydrodyn", action="store_true",
                    help="HydroDyn's choices: undisplaced wetted length, fixed directions, nonlinear hydrostatics")
-    options.add(p, HydroOptions, HYDRO_OPTION_NAMES, defaults={name: None for name in HYDRO_OPTION_NAMES},
-                notes={name: " (default: the model's, or HydroDyn's with --hydrodyn)" for name in HYDRO_OPTION_NAMES})
+    options.add(p, HydroOptions, OPTION_NAMES, defaults={name: None for name in OPTION_NAMES},
+                notes={name: " (default: the model's, or HydroDyn's with --hydrodyn)" for name in OPTION_NAMES})
     p.set_defaults(func=loads)

@@ -25,7 +25,9 @@ FILTER_KINDS = ("lowpass", "highpass", "bandpass", "allpass")
 SECTIONS = ("circular", "rectangular")
 WETTED_LENGTHS = ("displaced", "undisplaced")
 LOAD_DIRECTIONS = ("rotating", "fixed")
-HYDROSTATICS = ("linear", "nonlinear")
+HYDROSTATICS = ("linear", "nonlinear", "free_surface")
+KINEMATICS = ("undisplaced", "displaced")
+STRETCHING = ("none", "vertical")
 
 
 class ConfigError(ValueError):
@@ -119,6 +121,17 @@ class Member:
     zones: tuple[Zone, ...]
     end_a_plate: EndPlate | None = None
     end_b_plate: EndPlate | None = None
+    diameter_b_m: float | None = None  # circular only: the diameter at end b of a tapered member
+    taper_axial: EndPlate = EndPlate(ca=0.0, cp=1.0, cd=0.0)  # HydroDyn's member AxCa, AxCp, AxCd
+
+    @property
+    def tapered(self) -> bool:
+        return self.diameter_b_m is not None and self.diameter_b_m != self.width_m
+
+    def diameter_at(self, fraction: float) -> float:
+        """Diameter (circular) at ``fraction`` of the way from end a to end b: linear taper."""
+        end_b = self.width_m if self.diameter_b_m is None else self.diameter_b_m
+        return self.width_m + fraction * (end_b - self.width_m)
 
 
 @dataclass(frozen=True)
@@ -181,8 +194,9 @@ class SeaState:
 @dataclass(frozen=True)
 class HydroOptions:
     """How the strip model treats a moving body: choices HydroDyn makes one way and today's
-    model made another, silently. Fluid kinematics are always taken at the undisplaced
-    strip points (HydroDyn's WaveDisp 0). The defaults keep the model's earlier behaviour;
+    model made another, silently. Fluid kinematics are taken at the undisplaced strip points
+    (HydroDyn's WaveDisp 0) except for a prescribed motion with ``kinematics="displaced"``
+    (``PlatformModel.prescribed_motion_loads``). The defaults keep the model's earlier behaviour;
     ``HYDRODYN`` is HydroDyn v5's (WaveDisp 0, WaveStMod 0, member hydrostatics)."""
 
     wetted_length: str = setting(
@@ -196,7 +210,19 @@ class HydroOptions:
     hydrostatics: str = setting(
         "linear", "hydrostatics: linear about the undisplaced position (W0 - C q, WAMIT's C) or nonlinear, "
                   "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
-                  "member hydrostatics, MHstLMod 1)", choices=HYDROSTATICS)
+                  "member hydrostatics, MHstLMod 1), or free_surface, the still-water pressure -rho g z over "
+                  "the displaced member surfaces up to the instantaneous free surface (a plane per element; "
+                  "HydroDyn's MHstLMod 2 with wave stretching; rectangular members, prescribed motion only: "
+                  "fowt-sim loads)", choices=HYDROSTATICS)
+    kinematics: str = setting(
+        "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
+                       "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
+                       "motion only: fowt-sim loads)", choices=KINEMATICS)
+    stretching: str = setting(
+        "none", "wave stretching of the Morison loads: none (strips wetted up to z = 0, HydroDyn's WaveStMod 0) "
+                "or vertical (each strip and end plate wetted up to the instantaneous elevation at its x, y, "
+                "kinematics above z = 0 those at z = 0: WaveStMod 1; prescribed motion only: fowt-sim loads)",
+        choices=STRETCHING)
 
     def __post_init__(self) -> None:
         _validate(self, "hydro options")
@@ -236,6 +262,9 @@ class RunConfig:
 
     def __post_init__(self) -> None:
         _validate(self, "run")
+        if self.hydrostatics == "free_surface":
+            raise ConfigError("run: hydrostatics 'free_surface' is implemented for a prescribed motion only "
+                              "(fowt-sim loads), not for time stepping")
 
 
 def _validate(instance, where: str) -> None:
@@ -418,6 +447,9 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         width = height = f.number("diameter_m", positive=True)
     else:
         width, height = f.number("width_m", positive=True), f.number("height_m", positive=True)
+    diameter_b = f.optional_number("diameter_b_m", positive=True) if section == "circular" else None
+    taper_axial = _end_plate(f.sub("taper_axial")) if f.data.get("taper_axial") else EndPlate(0.0, 1.0, 0.0)
+    f.used.add("taper_axial")
     a, b = f.vector("end_a_m"), f.vector("end_b_m")
     if math.dist(a, b) <= 0:
         raise ConfigError(f"{f.path}: end_a_m and end_b_m are the same point")
@@ -428,6 +460,7 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         zones=tuple(_zone(z, section, i == len(zones) - 1, bands) for i, z in enumerate(zones)),
         end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
+        diameter_b_m=diameter_b, taper_axial=taper_axial,
     )
     f.used.update({"end_a_plate", "end_b_plate"})
     if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
@@ -505,6 +538,8 @@ def platform_document(platform: Platform) -> dict:
     members = []
     for m in platform.members:
         size = {"diameter_m": m.width_m} if m.section == "circular" else {"width_m": m.width_m, "height_m": m.height_m}
+        if m.tapered:
+            size.update(diameter_b_m=m.diameter_b_m, taper_axial=vars(m.taper_axial).copy())
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
                   "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
                   "zones": [_zone_document(z, m.section, bands) for z in m.zones]}

@@ -21,7 +21,6 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-import scipy.signal
 from numba import njit
 
 from fowt_hydro_sim.physics.config import DragBand
@@ -42,6 +41,8 @@ class StateSpace(NamedTuple):
 
 def band_zpk(band: DragBand) -> tuple[np.ndarray, np.ndarray, float]:
     """Analog zeros, poles and gain of a band's filter (s in rad/s)."""
+    import scipy.signal  # here: a filter design needs it, a run with constant Cds does not (0.8 s start-up)
+
     if band.kind in ("lowpass", "highpass"):
         btype = "low" if band.kind == "lowpass" else "high"
         return scipy.signal.butter(band.order, 2 * np.pi * band.cutoff_hz, btype, analog=True, output="zpk")
@@ -88,6 +89,8 @@ def _cascade(first: StateSpace, second: StateSpace) -> StateSpace:
 
 def band_state_space(band: DragBand) -> StateSpace:
     """The band's filter as a cascade of sections in one state-space model."""
+    import scipy.signal  # (see band_zpk)
+
     z, p, k = band_zpk(band)
     out = StateSpace(np.zeros((0, 0)), np.zeros(0), np.zeros((1, 0)), np.array([1.0]))
     if p.size == 0:

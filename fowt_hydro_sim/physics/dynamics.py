@@ -114,15 +114,17 @@ class KernelData(NamedTuple):
     options: HydroFlags
     component_params: tuple  # (params, ...) of the module components, registry order
     component_tables: tuple  # (table, ...)
+    still_surface: np.ndarray  # zeros (n_strips + n_plates): the water surface at z = 0 (no stretching)
 
 
 @njit(cache=True)
 def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, masses: np.ndarray,
-                  filter_rates_out: np.ndarray) -> np.ndarray:
+                  filter_rates_out: np.ndarray, surface: np.ndarray) -> np.ndarray:
     """Fill ``loads`` (N_LOADS, 6; world axes, about the reference point) at state y and time
     t, with only the centripetal part in the added-mass row, the module components' masses
     (N_MODULE_COMPONENTS, 6, 6) and the drag filter states' rates; return the strips' 6x6
-    added mass (world axes) that multiplies the body acceleration."""
+    added mass (world axes) that multiplies the body acceleration. ``surface`` (n_strips +
+    n_plates) is the water surface height the strips and plates are wetted up to."""
     position, angles = y[0:3], y[3:6]
     velocity, omega = y[6:9], y[9:12]
     rotation = rotation_matrix(angles[0], angles[1], angles[2])
@@ -143,9 +145,9 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
     body = np.zeros((3, 6))  # drag, inertia, centripetal added mass, frame axes
     n_strips = s.length.size
     wet, v_rel, a_fluid = np.empty(n_strips), np.empty((n_strips, 2)), np.empty((n_strips, 2))
-    wetted_fractions(wet_pose, wet_z, s.centre, s.axis, s.length, wet)
+    wetted_fractions(wet_pose, wet_z, s.centre, s.axis, s.length, surface[:n_strips], wet)
     submerged = np.empty(plates.centre.shape[0])
-    submerged_points(wet_pose, wet_z, plates.centre, submerged)
+    submerged_points(wet_pose, wet_z, plates.centre, surface[n_strips:], submerged)
     relative_velocities(frame, velocity, omega, kinematics, arm, s.directions, s.point, v_rel, a_fluid)
     filter_states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * n_strips))
     v_flat = v_rel.reshape(2 * n_strips)
@@ -184,7 +186,7 @@ def derivative(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, masses
     """Write dy/dt at time t to ``out`` (entries 6-12 are the accelerations); fill ``loads``,
     whose rows then include the reactions -M a of the masses on the left-hand side, and
     ``masses`` (N_MODULE_COMPONENTS, 6, 6; the caller's scratch) with the components' masses."""
-    added_mass = applied_loads(t, y, d, loads, masses, out[N_BODY_STATES:])
+    added_mass = applied_loads(t, y, d, loads, masses, out[N_BODY_STATES:], d.still_surface)
     rotation = rotation_matrix(y[3], y[4], y[5])
     mass6, bias = mass_matrix_and_bias(d.body.mass, d.body.cog, d.body.inertia_cog, rotation, y[9:12])
     total = -bias
@@ -202,13 +204,14 @@ def derivative(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, masses
 
 @njit(cache=True)
 def prescribed_motion_loads(times: np.ndarray, states: np.ndarray, accelerations: np.ndarray,
-                            d: KernelData, out_loads: np.ndarray) -> None:
-    """Loads for a given motion (HydroDyn driver mode): states (n, 12), accelerations (n, 6);
-    for a model without drag filter states."""
+                            d: KernelData, surfaces: np.ndarray, out_loads: np.ndarray) -> None:
+    """Loads for a given motion (HydroDyn driver mode): states (n, 12), accelerations (n, 6),
+    the water surface height over each strip and plate (n, n_strips + n_plates); for a model
+    without drag filter states."""
     no_filter_states = np.empty(0)
     masses = np.empty((N_MODULE_COMPONENTS, 6, 6))
     for n in range(times.size):
-        added_mass = applied_loads(times[n], states[n], d, out_loads[n], masses, no_filter_states)
+        added_mass = applied_loads(times[n], states[n], d, out_loads[n], masses, no_filter_states, surfaces[n])
         react(out_loads[n], added_mass, masses, accelerations[n])
 
 

@@ -14,7 +14,9 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from fowt_hydro_sim.frames import rotation_matrix as rotation_matrices
 from fowt_hydro_sim.physics import dynamics
+from fowt_hydro_sim.physics import free_surface_hydrostatics as free_surface
 from fowt_hydro_sim.physics.config import DRAG_MODELS, ConfigError, HydroOptions, Platform
 from fowt_hydro_sim.physics.drag_filters import (
     StateSpace,
@@ -49,7 +51,8 @@ from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
-from fowt_hydro_sim.physics.waves.kinematics import BlockSynthesis, KinematicsTable, complex_amplitudes, table_step
+from fowt_hydro_sim.physics.waves.kinematics import (BlockSynthesis, KinematicsTable, complex_amplitudes,
+                                                     moving_point_kinematics, table_step)
 
 log = logging.getLogger(__name__)
 
@@ -167,7 +170,8 @@ class PlatformModel:
             filters=FilterBank(bank.a, nonzero_entries(bank.a), bank.b, bank.c, nonzero_entries(bank.c), bank.d),
             body=RigidBody(mass.mass_kg, np.array(mass.cog_m), np.array(mass.inertia_about_cog_kg_m2)),
             options=HydroFlags(self.options.load_directions == "fixed", self.options.wetted_length == "undisplaced"),
-            component_params=params, component_tables=tables)
+            component_params=params, component_tables=tables,
+            still_surface=np.zeros(len(s.length_m) + len(plates.centre_m)))
 
     @property
     def n_strips(self) -> int:
@@ -376,6 +380,15 @@ class PlatformModel:
     def _advance(self, n_steps: int, every: int) -> tuple[np.ndarray, ...]:
         """Integrate n steps, recording every ``every``-th; with a blocked wave table, in parts
         of whole recording intervals that the ring holds."""
+        if self.options.kinematics == "displaced":
+            raise ConfigError("kinematics 'displaced': implemented for a prescribed motion only (fowt-sim loads, "
+                              "PlatformModel.prescribed_motion_loads), not for time stepping")
+        if self.options.hydrostatics == "free_surface":
+            raise ConfigError("hydrostatics 'free_surface': implemented for a prescribed motion only (fowt-sim "
+                              "loads, PlatformModel.prescribed_motion_loads), not for time stepping")
+        if self.options.stretching != "none":
+            raise ConfigError(f"stretching {self.options.stretching!r}: implemented for a prescribed motion only "
+                              "(fowt-sim loads, PlatformModel.prescribed_motion_loads), not for time stepping")
         n_out = n_steps // every
         out_t = np.empty(n_out)
         out_y = np.empty((n_out, N_BODY_STATES))
@@ -413,10 +426,23 @@ class PlatformModel:
                 raise ValueError(f"prescribed motion: {name} must have shape ({n}, 6), got {np.shape(arr)}")
         states = np.ascontiguousarray(np.hstack([motion, velocity]), dtype=float)
         acceleration = np.ascontiguousarray(acceleration, dtype=float)
+        motion = np.asarray(motion, dtype=float)
+        surfaces = self._surfaces(time_s, motion)
         out = np.zeros((n, N_LOADS, 6))
-        for part in self._held_parts(time_s):
-            self._hold_times(time_s[part].min(), time_s[part].max())
-            dynamics.prescribed_motion_loads(time_s[part], states[part], acceleration[part], self._data, out[part])
+        if self.options.kinematics == "displaced" and self.waves is not None and self.waves.frequency_hz.size:
+            data = self._data._replace(waves=self._displaced_table(time_s, motion))
+            dynamics.prescribed_motion_loads(time_s, states, acceleration, data, surfaces, out)
+        else:
+            for part in self._held_parts(time_s):
+                self._hold_times(time_s[part].min(), time_s[part].max())
+                dynamics.prescribed_motion_loads(time_s[part], states[part], acceleration[part], self._data,
+                                                 surfaces[part], out[part])
+        if self.options.hydrostatics == "free_surface":
+            env = self.platform.environment
+            eta = free_surface.wave_elevation(self.waves, env.water_depth_m, env.gravity_m_s2)
+            out[:, ROW["hydrostatic"]] = free_surface.prescribed_motion_wrenches(
+                free_surface.platform_members(self.platform), eta, time_s, motion,
+                env.water_density_kg_m3, env.gravity_m_s2)
         return out
 
     def _held_parts(self, time_s: np.ndarray) -> list[slice]:
@@ -436,13 +462,51 @@ class PlatformModel:
         parts.append(slice(start, rows.size))
         return parts
 
+    def _surfaces(self, time_s: np.ndarray, motion: np.ndarray) -> np.ndarray:
+        """(n, n_strips + n_plates): the water surface height each strip and end plate is wetted
+        up to: 0, or with vertical stretching the elevation at its x, y (displaced or undisplaced,
+        as the wetted length)."""
+        centres = np.vstack([self.geometry.strips.centre_m, self.geometry.plates.centre_m])
+        surfaces = np.zeros((time_s.size, len(centres)))
+        if self.options.stretching == "none" or self.waves is None or not self.waves.frequency_hz.size:
+            return surfaces
+        env = self.platform.environment
+        for i, t in enumerate(time_s):
+            xy = centres[:, 0:2]
+            if self.options.wetted_length == "displaced":
+                xy = motion[i, 0:2] + centres @ rotation_matrices(*motion[i, 3:6])[0:2].T
+            surfaces[i] = self.waves.elevation_at(xy, t, env.water_depth_m, env.gravity_m_s2)
+        return surfaces
+
+    def _displaced_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:
+        """A kinematics table whose row i holds, at time t_i = i dt, the kinematics at the
+        points' displaced positions (x + R p; z at most 0, as the undisplaced points): what the
+        kernel's table look-up then returns at t_i (WaveDisp 1). The times must be multiples
+        of one step."""
+        step = float(time_s[1] - time_s[0]) if time_s.size > 1 else 1.0
+        rows = np.round(time_s / step).astype(np.int64)
+        if time_s.size < 2 or step <= 0 or np.max(np.abs(rows * step - time_s)) > 1e-6 * step or rows[0] < 0:
+            raise ConfigError("prescribed motion with displaced kinematics: the times must be multiples of one "
+                              "constant step from t >= 0")
+        points = self.geometry.points_m
+        rotation = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
+        world = motion[:, None, 0:3] + np.einsum("ijn,pj->npi", rotation, points)
+        world[:, :, 2] = np.minimum(world[:, :, 2], 0.0)  # no kinematics above the water line
+        env = self.platform.environment
+        values = moving_point_kinematics(self.waves, world.reshape(-1, 3), np.repeat(time_s, len(points)),
+                                         env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
+        table = np.zeros((rows[-1] + 3, len(points), 7))
+        table[rows] = values.reshape(time_s.size, len(points), 7)
+        return WaveTable(table, step)
+
     def mass_matrix(self) -> np.ndarray:
         """Rigid-body plus added mass (and any load component's mass) at rest, 6x6 about the
         reference point."""
         loads, masses = np.zeros((N_LOADS, 6)), np.zeros((N_MODULE_COMPONENTS, 6, 6))
         rest = np.zeros_like(self._state)
         self._hold_times(0.0, 0.0)
-        added = dynamics.applied_loads(0.0, rest, self._data, loads, masses, np.empty(rest.size - N_BODY_STATES))
+        added = dynamics.applied_loads(0.0, rest, self._data, loads, masses, np.empty(rest.size - N_BODY_STATES),
+                                       self._data.still_surface)
         body = self._data.body
         rigid, _ = dynamics.mass_matrix_and_bias(body.mass, body.cog, body.inertia_cog, np.eye(3), np.zeros(3))
         return rigid + added + masses.sum(axis=0)
@@ -460,7 +524,8 @@ class PlatformModel:
             for sign in (1.0, -1.0):
                 y = np.zeros_like(self._state)
                 y[j] = sign * step
-                dynamics.applied_loads(0.0, y, data, loads, masses, np.empty(y.size - N_BODY_STATES))
+                dynamics.applied_loads(0.0, y, data, loads, masses, np.empty(y.size - N_BODY_STATES),
+                                       data.still_surface)
                 wrench.append(loads[restoring].sum(axis=0))
             out[:, j] = -(wrench[0] - wrench[1]) / (2 * step)
         return out

@@ -8,8 +8,8 @@ the body acceleration and is returned as a 6x6 matrix for the left-hand side; on
 velocity-dependent (centripetal) part is a force here.
 
 A strip's loads act at its centre, scaled by its wetted fraction: the part of its displaced
-(or undisplaced: HydroDyn's) length below the still water line, continuous as the strip
-crosses it.
+(or undisplaced: HydroDyn's) length below the still water line, or with vertical wave
+stretching below the instantaneous elevation over it, continuous as the strip crosses it.
 """
 from __future__ import annotations
 
@@ -59,22 +59,25 @@ def _add_scaled(out: np.ndarray, scale: float, matrix: np.ndarray) -> None:
 
 @njit(cache=True)
 def wetted_fractions(rotation: np.ndarray, position_z_m: float, centre: np.ndarray, axis: np.ndarray,
-                     length: np.ndarray, wet: np.ndarray) -> None:
-    """Each strip's wetted fraction at the pose (rotation, heave); identity and 0 give the
-    undisplaced wetted length."""
+                     length: np.ndarray, surface_m: np.ndarray, wet: np.ndarray) -> None:
+    """Each strip's wetted fraction at the pose (rotation, heave) below the water surface at
+    ``surface_m`` (per strip: 0, or the elevation with vertical stretching); identity and 0
+    give the undisplaced wetted length."""
     for i in range(centre.shape[0]):
         c = centre[i]
-        z = position_z_m + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2]
+        z = position_z_m + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2] - surface_m[i]
         axis_z = rotation[2, 0] * axis[i, 0] + rotation[2, 1] * axis[i, 1] + rotation[2, 2] * axis[i, 2]
         wet[i] = wetted_fraction(z, axis_z, length[i])
 
 
 @njit(cache=True)
-def submerged_points(rotation: np.ndarray, position_z_m: float, centre: np.ndarray, out: np.ndarray) -> None:
-    """1 where a point (end plate centre) is below z = 0 at the pose, else 0."""
+def submerged_points(rotation: np.ndarray, position_z_m: float, centre: np.ndarray, surface_m: np.ndarray,
+                     out: np.ndarray) -> None:
+    """1 where a point (end plate centre) is below the water surface (``surface_m``, per point)
+    at the pose, else 0."""
     for i in range(centre.shape[0]):
         c = centre[i]
-        z = position_z_m + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2]
+        z = position_z_m + rotation[2, 0] * c[0] + rotation[2, 1] * c[1] + rotation[2, 2] * c[2] - surface_m[i]
         out[i] = 1.0 if z < 0.0 else 0.0
 
 

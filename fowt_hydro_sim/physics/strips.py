@@ -12,6 +12,19 @@ horizontal member) and d2 = axis x d1. Loads (HydroDyn's conventions, platform s
 with A the section area, A_k the added-mass reference area (pi D^2/4; pi h^2/4 for flow
 along the width of a rectangle, pi w^2/4 along its height) and b_k the projected width
 (D; h for flow along the width, w along the height).
+
+A tapered circular member (diameter linear from end a to end b) takes each strip's diameter
+at the strip's midpoint (HydroDyn takes it at its nodes; the two agree to second order in the
+strip length), its end plates the end diameters, and its hydrostatic volume is the exact
+frustum of each strip. The tapered side wall also carries axial loads (HydroDyn's, with the
+member's axial coefficients ``taper_axial``), per unit length along the axis k:
+
+* dynamic pressure  Cp_ax 2 pi R dR/dl p_dyn k   (the pressure on the slanted wall)
+* added mass        2 rho Ca_ax pi R^2 |dR/dl| k k^T
+* drag              0.5 rho Cd_ax pi R |dR/dl| |w| w k   (w: relative axial velocity)
+
+They are applied as axial point terms at each strip's centre (the end plates' kernel: a
+strip's ring is wet when its centre is below the water line).
 """
 from __future__ import annotations
 
@@ -38,6 +51,8 @@ class Strips:
     member: np.ndarray  # (n,) index of the member
     zone: tuple[str, ...]  # zone name of each strip
     kinematics_point: np.ndarray  # (n,) index into Discretisation.points_m
+    volume_m3: np.ndarray  # (n,) exact volume (a frustum for a tapered member)
+    volume_centre_m: np.ndarray  # (n, 3) its centroid
 
 
 @dataclass(frozen=True)
@@ -75,38 +90,73 @@ def _cuts(member: Member) -> np.ndarray:
     return np.unique(np.clip(cuts, 0.0, 1.0))
 
 
-def _section(member: Member) -> tuple[float, tuple[float, float], tuple[float, float]]:
-    """Section area, added-mass reference areas and projected widths per direction."""
+def _section(member: Member, fraction: float) -> tuple[float, tuple[float, float], tuple[float, float]]:
+    """Section area, added-mass reference areas and projected widths per direction at
+    ``fraction`` of the way from end a to end b."""
     w, h = member.width_m, member.height_m
     if member.section == "circular":
-        area = math.pi * w**2 / 4
-        return area, (area, area), (w, w)
+        d = member.diameter_at(fraction)
+        area = math.pi * d**2 / 4
+        return area, (area, area), (d, d)
     return w * h, (math.pi * h**2 / 4, math.pi * w**2 / 4), (h, w)
+
+
+def frustum(radius_0_m: float, radius_1_m: float, length_m: float) -> tuple[float, float]:
+    """Volume of a frustum and the distance of its centroid from the radius-0 end."""
+    r0, r1 = radius_0_m, radius_1_m
+    s = r0 * r0 + r0 * r1 + r1 * r1
+    return math.pi * length_m * s / 3.0, length_m * (r0 * r0 + 2.0 * r0 * r1 + 3.0 * r1 * r1) / (4.0 * s)
+
+
+def _taper_ring(rho: float, member: Member, fraction: float, length_m: float) -> tuple[float, float, float]:
+    """A tapered wall's axial terms over ``length_m`` at ``fraction``: pressure area (signed,
+    along a->b), added mass, drag factor (strips.py's docstring)."""
+    full = float(np.linalg.norm(np.subtract(member.end_b_m, member.end_a_m)))
+    radius = member.diameter_at(fraction) / 2
+    slope = (member.diameter_at(1.0) - member.width_m) / 2 / full  # dR/dl
+    ax = member.taper_axial
+    return (ax.cp * 2 * math.pi * radius * slope * length_m,
+            2 * rho * ax.ca * math.pi * radius**2 * abs(slope) * length_m,
+            0.5 * rho * ax.cd * math.pi * radius * abs(slope) * length_m)
 
 
 def discretise(platform: Platform) -> Discretisation:
     rho = platform.environment.water_density_kg_m3
     n_bands = len(platform.drag_bands)
     rows: dict[str, list] = {k: [] for k in ("centre", "axis", "dirs", "length", "area", "inertia",
-                                               "added", "drag", "band_drag", "filtered", "member", "zone")}
+                                               "added", "drag", "band_drag", "filtered", "member", "zone",
+                                               "volume", "volume_centre")}
     plates: dict[str, list] = {k: [] for k in ("centre", "normal", "pressure", "added", "drag")}
     for index, member in enumerate(platform.members):
         a, b = np.array(member.end_a_m), np.array(member.end_b_m)
         length = float(np.linalg.norm(b - a))
         axis = (b - a) / length
         d1, d2 = transverse_directions(axis)
-        area, am_area, width = _section(member)
         cuts = _cuts(member)
+        rings = []
         for s0, s1 in zip(cuts[:-1], cuts[1:]):
             n = max(1, math.ceil((s1 - s0) * length / member.strip_length_m - 1e-9))
             for j in range(n):
                 mid = s0 + (j + 0.5) * (s1 - s0) / n
                 centre = a + mid * (b - a)
+                area, am_area, width = _section(member, mid)
+                strip_length = (s1 - s0) * length / n
+                if member.section == "circular":
+                    start = mid - 0.5 * (s1 - s0) / n
+                    volume, offset = frustum(member.diameter_at(start) / 2,
+                                             member.diameter_at(start + (s1 - s0) / n) / 2, strip_length)
+                    volume_centre = a + start * (b - a) + offset * axis
+                else:
+                    volume, volume_centre = area * strip_length, centre
+                rows["volume"].append(volume)
+                rows["volume_centre"].append(volume_centre)
+                if member.tapered:
+                    rings.append((centre, _taper_ring(rho, member, mid, strip_length)))
                 zone = next(z for z in member.zones if centre[2] < z.below_z_m or z is member.zones[-1])
                 rows["centre"].append(centre)
                 rows["axis"].append(axis)
                 rows["dirs"].append([d1, d2])
-                rows["length"].append((s1 - s0) * length / n)
+                rows["length"].append(strip_length)
                 rows["area"].append(area)
                 rows["inertia"].append([rho * (area + zone.ca[k] * am_area[k]) for k in range(2)])
                 rows["added"].append([rho * zone.ca[k] * am_area[k] for k in range(2)])
@@ -116,12 +166,18 @@ def discretise(platform: Platform) -> Discretisation:
                 rows["filtered"].append([zone.cd[k].bands is not None for k in range(2)])
                 rows["member"].append(index)
                 rows["zone"].append(zone.name)
-        for plate, end, normal in ((member.end_a_plate, a, axis), (member.end_b_plate, b, -axis)):
+        for centre, (pressure, added, drag) in rings:
+            plates["centre"].append(centre)
+            plates["normal"].append(axis)
+            plates["pressure"].append(pressure)
+            plates["added"].append(added)
+            plates["drag"].append(drag)
+        for plate, end, normal, fraction in ((member.end_a_plate, a, axis, 0.0), (member.end_b_plate, b, -axis, 1.0)):
             if plate is None:
                 continue
             if member.section != "circular":
                 raise ConfigError(f"member {member.name}: end plates are supported on circular sections only")
-            radius = member.width_m / 2
+            radius = member.diameter_at(fraction) / 2
             plates["centre"].append(end)
             plates["normal"].append(normal)
             plates["pressure"].append(plate.cp * math.pi * radius**2)
@@ -142,7 +198,8 @@ def discretise(platform: Platform) -> Discretisation:
         drag_kg_m2=np.array(rows["drag"]),
         band_drag_kg_m2=np.array(rows["band_drag"]).reshape(n, n_bands, 2),
         filtered=np.array(rows["filtered"], dtype=bool), member=np.array(rows["member"]),
-        zone=tuple(rows["zone"]), kinematics_point=index[:n])
+        zone=tuple(rows["zone"]), kinematics_point=index[:n], volume_m3=np.array(rows["volume"]),
+        volume_centre_m=np.array(rows["volume_centre"]).reshape(-1, 3))
     end_plates = EndPlates(
         centre_m=plate_centres, normal=np.array(plates["normal"]).reshape(-1, 3),
         pressure_area_m2=np.array(plates["pressure"]), added_mass_kg=np.array(plates["added"]),

@@ -4,7 +4,7 @@ numba compiles a kernel on its first call with each set of argument types and ca
 machine code on disk (``physics/__init__.py`` says where); compiling the model's kernels
 takes 20-40 s, which a first ``simulate`` or node would otherwise spend before its first
 step. Every entry point the model calls from Python (the set-up's derivative, the time
-loop, the analyses' static loads, strip velocities and prescribed motion) is called here
+loop, the analyses' static loads, strip velocities, prescribed motion and displaced kinematics) is called here
 once with the argument types of a real run; the argument types do not depend on the
 platform, the drag model or the waves, so one warm-up serves every later run in any process.
 """
@@ -19,6 +19,7 @@ import numpy as np
 from fowt_hydro_sim.physics.config import DEFAULT_PLATFORM, SeaState, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import synthesize
+from fowt_hydro_sim.physics.waves.kinematics import moving_point_kinematics
 
 log = logging.getLogger(__name__)
 
@@ -42,6 +43,8 @@ def entry_points() -> dict[str, Callable[[dict], None]]:
         "natural periods (static loads)": lambda made: made["filtered"].natural_periods_s(),
         "strip velocities": lambda made: made["filtered"].strip_velocities(),
         "prescribed motion": lambda made: _prescribed(_model("constant")),
+        "displaced kinematics": lambda made: moving_point_kinematics(
+            made["filtered"].waves, np.zeros((1, 3)), np.zeros(1), 100.0, 9.81, 1025.0),
     }
 
 

@@ -163,6 +163,9 @@ class NodeSettings:
             raise ConfigError("parameter wave_bag: wave_source bag needs the path of a bag with /waves/elevation")
         if not (self.world_frame_id and self.platform_frame_id):
             raise ConfigError("parameters world_frame_id, platform_frame_id: must not be empty")
+        if self.hydrostatics == "free_surface":
+            raise ConfigError("parameter hydrostatics: 'free_surface' is implemented for a prescribed motion only "
+                              "(fowt-sim loads), not for the node")
         self.sea_state  # an unknown load case fails here
 
     @property

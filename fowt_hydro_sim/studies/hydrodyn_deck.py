@@ -7,11 +7,17 @@ the file line by line by position: a deck of another layout is misread, not refu
 SeaState reader misreads newer files silently the same way). So the values read here are
 checked for what they must be (finite, known switches, joints that exist) and what the model
 cannot represent is refused with one line naming the member: potential-flow bodies and
-members, marine growth, filled members, tapered members, depth-based coefficient tables
+members, marine growth, filled members, tapered rectangular members, depth-based coefficient tables
 (HydroDyn interpolates in depth, the model's zones are piecewise constant), Cp or Cb other
 than 1, rectangular members spun about their axis or with different side-A and side-B
 coefficients (which side the model's horizontal direction is has not been checked against
-HydroDyn).
+HydroDyn). A tapered circular member keeps both end diameters and the member's axial
+coefficients (AxCa, AxCp, AxCd of its coefficient table: the tapered wall's axial terms,
+strips.py).
+
+Decks of the HydroDyn v4 layout (OpenFAST 4.0, as in the OpenFAST r-test), which lack the
+v5 lines NAddDOF and HstMod, are read with those lines added at their v4 meaning (0: no
+additional DOF, hydrostatics up to the still water level).
 
 A HydroDyn deck has no structural mass and no mooring: the platform written floats freely
 (mass = rho V at the centre of buoyancy; one mooring line without stiffness or
@@ -21,12 +27,24 @@ needs; give it real mass properties before simulating it.
 from __future__ import annotations
 
 import math
+import tempfile
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
+
+
+def v5_layout(text: str) -> str:
+    """A HydroDyn deck's text in the v5 layout: a v4 deck (no NAddDOF and HstMod lines) gets
+    them after PtfmCOByt and AMMod, with the v4 behaviour (0, 0); a v5 deck is unchanged."""
+    lines = text.splitlines(keepends=True)
+    names = [line.split()[1] if len(line.split()) > 1 else "" for line in lines]
+    for after, added in (("AMMod", "HstMod"), ("PtfmCOByt", "NAddDOF")):  # the later one first
+        if added not in names and after in names:
+            lines.insert(names.index(after) + 1, f"             0   {added}        - (added by fowt-sim: v4 deck)\n")
+    return "".join(lines)
 
 
 def read_deck(path: str | Path) -> dict[str, Any]:
@@ -36,10 +54,15 @@ def read_deck(path: str | Path) -> dict[str, Any]:
     except ImportError:
         raise ConfigError("platform import needs the package openfast-io (pip install 'fowt_hydro_sim[hydrodyn]')") \
             from None
+    path = Path(path)
     reader = InputReader_OpenFAST()
     try:
-        reader.read_HydroDyn(str(path))
-    except (OSError, ValueError, IndexError, KeyError) as exc:
+        text = v5_layout(path.read_text())
+        with tempfile.TemporaryDirectory() as folder:
+            deck = Path(folder) / path.name
+            deck.write_text(text)
+            reader.read_HydroDyn(str(deck))
+    except (OSError, ValueError, IndexError, KeyError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot be read as a HydroDyn v5 input file ({type(exc).__name__}: {exc})") from None
     return reader.fst_vt["HydroDyn"]
 
@@ -61,16 +84,16 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
     member = hd["MemberID"][index]
     mode = hd["MCoefMod"][index]
     kind = "Cyl" if circular else "Rec"
+    names = ("Cd", "Ca", "Cp", "Cb", "AxCd", "AxCa", "AxCp") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb")
     if mode == 1:
-        get = {name: hd[f"{kind}Simpl{name}"] for name in
-               (("Cd", "Ca", "Cp", "Cb") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb"))}
+        get = {name: hd[f"{kind}Simpl{name}"] for name in names}
     elif mode == 3:
         ids = hd[f"MemberID_HydC{kind}"]
         if member not in ids:
             raise ConfigError(f"{source}: member {member}: MCoefMod 3 but no row in the member-based table")
         row = ids.index(member)
         get = {}
-        for name in (("Cd", "Ca", "Cp", "Cb") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb")):
+        for name in names:
             ends = hd[f"{kind}Member{name}1"][row], hd[f"{kind}Member{name}2"][row]
             if ends[0] != ends[1]:
                 raise ConfigError(f"{source}: member {member}: {name} varies along the member ({ends[0]:g} to "
@@ -81,7 +104,8 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
     if get["Cp"] != 1.0 or get["Cb"] != 1.0:
         raise ConfigError(f"{source}: member {member}: Cp {get['Cp']:g}, Cb {get['Cb']:g}: only 1 is supported")
     if circular:
-        return {"cd": get["Cd"], "ca": get["Ca"]}
+        return {"cd": get["Cd"], "ca": get["Ca"], "taper_axial": {"ca": get["AxCa"], "cp": get["AxCp"],
+                                                                 "cd": get["AxCd"]}}
     if get["CdA"] != get["CdB"] or get["CaA"] != get["CaB"]:
         raise ConfigError(f"{source}: member {member}: side A and side B coefficients differ: not supported")
     return {"cd_horizontal": get["CdA"], "cd_vertical": get["CdB"], "ca_horizontal": get["CaA"],
@@ -114,9 +138,7 @@ def _member(hd: dict, index: int, source: str) -> dict:
     sets = [hd["MPropSetID1"][index], hd["MPropSetID2"][index]]
     if circular:
         d = [hd["CylPropD"][hd["CylPropSetID"].index(s)] for s in sets]
-        if d[0] != d[1]:
-            raise ConfigError(f"{source}: member {member}: tapered ({d[0]:g} m to {d[1]:g} m): not supported")
-        size = {"diameter_m": float(d[0])}
+        size = {"diameter_m": float(d[0])} if d[0] == d[1] else {"diameter_m": float(d[0]), "diameter_b_m": float(d[1])}
     else:
         a = [hd["RecPropA"][hd["RecPropSetID"].index(s)] for s in sets]
         b = [hd["RecPropB"][hd["RecPropSetID"].index(s)] for s in sets]
@@ -126,9 +148,13 @@ def _member(hd: dict, index: int, source: str) -> dict:
             raise ConfigError(f"{source}: member {member}: MSpinOrient {hd['MSpinOrient'][index]:g}: only 0 is "
                               "supported")
         size = {"width_m": float(a[0]), "height_m": float(b[0])}
+    coefficients = _coefficients(hd, index, circular, source)
+    taper_axial = coefficients.pop("taper_axial", None)
+    if "diameter_b_m" in size:
+        size["taper_axial"] = taper_axial
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
            "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),
-           "zones": [{"name": "all", **_coefficients(hd, index, circular, source)}]}
+           "zones": [{"name": "all", **coefficients}]}
     for key, end in (("MJointID1", "end_a_plate"), ("MJointID2", "end_b_plate")):
         plate = _end_plate(hd, hd[key][index], circular)
         if plate is not None:

@@ -10,6 +10,7 @@ are converted to angular velocity and acceleration as the driver does
 from __future__ import annotations
 
 import logging
+import io
 from pathlib import Path
 from typing import NamedTuple
 
@@ -44,11 +45,12 @@ def motion_from_columns(data: np.ndarray) -> PrescribedMotion:
 
 
 def read_prp_motion(path: str | Path) -> PrescribedMotion:
-    """A HydroDyn driver PRP motion file; ConfigError naming the problem."""
+    """A HydroDyn driver PRP motion file (values separated by blanks or commas, as the
+    driver's list-directed read takes them); ConfigError naming the problem."""
     path = Path(path)
     try:
-        data = np.loadtxt(path, ndmin=2)
-    except (OSError, ValueError) as exc:
+        data = np.loadtxt(io.StringIO(path.read_text().replace(",", " ")), ndmin=2)
+    except (OSError, ValueError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot be read as a HydroDyn PRP motion file ({exc})") from None
     if data.shape[1] != 19:
         raise ConfigError(f"{path}: expected 19 columns (t, 6 positions, 6 rates, 6 second derivatives), "

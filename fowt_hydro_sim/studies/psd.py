@@ -3,7 +3,6 @@ docs/load_cases.md: band STD = square root of the PSD integrated over the band).
 from __future__ import annotations
 
 import numpy as np
-import scipy.signal
 
 # default bands of the paper's metric [Hz]: low-frequency (resonance) and wave-frequency
 BANDS_HZ = {"low_frequency": (0.005, 0.05), "wave": (0.05, 0.25)}
@@ -22,6 +21,8 @@ def psd(signal: np.ndarray, dt_s: float, segment_s: float = SEGMENT_S, window: s
                          f"got shape {signal.shape}")
     if not 0 <= overlap < 1:
         raise ValueError(f"psd: overlap must be in [0, 1), got {overlap}")
+    import scipy.signal  # here, not at the top: 0.6 s of start-up for commands that take no PSD
+
     n = min(signal.size // MIN_SEGMENTS, int(round(segment_s / dt_s)))
     return scipy.signal.welch(signal, fs=1.0 / dt_s, window=window, nperseg=n, noverlap=int(overlap * n),
                               detrend="constant")

@@ -16,7 +16,6 @@ from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
-import scipy.signal
 
 from fowt_hydro_sim import __version__
 from fowt_hydro_sim.physics.config import ConfigError, Platform, RunConfig, SeaState, load_platform
@@ -97,6 +96,8 @@ def fit_free_decay(time_s: np.ndarray, x: np.ndarray) -> dict | None:
     least-squares lines through the times of the peaks (the damped period) and through
     the logarithms of their heights above the rest position (the decrement per cycle, hence
     the damping ratio); None if the record holds under two cycles."""
+    import scipy.signal  # here: only decay fits need it (0.6 s of every command's start-up)
+
     rest = float(np.median(x[len(x) // 2:]))
     peaks, _ = scipy.signal.find_peaks(x - rest)
     peaks = peaks[x[peaks] > rest][:DECAY_CYCLES + 1]

@@ -5,12 +5,17 @@ buoyancy) and C the buoyancy part of the restoring matrix (waterplane and centre
 buoyancy terms, WAMIT's convention).
 
 Nonlinear (HydroDyn's member hydrostatics): rho g V_sub upward through the centroid of the
-displaced members' part below z = 0, every member a closed prism (end plates included).
-Each member's section is sampled by a quadrature (polar Gauss for a circle, tensor Gauss
-for a rectangle); along the axis line through each sample the submerged length is exact.
-The submerged length is linear over the section wherever the water plane cuts the side
-wall only, so volume and centroid are then exact (the quadrature integrates degree 2);
-where it also cuts an end, the error is the quadrature's on a kinked integrand.
+displaced members' part below z = 0, every member a closed prism or, tapered, a closed
+frustum (end plates included). Each member's section is sampled by a quadrature (polar
+Gauss for a circle, tensor Gauss for a rectangle); a sample's line runs from end a to end b
+at the same fraction of the local radius (parallel to the axis for a prism), the local
+area weight grows with the radius squared, and the submerged part of each line and the
+integrals along it are exact. Wherever the water plane cuts the side wall only, the
+integrand over the section is a polynomial of degree 3 at most, which the quadrature
+integrates exactly, so volume and centroid are exact; where it also cuts an end, the error
+is the quadrature's on a kinked integrand.
+
+The linear model's volume and centre of buoyancy are the strips' exact (frustum) volumes.
 
 Gravity acts separately at the centre of gravity.
 """
@@ -50,8 +55,9 @@ def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
             raise ConfigError(f"member {m.name}: only vertical members may cross the water line")
         x, y = m.end_a_m[:2]
         if m.section == "circular":
-            a = math.pi * m.width_m**2 / 4
-            i_xx = i_yy = math.pi * m.width_m**4 / 64
+            d = m.diameter_at(za / (za - zb))  # at z = 0
+            a = math.pi * d**2 / 4
+            i_xx = i_yy = math.pi * d**4 / 64
         else:  # width along x, height along y for a vertical member
             a = m.width_m * m.height_m
             i_xx, i_yy = m.width_m * m.height_m**3 / 12, m.height_m * m.width_m**3 / 12
@@ -65,9 +71,9 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     env = platform.environment
     rho_g = env.water_density_kg_m3 * env.gravity_m_s2
     submerged = strips.centre_m[:, 2] < 0.0  # strips are cut at the water line
-    volumes = strips.area_m2[submerged] * strips.length_m[submerged]
+    volumes = strips.volume_m3[submerged]
     volume = float(volumes.sum())
-    centre = volumes @ strips.centre_m[submerged] / volume
+    centre = volumes @ strips.volume_centre_m[submerged] / volume
     area, first, second = _waterplane(platform)
     c = np.zeros((6, 6))
     c[2, 2] = rho_g * area
@@ -85,7 +91,7 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
 
 def section_quadrature(member: Member) -> tuple[np.ndarray, np.ndarray]:
     """Offsets (k, 3; body frame, from the member's axis) and area weights (k,) of the
-    section quadrature: exact for polynomials of degree 2 over the section."""
+    section quadrature at end a: exact for polynomials of degree 3 over the section."""
     a, b = np.array(member.end_a_m), np.array(member.end_b_m)
     d1, d2 = transverse_directions((b - a) / np.linalg.norm(b - a))
     if member.section == "circular":
@@ -104,16 +110,26 @@ def section_quadrature(member: Member) -> tuple[np.ndarray, np.ndarray]:
 
 
 def quadrature_lines(platform: Platform) -> np.ndarray:
-    """Every member's axis-parallel quadrature lines as rows [start (3), axis (3), length,
-    area weight], body frame: the nonlinear hydrostatics' table."""
+    """Every member's quadrature lines as rows [start (3), start to end (3), axial length,
+    area weight at end a, radius ratio b/a], body frame: the nonlinear hydrostatics' table.
+    A line runs at a fixed fraction of the local radius, so it is parallel to the axis unless
+    the member is tapered."""
     rows = []
     for m in platform.members:
         a, b = np.array(m.end_a_m), np.array(m.end_b_m)
-        length = float(np.linalg.norm(b - a))
+        ratio = m.diameter_at(1.0) / m.width_m if m.section == "circular" else 1.0
         offsets, weights = section_quadrature(m)
         for offset, weight in zip(offsets, weights):
-            rows.append([*(a + offset), *((b - a) / length), length, weight])
+            rows.append([*(a + offset), *(b + ratio * offset - a - offset), float(np.linalg.norm(b - a)), weight,
+                         ratio])
     return np.array(rows)
+
+
+@njit(cache=True, inline="always")
+def _weight_integrals(c: float, f: float) -> tuple[float, float]:
+    """int_0^f (1 + c u)^2 du and int_0^f u (1 + c u)^2 du."""
+    return (f + c * f * f + c * c * f * f * f / 3.0,
+            f * f / 2.0 + 2.0 * c * f * f * f / 3.0 + c * c * f * f * f * f / 4.0)
 
 
 @njit(cache=True)
@@ -123,24 +139,29 @@ def submerged_volume(rotation: np.ndarray, position_z_m: float, lines: np.ndarra
     for q in range(lines.shape[0]):
         line = lines[q]
         z0 = position_z_m + rotation[2, 0] * line[0] + rotation[2, 1] * line[1] + rotation[2, 2] * line[2]
-        rise = rotation[2, 0] * line[3] + rotation[2, 1] * line[4] + rotation[2, 2] * line[5]
-        length = line[6]
+        rise = rotation[2, 0] * line[3] + rotation[2, 1] * line[4] + rotation[2, 2] * line[5]  # over the line
         if abs(rise) < 1e-12:
-            low, high = (0.0, length) if z0 < 0.0 else (0.0, 0.0)
+            low, high = (0.0, 1.0) if z0 < 0.0 else (0.0, 0.0)
         elif rise > 0.0:
-            low, high = 0.0, min(length, max(0.0, -z0 / rise))
+            low, high = 0.0, min(1.0, max(0.0, -z0 / rise))
         else:
-            low, high = min(length, max(0.0, -z0 / rise)), length
-        wet = line[7] * (high - low)
+            low, high = min(1.0, max(0.0, -z0 / rise)), 1.0
+        if high <= low:
+            continue
+        c = line[8] - 1.0  # the radius grows as 1 + c f along the line, the area weight as its square
+        v_high, m_high = _weight_integrals(c, high)
+        v_low, m_low = _weight_integrals(c, low)
+        scale = line[6] * line[7]
+        wet, first = scale * (v_high - v_low), scale * (m_high - m_low)
         volume += wet
-        middle = 0.5 * (low + high)
         for k in range(3):
-            moment[k] += wet * (line[k] + middle * line[3 + k])
+            moment[k] += wet * line[k] + first * line[3 + k]
     return volume, moment
 
 
 # --------------------------------------------------------------------------- load component
-MODES = {"linear": 0.0, "nonlinear": 1.0}
+# free_surface: the kernel computes the linear load; PlatformModel.prescribed_motion_loads replaces it
+MODES = {"linear": 0.0, "nonlinear": 1.0, "free_surface": 0.0}
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:

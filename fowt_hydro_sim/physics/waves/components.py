@@ -15,7 +15,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import scipy.fft
 
 from fowt_hydro_sim.physics.config import ConfigError, SeaState
 from fowt_hydro_sim.physics.waves.spectra import spectrum
@@ -79,6 +78,13 @@ class WaveComponents:
         theta = np.outer(np.atleast_1d(t_s), omega) - k * s + self.phase_rad
         return np.cos(theta) @ self.amplitude_m
 
+    def elevation_at(self, xy_m: np.ndarray, t_s: float, depth_m: float, gravity_m_s2: float) -> np.ndarray:
+        """Elevation at time ``t_s`` at the points ``xy_m`` (p, 2), by direct summation."""
+        omega = 2 * np.pi * self.frequency_hz
+        k = wavenumber(omega, depth_m, gravity_m_s2)
+        s = np.outer(xy_m[:, 0], np.cos(self.direction_rad)) + np.outer(xy_m[:, 1], np.sin(self.direction_rad))
+        return np.cos(omega * t_s - k * s + self.phase_rad) @ self.amplitude_m
+
     def elevation_series(self, x_m: float, y_m: float, step_s: float, depth_m: float,
                          gravity_m_s2: float) -> np.ndarray:
         """Elevation at one point every ``step_s`` over one repeat period, by inverse FFT."""
@@ -87,7 +93,7 @@ class WaveComponents:
         s = x_m * np.cos(self.direction_rad) + y_m * np.sin(self.direction_rad)
         spectrum = np.zeros(n // 2 + 1, dtype=complex)
         np.add.at(spectrum, self.harmonic, self.amplitude_m * np.exp(1j * (self.phase_rad - k * s)) * n / 2.0)
-        return scipy.fft.irfft(spectrum, n)
+        return np.fft.irfft(spectrum, n)
 
     def delayed(self, delay_s: float) -> "WaveComponents":
         """The same sea, arriving ``delay_s`` later (a phase shift of -w delay)."""

@@ -18,8 +18,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import NamedTuple
 
+import math
+
 import numpy as np
-import scipy.fft
+from numba import njit
 
 from fowt_hydro_sim.physics.waves.components import WaveComponents, wavenumber
 
@@ -90,6 +92,42 @@ def point_kinematics(waves: WaveComponents, points_m: np.ndarray, t_s: np.ndarra
     return np.einsum("pcf,tf->tpc", amp, phasor).real
 
 
+def moving_point_kinematics(waves: WaveComponents, points_m: np.ndarray, t_s: np.ndarray, depth_m: float,
+                            gravity_m_s2: float, density_kg_m3: float) -> np.ndarray:
+    """Kinematics (n, 7) at n points each at its own time (a point moving with the body), by
+    direct summation over the components (compiled): exact, cost n x components."""
+    points = np.ascontiguousarray(np.atleast_2d(points_m), dtype=float)
+    omega = 2 * np.pi * waves.frequency_hz
+    k = wavenumber(omega, depth_m, gravity_m_s2)
+    out = np.zeros((points.shape[0], N_CHANNELS))
+    _sum_components(points, np.ascontiguousarray(t_s, dtype=float), omega, k, waves.amplitude_m, waves.phase_rad,
+                    np.cos(waves.direction_rad), np.sin(waves.direction_rad), depth_m,
+                    density_kg_m3 * gravity_m_s2, out)
+    return out
+
+
+@njit(cache=True, fastmath=True)
+def _sum_components(points, t, omega, k, amplitude, phase, cos_b, sin_b, depth, rho_g, out):
+    """complex_amplitudes times e^{i omega t}, real part, summed, point by point."""
+    for i in range(points.shape[0]):
+        x, y, z = points[i, 0], points[i, 1], min(points[i, 2], 0.0)
+        for f in range(omega.size):
+            w, kf = omega[f], k[f]
+            theta = w * t[i] + phase[f] - kf * (x * cos_b[f] + y * sin_b[f])
+            cos_t, sin_t = math.cos(theta), math.sin(theta)
+            up, down, two_h = math.exp(kf * z), math.exp(-kf * (z + 2.0 * depth)), math.exp(-2.0 * kf * depth)
+            c, sh, pr = (up + down) / (1.0 - two_h), (up - down) / (1.0 - two_h), (up + down) / (1.0 + two_h)
+            a = amplitude[f]
+            u_h, acc_h = a * w * c * cos_t, -a * w * w * c * sin_t
+            out[i, 0] += u_h * cos_b[f]
+            out[i, 1] += u_h * sin_b[f]
+            out[i, 2] += -a * w * sh * sin_t
+            out[i, 3] += acc_h * cos_b[f]
+            out[i, 4] += acc_h * sin_b[f]
+            out[i, 5] += -a * w * w * sh * cos_t
+            out[i, 6] += a * rho_g * pr * cos_t
+
+
 def table_step(waves: WaveComponents) -> float:
     """The longest step that divides the repeat period and keeps the interpolation error below
     1e-3 at the highest wave frequency (it need not be a multiple of the model's dt)."""
@@ -97,6 +135,9 @@ def table_step(waves: WaveComponents) -> float:
     if f_max <= 0:
         return waves.period_s
     return waves.period_s / np.ceil(waves.period_s * 2 * np.pi * f_max / _MAX_OMEGA_STEP)
+
+
+_CHUNK_BYTES = 32e6
 
 
 @dataclass
@@ -126,12 +167,20 @@ class KinematicsTable:
         values = np.zeros((n_samples, points.shape[0], N_CHANNELS), dtype=np.float32)
         if harmonic.size == 0:
             return cls(values, step_s, points)
-        spectrum = np.zeros((N_CHANNELS, n_samples // 2 + 1), dtype=complex)
-        for i, point in enumerate(points):  # one point at a time bounds the temporaries
-            amp = complex_amplitudes(waves, point, depth_m, gravity_m_s2, density_kg_m3)[0]
-            spectrum[:] = 0.0
-            np.add.at(spectrum, (slice(None), harmonic), amp * (n_samples / 2.0))
-            values[:, i, :] = scipy.fft.irfft(spectrum, n_samples, axis=1, workers=-1).T
+        # points in chunks: one transform per chunk (few calls), the spectrum bounded to ~32 MB
+        chunk = max(1, int(_CHUNK_BYTES // (16 * N_CHANNELS * (n_samples // 2 + 1))))
+        unique = np.unique(harmonic).size == harmonic.size
+        for start in range(0, points.shape[0], chunk):
+            part = points[start:start + chunk]
+            amp = complex_amplitudes(waves, part, depth_m, gravity_m_s2, density_kg_m3)  # (p, 7, f)
+            spectrum = np.zeros((n_samples // 2 + 1, part.shape[0] * N_CHANNELS), dtype=complex)
+            terms = amp.reshape(-1, harmonic.size).T * (n_samples / 2.0)
+            if unique:
+                spectrum[harmonic] = terms
+            else:  # components sharing a frequency add up
+                np.add.at(spectrum, harmonic, terms)
+            signal = np.fft.irfft(spectrum, n_samples, axis=0)  # numpy's: no scipy import at start-up
+            values[:, start:start + part.shape[0], :] = signal.reshape(n_samples, part.shape[0], N_CHANNELS)
         return cls(values, step_s, points)
 
     @property
