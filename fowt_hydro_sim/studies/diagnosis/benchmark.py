@@ -305,7 +305,8 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
               duration_s: float = DURATION_S, max_evaluations: int = 4, dt_s: float = REPLAY_DT_S,
               scheduler: str | None = None, workers: int | None = None, source: str = "twin") -> list[str]:
     """``fowt-sim diagnose-benchmark``: every scenario on a Dask cluster; ``benchmark.json``
-    in ``output`` (the independent source's runs cached in ``output/runs``); returns the
+    in ``output`` (each scenario's score also appended to ``scenarios.jsonl`` as it ends; the
+    independent source's runs cached in ``output/runs``); returns the
     report's lines (one per scenario, then the summary)."""
     import json
     import logging
@@ -324,6 +325,7 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     else:
         chosen = scenarios(inject, strengths, nulls, out_of_catalogue)
     output.mkdir(parents=True, exist_ok=True)
+    (output / "scenarios.jsonl").unlink(missing_ok=True)
     lines = []
 
     def report(score: Score) -> None:
@@ -332,6 +334,8 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
                      f"{'right' if score.correct else 'WRONG'}  detected {score.detected}  blind closure {closure}  "
                      f"{score.wall_s:.0f} s")
         logging.getLogger(__name__).info(lines[-1])
+        with open(output / "scenarios.jsonl", "a") as partial:  # as each ends: a long benchmark's results so far
+            partial.write(json.dumps(score.__dict__) + "\n")
 
     with dask_client(scheduler, workers) as client:
         scores = run_benchmark(client, chosen, platform, settings, effects, duration_s, max_evaluations, report,
