@@ -322,6 +322,10 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
         raise ValueError(f"--duration: need at least the transient plus 600 s, got {duration_s:g} s")
     if source == "independent":
         chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue)
+        import importlib.util
+        if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
+            raise ValueError("--source independent: the catenary_mooring scenario needs moorpy "
+                             "(pip install '.[benchmark]'), or leave it out with --inject")
     else:
         chosen = scenarios(inject, strengths, nulls, out_of_catalogue)
     output.mkdir(parents=True, exist_ok=True)

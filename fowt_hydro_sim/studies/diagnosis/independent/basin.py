@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import logging
 from functools import lru_cache
 from pathlib import Path
 
@@ -16,7 +15,6 @@ from fowt_hydro_sim.physics.config import Platform, load_case
 from fowt_hydro_sim.studies.diagnosis.independent import bem, cummins
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
 
-LOG = logging.getLogger(__name__)
 VERSION = 1  # bump when the simulator's results change: the cache keys change with it
 DT_S = 0.05
 SENSOR_NOISE = 0.01  # white noise STD, share of each signal's STD
