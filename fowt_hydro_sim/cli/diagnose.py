@@ -44,7 +44,8 @@ def benchmark_command(args: argparse.Namespace) -> int:
     from fowt_hydro_sim.studies.diagnosis.benchmark import benchmark
     platform, settings, effects, dt_s = _common(args)
     lines = benchmark(platform, settings, effects, Path(args.output), args.inject, args.strengths, args.nulls,
-                      args.out_of_catalogue, args.duration, args.max_evaluations, dt_s, args.scheduler, args.workers)
+                      args.out_of_catalogue, args.duration, args.max_evaluations, dt_s, args.scheduler, args.workers,
+                      args.source)
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
 
@@ -81,16 +82,25 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     b = sub.add_parser("diagnose-benchmark", help="score the diagnosis on runs whose effect is withheld",
                        description="Make 'measured' runs with one effect switched on (each at two strengths, five "
                                    "sea states, 1 % sensor noise, small property errors), plus null and "
-                                   "out-of-catalogue scenarios; diagnose each with the plain model and score: top-1 "
-                                   "accuracy, false alarms, unexplained, blind closure.")
-    b.add_argument("--inject", nargs="+", help="effects to inject (default: every catalogue effect)")
+                                   "out-of-catalogue scenarios; diagnose each with the plain model (HydroDyn's hydro "
+                                   "options) and score: top-1 accuracy, false alarms, unexplained, blind closure. "
+                                   "--source twin: the runs are the model's own, the effect in its catalogue form; "
+                                   "independent: the Cummins/BEM simulator's, effects in other forms (runs cached "
+                                   "in OUTPUT/runs).")
+    b.add_argument("--source", choices=("twin", "independent"), default="twin",
+                   help="simulator of the 'measured' runs (default %(default)s)")
+    b.add_argument("--inject", nargs="+", help="effects to inject (default: all; twin: catalogue effects; "
+                                               "independent: frequency_dependent_drift, mixed_damping, "
+                                               "catenary_mooring)")
     b.add_argument("--strengths", type=int, default=2, choices=(0, 1, 2),
                    help="strengths per injected effect (default %(default)s)")
     b.add_argument("--nulls", type=int, default=10, help="null scenarios, noise and property errors only "
                                                           "(default %(default)s)")
     b.add_argument("--out-of-catalogue", type=int, default=2, choices=(0, 1, 2),
-                   help="out-of-catalogue scenarios, a rotor 1P pitch moment and wind thrust (default %(default)s)")
-    b.add_argument("--duration", type=float, default=1800.0, help="seconds per measured run (default %(default)s)")
+                   help="out-of-catalogue scenarios, a rotor 1P pitch moment and wind thrust (independent: the "
+                        "1P moment only) (default %(default)s)")
+    b.add_argument("--duration", type=float, default=10800.0,
+                   help="seconds per measured run (default %(default)s, 3 hours)")
     _add_common(b)
     b.add_argument("-o", "--output", default="out/diagnosis_benchmark", help="output folder (default %(default)s)")
     b.set_defaults(func=benchmark_command)

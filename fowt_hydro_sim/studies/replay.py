@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import scipy.fft
 
-from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.strips import discretise
@@ -69,12 +69,14 @@ def measured_run(path: str | Path, heading_deg: float = 0.0) -> MeasuredRun:
 @dataclass(frozen=True)
 class Variant:
     """A model to replay runs with. ``elevation_shift_s`` is added to the record's stamps
-    (a probe whose clock runs late by d is corrected by -d)."""
+    (a probe whose clock runs late by d is corrected by -d). ``options``: the moving body's
+    hydrodynamics (config.HydroOptions; None: the model's default)."""
 
     platform: Platform
     drag_model: str = "constant"
     extension: Extension = field(default_factory=Extension)
     elevation_shift_s: float = 0.0
+    options: HydroOptions | None = None
 
 
 def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: float | None = None,
@@ -94,7 +96,7 @@ def replay(variant: Variant, run: MeasuredRun, dt_s: float = 0.05, duration_s: f
                                   f_max_hz=WAVE_F_MAX_HZ).delayed(preroll_s)
     table = kinematics_table(platform, waves)
     model = PlatformModel(platform, waves, dt_s=dt_s, drag_model=variant.drag_model, wave_table_dt_s=table.step_s,
-                          extension=variant.extension.delayed(preroll_s), kinematics=table)
+                          extension=variant.extension.delayed(preroll_s), kinematics=table, options=variant.options)
     start = run.elevation_time_s[0] + variant.elevation_shift_s
     duration = duration_s if duration_s is not None else float(run.motion_time_s[-1] - start)
     result = model.run(preroll_s + duration, output_interval_s=OUTPUT_INTERVAL_S)

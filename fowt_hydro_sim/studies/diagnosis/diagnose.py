@@ -39,7 +39,7 @@ from typing import Callable
 import numpy as np
 import scipy.optimize
 
-from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, gap, spectra
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun, Variant, replay
@@ -63,14 +63,15 @@ Job = tuple  # (effect name or None, parameter values, run index, with spectra[,
 
 
 def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
-               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S) -> tuple[Gap, dict | None]:
-    """One model run (a cluster task): run ``index`` replayed by the plain model or with an
-    effect at the given values (over the whole record, or its first ``duration`` seconds);
-    its gap, and its spectra if asked."""
+               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S,
+               options: HydroOptions | None = None) -> tuple[Gap, dict | None]:
+    """One model run (a cluster task): run ``index`` replayed by the plain model (with
+    ``options``) or with an effect at the given values (over the whole record, or its first
+    ``duration`` seconds); its gap, and its spectra if asked."""
     name, values, index, with_spectra = job[:4]
     duration_s = job_duration_s(job)
     run = runs[index]
-    variant = Variant(platform)
+    variant = Variant(platform, options=options)
     if name is not None:
         variant = (effects or CATALOGUE)[name].apply(variant, run, values)
     time_s, motion = replay(variant, run, dt_s, duration_s)
@@ -79,9 +80,10 @@ def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: 
 
 
 def in_process(runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
-               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S) -> Callable[[list[Job], str], list]:
+               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S,
+               options: HydroOptions | None = None) -> Callable[[list[Job], str], list]:
     """``evaluate`` that runs every job here, one after another."""
-    return lambda jobs, description="": [replay_job(j, runs, platform, settings, effects, dt_s) for j in jobs]
+    return lambda jobs, description="": [replay_job(j, runs, platform, settings, effects, dt_s, options) for j in jobs]
 
 
 def record_s(run: MeasuredRun) -> float:
@@ -605,12 +607,13 @@ def _choose(fitting: list[CandidateFit], effects: dict[str, Effect], deficit: fl
 
 def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
                      effects: dict[str, Effect] | None = None,
-                     dt_s: float = REPLAY_DT_S) -> Callable[[list[Job], str], list]:
+                     dt_s: float = REPLAY_DT_S, options: HydroOptions | None = None) -> Callable[[list[Job], str], list]:
     """``evaluate`` that sends the jobs to a Dask cluster (the runs and platform sent once;
     the diagnosis logs the progress of all candidates' runs together)."""
     from fowt_hydro_sim.studies.cluster import scatter
     shared = {"runs": scatter(client, runs), "platform": scatter(client, platform),
-              "settings": scatter(client, settings), "effects": scatter(client, effects), "dt_s": dt_s}
+              "settings": scatter(client, settings), "effects": scatter(client, effects), "dt_s": dt_s,
+              "options": options}
 
     def evaluate(jobs: list[Job], description: str = "") -> list:
         return client.gather(client.map(replay_job, jobs, pure=False, **shared))

@@ -3,13 +3,15 @@
     (M + A_inf) x'' + int_0^t K(t - tau) x'(tau) dtau + C x = F_exc + F_drag + F_moor + F_effects
 
 about the reference point (0, 0, 0), with A_inf, K (from B(w) by a cosine transform) and
-the excitation X(w) from the capytaine database (bem.py), its own wave synthesis (JONSWAP),
-quadratic Morison drag at the undisplaced strip points (numpy), the mooring's spring lines
-evaluated on the displaced fairleads, and a fixed-step RK4 whose memory term is the
-trapezoidal convolution over the velocity history, extrapolated linearly within a step.
-Injectable effects (in forms the diagnosis catalogue does not use): extra damping, linear
-plus quadratic per DOF, and a slow surge drift force from a frequency-dependent mean-drift
-coefficient by Newman's approximation."""
+the excitation X(w) from the capytaine database (bem.py), its own wave synthesis (JONSWAP,
+by FFT over the sea's repeat period), quadratic Morison drag at the undisplaced strip points,
+the mooring's spring lines evaluated on the displaced fairleads, and a fixed-step RK4 whose
+memory term is the trapezoidal convolution over the velocity history, extrapolated linearly
+within a step (kernel.py, numba). Runs may start a pre-roll before the record, in the sea's
+periodic extension (a basin runs before it records). Injectable effects (in forms the
+diagnosis catalogue does not use): extra damping, linear plus quadratic per DOF; a slow
+surge drift force from a frequency-dependent mean-drift coefficient by Newman's
+approximation; an extra surge restoring curve (a catenary's); harmonic loads."""
 from __future__ import annotations
 
 import math
@@ -18,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.studies.diagnosis.independent import kernel as kernel_module
 from fowt_hydro_sim.studies.diagnosis.independent.bem import (
     FREQUENCIES_HZ,
     HydroDatabase,
@@ -38,6 +41,7 @@ class Waves:
     amplitude_m: np.ndarray
     phase_rad: np.ndarray
     heading_deg: float = 0.0
+    period_s: float | None = None  # the repeat period, when every frequency is a multiple of its inverse
 
 
 def wavenumber(omega_rad_s: np.ndarray, depth_m: float, g: float) -> np.ndarray:
@@ -65,13 +69,19 @@ def jonswap_waves(hs_m: float, tp_s: float, gamma: float, period_s: float, seed:
     amplitude = np.sqrt(2.0 * shape / period_s)
     amplitude *= hs_m / (4.0 * math.sqrt(0.5 * np.sum(amplitude ** 2)))
     phase = np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, f.size)
-    return Waves(2.0 * math.pi * f, amplitude, phase, heading_deg)
+    return Waves(2.0 * math.pi * f, amplitude, phase, heading_deg, period_s)
 
 
 def elevation(waves: Waves, time_s: np.ndarray, x_m: float, y_m: float, depth_m: float, g: float) -> np.ndarray:
     k = wavenumber(waves.omega_rad_s, depth_m, g)
     b = math.radians(waves.heading_deg)
     phase = waves.phase_rad - k * (x_m * math.cos(b) + y_m * math.sin(b))
+    if waves.period_s:  # one period by FFT, then its periodic extension
+        step = ELEVATION_STEP_S
+        n = round(waves.period_s / step)
+        if abs(n * step - waves.period_s) < 1e-6 and np.allclose(time_s / step, np.rint(time_s / step), atol=1e-6):
+            period = synthesis(waves.amplitude_m * np.exp(1j * phase), waves, np.arange(n) * step)
+            return period[np.rint(time_s / step).astype(int) % n]
     return np.cos(np.outer(time_s, waves.omega_rad_s) + phase) @ waves.amplitude_m
 
 
@@ -216,45 +226,81 @@ def added_mass_from_kernel(kernel: np.ndarray, dt_s: float, added_mass_inf: np.n
 
 
 # --------------------------------------------------------------------------- options
+Table = tuple[tuple[float, float], ...]
+
+
 @dataclass(frozen=True)
 class Baseline:
-    """The independent simulator's own baseline differences from the platform description."""
+    """The independent simulator's own baseline differences from the platform description,
+    and its physical slow drift (a surge mean-drift coefficient table D(w), (rad/s, N/m^2)
+    pairs, by Newman's approximation; the project's model has none)."""
 
     cd_scale: float = 1.0
     added_mass_scale: float = 1.0  # scales A_inf and the radiation kernel
     strip_length_m: float | None = None  # None: the platform's
     drag: bool = True
     mooring: bool = True
+    drift_coefficient_n_m2: Table = ()
 
 
 @dataclass(frozen=True)
 class Effects:
-    """Injected effects: extra damping F = -(b1 v + b2 |v| v) per DOF, and a surge drift force
-    F(t) = |sum_j a_j sqrt(D(w_j)) e^{i theta_j(t)}|^2 (Newman), D from (w, D) pairs."""
+    """Injected effects: extra damping F = -(b1 v + b2 |v| v) per DOF; a surge drift force
+    F(t) = |sum_j a_j sqrt(D(w_j)) e^{i theta_j(t)}|^2 (Newman), D from (w, D) pairs; an extra
+    surge restoring force against the surge offset (m, N) pairs (a catenary's curve less the
+    spring lines'); harmonic loads (DOF, amplitude N or N m, frequency Hz)."""
 
     linear_damping: tuple[float, ...] = (0.0,) * 6
     quadratic_damping: tuple[float, ...] = (0.0,) * 6
-    drift_coefficient_n_m2: tuple[tuple[float, float], ...] = field(default=())
+    drift_coefficient_n_m2: Table = field(default=())
+    mooring_curve_n: Table = field(default=())
+    harmonic_load: tuple[tuple[int, float, float], ...] = field(default=())
 
     def drift_force_n(self, waves: Waves, time_s: np.ndarray) -> np.ndarray:
-        if not self.drift_coefficient_n_m2:
-            return np.zeros(time_s.size)
-        table = np.asarray(self.drift_coefficient_n_m2, float)
-        coefficient = np.interp(waves.omega_rad_s, table[:, 0], table[:, 1], left=table[0, 1], right=table[-1, 1])
-        if np.any(coefficient < 0.0):
-            raise ValueError("drift coefficient must be >= 0 (Newman's approximation)")
-        c = waves.amplitude_m * np.sqrt(coefficient) * np.exp(1j * waves.phase_rad)
-        total = np.zeros(time_s.size, complex)
-        for start in range(0, time_s.size, 2000):
-            total[start:start + 2000] = np.exp(1j * np.outer(time_s[start:start + 2000], waves.omega_rad_s)) @ c
-        return np.abs(total) ** 2
+        return drift_force_n(self.drift_coefficient_n_m2, waves, time_s)
+
+
+def drift_force_n(table: Table, waves: Waves, time_s: np.ndarray) -> np.ndarray:
+    """Newman's slow drift force in surge of a mean-drift coefficient table."""
+    if not table:
+        return np.zeros(time_s.size)
+    table = np.asarray(table, float)
+    coefficient = np.interp(waves.omega_rad_s, table[:, 0], table[:, 1], left=table[0, 1], right=table[-1, 1])
+    if np.any(coefficient < 0.0):
+        raise ValueError("drift coefficient must be >= 0 (Newman's approximation)")
+    c = waves.amplitude_m * np.sqrt(coefficient) * np.exp(1j * waves.phase_rad)
+    return np.abs(synthesis(c, waves, time_s, real=False)) ** 2
+
+
+def synthesis(coefficients: np.ndarray, waves: Waves, time_s: np.ndarray, real: bool = True) -> np.ndarray:
+    """sum_j c_j e^{i w_j t} (its real part if ``real``) for coefficients (n_components, ...):
+    by FFT over the waves' repeat period when ``time_s`` is that period's uniform grid from
+    0, else by direct sum."""
+    n = time_s.size
+    if waves.period_s and n > 1 and abs(time_s[0]) < 1e-9 and abs(n * (time_s[1] - time_s[0]) - waves.period_s) < 1e-6:
+        index = np.rint(waves.omega_rad_s * waves.period_s / (2.0 * math.pi)).astype(int)
+        flat = coefficients.reshape(coefficients.shape[0], -1)
+        out = np.empty((n, flat.shape[1]), float if real else complex)
+        for start in range(0, flat.shape[1], 64):
+            spectrum = np.zeros((n, min(64, flat.shape[1] - start)), complex)
+            np.add.at(spectrum, index, flat[:, start:start + 64])
+            values = n * np.fft.ifft(spectrum, axis=0)
+            out[:, start:start + 64] = values.real if real else values
+        return out.reshape((n,) + coefficients.shape[1:])
+    if real:
+        return _harmonic_sum(coefficients, waves.omega_rad_s, time_s)
+    return _harmonic_sum(coefficients, waves.omega_rad_s, time_s) + 1j * _harmonic_sum(
+        -1j * coefficients, waves.omega_rad_s, time_s)
 
 
 # --------------------------------------------------------------------------- the model
+FORCING_STEP_S = 0.1  # the grid the loads known in advance are tabulated on
+
+
 @dataclass(frozen=True)
 class Forcing:
-    """Everything known in advance on the half-step grid: excitation (+ drift), fluid
-    velocity at the strip points."""
+    """Everything known in advance on a time grid: excitation (+ drift + harmonic loads),
+    fluid velocity at the strip points (float32)."""
 
     time_s: np.ndarray
     excitation: np.ndarray  # (n, 6)
@@ -262,7 +308,7 @@ class Forcing:
 
 
 def forcing(database: HydroDatabase, platform: Platform, hull: Strips, waves: Waves, time_s: np.ndarray,
-            effects: Effects) -> Forcing:
+            effects: Effects, baseline: Baseline = Baseline()) -> Forcing:
     env = platform.environment
     x_table = database.excitation_at(waves.heading_deg)
     omega = waves.omega_rad_s
@@ -272,8 +318,11 @@ def forcing(database: HydroDatabase, platform: Platform, hull: Strips, waves: Wa
     x_w = np.stack([np.interp(omega, database.omega_rad_s, x_table[:, i].real)
                     + 1j * np.interp(omega, database.omega_rad_s, x_table[:, i].imag) for i in range(6)], axis=1)
     amplitude = waves.amplitude_m * np.exp(1j * waves.phase_rad)
-    excitation = _harmonic_sum(amplitude[:, None] * x_w, omega, time_s)
-    excitation[:, 0] += effects.drift_force_n(waves, time_s)
+    excitation = synthesis(amplitude[:, None] * x_w, waves, time_s)
+    excitation[:, 0] += effects.drift_force_n(waves, time_s) + drift_force_n(baseline.drift_coefficient_n_m2, waves,
+                                                                             time_s)
+    for dof, load, frequency_hz in effects.harmonic_load:
+        excitation[:, dof] += load * np.sin(2.0 * math.pi * frequency_hz * time_s)
     k = wavenumber(omega, env.water_depth_m, env.gravity_m_s2)
     b = math.radians(waves.heading_deg)
     points = hull.points_m
@@ -283,7 +332,7 @@ def forcing(database: HydroDatabase, platform: Platform, hull: Strips, waves: Wa
     horizontal = local * omega[:, None] * np.cosh(kz) / np.sinh(k * h)[:, None]
     vertical = -1j * local * omega[:, None] * np.sinh(kz) / np.sinh(k * h)[:, None]
     coefficients = np.stack([horizontal * math.cos(b), horizontal * math.sin(b), vertical], axis=-1)
-    return Forcing(time_s, excitation, _harmonic_sum(coefficients, omega, time_s))
+    return Forcing(time_s, excitation, synthesis(coefficients, waves, time_s).astype(np.float32))
 
 
 def drag_wrench(hull: Strips, rho: float, velocity: np.ndarray, fluid: np.ndarray) -> np.ndarray:
@@ -310,67 +359,55 @@ class Trajectory:
     velocity: np.ndarray  # (n, 6)
 
 
+def _forcing_grid(waves: Waves, start_s: float, end_s: float) -> tuple[np.ndarray, bool]:
+    """The loads' grid: one repeat period from 0 (periodic) when the waves repeat on it, else
+    the run's span."""
+    if waves.period_s:
+        n = round(waves.period_s / FORCING_STEP_S)
+        if abs(n * FORCING_STEP_S - waves.period_s) < 1e-6:
+            return np.arange(n) * FORCING_STEP_S, True
+    n = math.ceil((end_s - start_s) / FORCING_STEP_S) + 2
+    return start_s + np.arange(n) * FORCING_STEP_S, False
+
+
 def integrate(platform: Platform, database: HydroDatabase, waves: Waves | None, duration_s: float,
               dt_s: float = 0.05, baseline: Baseline = Baseline(), effects: Effects = Effects(),
-              initial: np.ndarray | None = None) -> Trajectory:
-    """RK4 at dt_s of the Cummins equation; the memory term is the trapezoidal convolution of
-    K with the velocity history at each step, extrapolated linearly inside the step."""
+              initial: np.ndarray | None = None, preroll_s: float = 0.0) -> Trajectory:
+    """RK4 at dt_s of the Cummins equation (kernel.py), from ``-preroll_s`` (in the waves'
+    periodic extension) to ``duration_s``; the trajectory from 0."""
     env = platform.environment
-    rho = env.water_density_kg_m3
-    steps = round(duration_s / dt_s)
-    half_grid = np.arange(2 * steps + 1) * 0.5 * dt_s
+    steps = round((duration_s + preroll_s) / dt_s)
     hull = strips(platform, baseline.cd_scale, baseline.strip_length_m)
     waves = waves or Waves(np.array([1.0]), np.zeros(1), np.zeros(1))
-    force = forcing(database, platform, hull, waves, half_grid, effects)
+    grid, periodic = _forcing_grid(waves, -preroll_s, duration_s)
+    force = forcing(database, platform, hull, waves, grid, effects, baseline)
     mass = rigid_body_mass(platform) + baseline.added_mass_scale * database.added_mass_inf
-    inverse_mass = np.linalg.inv(mass)
-    stiffness = database.hydrostatic_stiffness
     kernel = retardation(database, dt_s, added_mass_scale=baseline.added_mass_scale)
     weights = np.full(kernel.shape[0], dt_s)
     weights[[0, -1]] *= 0.5
-    kernel_w = kernel * weights[:, None, None]  # (nk, 6, 6)
-    nk = kernel.shape[0]
-    b1, b2 = np.asarray(effects.linear_damping, float), np.asarray(effects.quadratic_damping, float)
-    moor0 = mooring_wrench(platform, np.zeros(6)) if baseline.mooring else np.zeros(6)
-
-    def acceleration(i_half: int, x: np.ndarray, v: np.ndarray, memory: np.ndarray) -> np.ndarray:
-        load = force.excitation[i_half] - memory - stiffness @ x - b1 * v - b2 * np.abs(v) * v
-        if baseline.drag:
-            load = load + drag_wrench(hull, rho, v, force.fluid_velocity_m_s[i_half])
-        if baseline.mooring:
-            load = load + mooring_wrench(platform, x) - moor0
-        return inverse_mass @ load
-
-    x = np.zeros(6) if initial is None else np.asarray(initial, float).copy()
-    v = np.zeros(6)
-    history = np.zeros((steps + nk, 6))  # velocity at step n stored at index n + nk - 1
-    positions, velocities = np.empty((steps + 1, 6)), np.empty((steps + 1, 6))
-    positions[0], velocities[0] = x, v
-    previous_memory = np.zeros(6)
-    for n in range(steps):
-        history[n + nk - 1] = v
-        recent = history[n:n + nk][::-1]  # v_n, v_{n-1}, ...
-        memory = np.einsum("kij,kj->i", kernel_w, recent)
-        slope = (memory - previous_memory) / dt_s if n else np.zeros(6)
-        previous_memory = memory
-        mid, end = memory + 0.5 * dt_s * slope, memory + dt_s * slope
-        a1 = acceleration(2 * n, x, v, memory)
-        x2, v2 = x + 0.5 * dt_s * v, v + 0.5 * dt_s * a1
-        a2 = acceleration(2 * n + 1, x2, v2, mid)
-        x3, v3 = x + 0.5 * dt_s * v2, v + 0.5 * dt_s * a2
-        a3 = acceleration(2 * n + 1, x3, v3, mid)
-        x4, v4 = x + dt_s * v3, v + dt_s * a3
-        a4 = acceleration(2 * n + 2, x4, v4, end)
-        x = x + dt_s / 6.0 * (v + 2 * v2 + 2 * v3 + v4)
-        v = v + dt_s / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
-        positions[n + 1], velocities[n + 1] = x, v
-    return Trajectory(np.arange(steps + 1) * dt_s, positions, velocities)
+    mooring = platform.mooring
+    fairlead = np.array([line.fairlead_m for line in mooring.lines], float).reshape(-1, 3)
+    anchor = np.array([line.anchor_m for line in mooring.lines], float).reshape(-1, 3)
+    curve = np.asarray(effects.mooring_curve_n, float).reshape(-1, 2)
+    x0 = np.zeros(6) if initial is None else np.asarray(initial, float)
+    positions, velocities = kernel_module.integrate(
+        steps, dt_s, -preroll_s, x0, float(grid[0]), FORCING_STEP_S, periodic, force.excitation,
+        force.fluid_velocity_m_s, np.linalg.inv(mass), database.hydrostatic_stiffness,
+        kernel * weights[:, None, None], np.asarray(effects.linear_damping, float),
+        np.asarray(effects.quadratic_damping, float), baseline.drag, env.water_density_kg_m3, hull.points_m,
+        len(hull.circular_point_m), len(hull.box_point_m), hull.circular_axis, hull.circular_cda_m2,
+        hull.box_direction, hull.box_cda_m2, hull.plate_cda_m2, baseline.mooring, fairlead, anchor,
+        np.linalg.norm(anchor - fairlead, axis=1), mooring.pretension_n, mooring.stiffness_n_m,
+        np.ascontiguousarray(curve[:, 0]), np.ascontiguousarray(curve[:, 1]))
+    keep = round(preroll_s / dt_s)
+    return Trajectory(np.arange(steps + 1 - keep) * dt_s, positions[keep:], velocities[keep:])
 
 
 def measured_run(platform: Platform, database: HydroDatabase, waves: Waves, duration_s: float, name: str,
-                 dt_s: float = 0.05, baseline: Baseline = Baseline(), effects: Effects = Effects()) -> MeasuredRun:
+                 dt_s: float = 0.05, baseline: Baseline = Baseline(), effects: Effects = Effects(),
+                 preroll_s: float = 0.0) -> MeasuredRun:
     """A "measured" run for the diagnosis: elevation at (0, 0) every 0.1 s, motion every 0.25 s."""
-    trajectory = integrate(platform, database, waves, duration_s, dt_s, baseline, effects)
+    trajectory = integrate(platform, database, waves, duration_s, dt_s, baseline, effects, preroll_s=preroll_s)
     env = platform.environment
     elevation_time = np.arange(0.0, duration_s + 1e-9, ELEVATION_STEP_S)
     motion_time = np.arange(0.0, duration_s + 1e-9, MOTION_STEP_S)
