@@ -155,7 +155,7 @@ class PlatformModel:
                                                         self.extension, self.options))
         strip_6x6 = added_mass_about(s.centre_m, strip_3x3)
         wet = np.empty(len(s.length_m))
-        wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, wet)
+        wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(len(s.length_m)), wet)
         deep = wet == 1.0
         return KernelData(
             waves=WaveTable(table, step),
