@@ -226,6 +226,7 @@ class BlockSynthesis:
         heading = waves.direction_rad[0]
         self._heading = (np.cos(heading), np.sin(heading)) if np.all(waves.direction_rad == heading) else None
         n_harmonics = int(self._offsets.max()) + 1
+        import scipy.fft  # here, not at start-up: only blocked runs need it
         self._fft_rows = scipy.fft.next_fast_len(n_harmonics + self.block_rows - 1)
         lag = np.arange(self._fft_rows, dtype=np.int64)  # lags 0..M-1, then -(L-M)..-1
         lag[lag >= self.block_rows] -= self._fft_rows
@@ -239,6 +240,7 @@ class BlockSynthesis:
 
     def rows(self, first_row: int) -> np.ndarray:
         """Rows first_row .. first_row + block_rows - 1: (block_rows, n_points, 7), float64."""
+        import scipy.fft
         n = self.n_samples
         start = int(first_row) % n
         j, m = self._harmonics, self._rows
