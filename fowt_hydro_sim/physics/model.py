@@ -33,7 +33,8 @@ from fowt_hydro_sim.physics.dynamics import (
     StripData,
     WaveTable,
 )
-from fowt_hydro_sim.physics.loads import N_LOADS, ROW, ComponentInputs, component_data, external, params_of
+from fowt_hydro_sim.physics.loads import (FIRST_MODULE_ROW, N_LOADS, ROW, ComponentInputs, component_data, external,
+                                          params_of)
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
 from fowt_hydro_sim.physics.morison import added_mass_about, added_mass_tensors, lever_arms, relative_velocities
@@ -130,7 +131,7 @@ class PlatformModel:
         bank = self.filter_bank
         mass = self.platform.mass
         params, tables = component_data(ComponentInputs(self.platform, self.geometry, self.hydrostatics,
-                                                        self.extension, self.options))
+                                                        self.extension, self.options, self.waves))
         return KernelData(
             waves=WaveTable(table, step),
             strips=StripData(s.centre_m, s.axis, s.directions, s.length_m, s.inertia_kg_m, s.added_mass_kg_m,
@@ -227,6 +228,9 @@ class PlatformModel:
         self._elevation = np.zeros((n_rows, 1, 1))
         self.wave_table_step_s = float(step_s)
         self.waves = None
+        tables = list(self._data.component_tables)  # no components: no slow drift series
+        tables[ROW["drift"] - FIRST_MODULE_ROW] = np.zeros((4, 2))
+        self._data = self._data._replace(component_tables=tuple(tables))
         self._restart_history()  # the derivative at t changes with the table
 
     def write_waves(self, time_s: float, kinematics: np.ndarray, elevation_m: float) -> None:
