@@ -57,7 +57,7 @@ COMPONENTS = (
     LoadComponent("gravity", "weight at the centre of gravity", False, True, gravity),
     LoadComponent("external", "external wrench (controller, rotor)", True, True, external),
     LoadComponent("drift", "second-order slow drift (Newman's approximation from the platform's drift table)",
-                  True, False, drift),
+                  True, True, drift),
     LoadComponent("extension", "loads beyond the Morison model (the gap diagnosis's effects)", False, False,
                   extension),
 )
