@@ -71,3 +71,16 @@ def natural_period_s(platform: Platform, database: bem.HydroDatabase) -> float:
     """Surge natural period on the mooring's stiffness with the BEM's lowest-frequency added mass."""
     mass = cummins.rigid_body_mass(platform)[0, 0] + database.added_mass[0, 0, 0]
     return 2.0 * math.pi * math.sqrt(mass / surge_stiffness_n_m(platform))
+
+
+if __name__ == "__main__":  # python -m fowt_hydro_sim.studies.diagnosis.independent.drift_study
+    from fowt_hydro_sim.physics.config import load_platform
+
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    hull, bem_database, drift_table = load_platform("windmoor12"), bem.load_database(), drift.load_table()
+    LOG.info("surge stiffness %.0f N/m, natural period %.1f s", surge_stiffness_n_m(hull),
+             natural_period_s(hull, bem_database))
+    for name in CASES:
+        LOG.info("%s", closed_form_row(hull, drift_table, name))
+        for with_drift in (drift_table, None):
+            independent_row(hull, bem_database, with_drift, name)
