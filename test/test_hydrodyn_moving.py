@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from fowt_hydro_sim.cli import main
-from fowt_hydro_sim.physics.config import HYDRODYN, HydroOptions, load_platform, platform_document
+from fowt_hydro_sim.physics.config import EARLIER, HYDRODYN, HydroOptions, load_platform, platform_document
 from fowt_hydro_sim.physics.loads import ROW
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import uniform_drag
@@ -79,7 +79,7 @@ def test_todays_choices_differ_from_hydrodyn_as_the_issue_measured():
     hydrostatics) stay reachable and reproduce the issue's still-water errors."""
     ref = read_hydrodyn_out(hydrodyn_case(CASE) / "wm12_prescribed_still.out")
     m = motion_from_columns(reference_motion())
-    loads = PlatformModel(hydrodyn_hull(), options=HydroOptions()).prescribed_motion_loads(*m)
+    loads = PlatformModel(hydrodyn_hull(), options=EARLIER).prescribed_motion_loads(*m)
     errors = [relative_rms(hydro_channels(loads)[:, j], ref[c]) for j, c in enumerate(CHANNELS)]
     assert errors == pytest.approx([2.6e-2, 0.30, 2.2e-2, 3.0e-2, 1.1e-2, 0.35], rel=0.1)
 
@@ -220,7 +220,7 @@ def test_mean_surge_force_of_surge_and_heave_motion_is_the_wetted_length_product
         motion[:, j] = amp * np.sin(omega * t + ph)
         velocity[:, j] = amp * omega * np.cos(omega * t + ph)
         acceleration[:, j] = -amp * omega**2 * np.sin(omega * t + ph)
-    options = HydroOptions(wetted_length=wetted_length)
+    options = HydroOptions(wetted_length, "rotating", "linear", "none")
     loads = PlatformModel(column, options=options).prescribed_motion_loads(t, motion, velocity, acceleration)
     mean_fx = loads[:, ROW["added_mass"], 0].mean()
     expected = -1025.0 * 1.0 * math.pi * 7.5**2 * amplitude_x * amplitude_z * omega**2 * math.cos(phase) / 2
@@ -235,8 +235,11 @@ def test_run_files_take_the_hydro_options(tmp_path):
 
     good = tmp_path / "run.yaml"
     good.write_text("platform: windmoor12\nrun: {wetted_length: undisplaced, load_directions: fixed, "
-                    "hydrostatics: nonlinear}\n")
+                    "hydrostatics: nonlinear, slow_drift: none}\n")
     assert load_run_file(good).run.hydro_options == HYDRODYN
+    default = tmp_path / "default.yaml"
+    default.write_text("platform: windmoor12\n")
+    assert load_run_file(default).run.hydro_options == dataclasses.replace(HYDRODYN, slow_drift="newman")
     bad = tmp_path / "bad.yaml"
     bad.write_text("platform: windmoor12\nrun: {load_directions: sideways}\n")
     with pytest.raises(ConfigError, match="load_directions: must be one of rotating, fixed"):

@@ -14,6 +14,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, like, setting, validate
@@ -28,6 +29,7 @@ LOAD_DIRECTIONS = ("rotating", "fixed")
 HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
 STRETCHING = ("none", "vertical")
+SLOW_DRIFTS = ("newman", "none")
 
 
 class ConfigError(ValueError):
@@ -158,6 +160,8 @@ class Platform:
     mooring: Mooring
     description: str = ""
     drag_bands: tuple[DragBand, ...] = ()  # the ``filtered`` drag model's bands
+    # head-sea mean surge drift per unit amplitude squared, (w [rad/s], D [N/m^2]) ascending in w
+    drift_coefficients_n_m2: tuple[tuple[float, float], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -193,22 +197,25 @@ class SeaState:
 
 @dataclass(frozen=True)
 class HydroOptions:
-    """How the strip model treats a moving body: choices HydroDyn makes one way and today's
-    model made another, silently. Fluid kinematics are taken at the undisplaced strip points
-    (HydroDyn's WaveDisp 0) except for a prescribed motion with ``kinematics="displaced"``
-    (``PlatformModel.prescribed_motion_loads``). The defaults keep the model's earlier behaviour;
-    ``HYDRODYN`` is HydroDyn v5's (WaveDisp 0, WaveStMod 0, member hydrostatics)."""
+    """How the strip model treats a moving body: choices HydroDyn makes one way and the model
+    made another, silently, until this was explicit. Fluid kinematics are taken at the
+    undisplaced strip points (HydroDyn's WaveDisp 0) except for a prescribed motion with
+    ``kinematics="displaced"`` (``PlatformModel.prescribed_motion_loads``). The defaults are
+    HydroDyn's kinematic choices plus the slow drift from the platform's BEM drift table (the
+    README's evidence: the displaced wetted length and rotating directions give a body-motion
+    second-order force without the rest of the second-order force, several times a BEM's slow
+    drift); ``HYDRODYN`` is HydroDyn v5's (WaveDisp 0, WaveStMod 0, member hydrostatics, no drift)."""
 
     wetted_length: str = setting(
-        "displaced", "wetted length of each strip: the part of its displaced length below z = 0 (heave, roll "
+        "undisplaced", "wetted length of each strip: the part of its displaced length below z = 0 (heave, roll "
                      "and pitch change it; adds motion-induced second-order loads) or of its undisplaced length "
                      "(HydroDyn's WaveDisp 0, no stretching)", choices=WETTED_LENGTHS)
     load_directions: str = setting(
-        "rotating", "strip load directions (member axes, section axes): rotating with the body or fixed at "
+        "fixed", "strip load directions (member axes, section axes): rotating with the body or fixed at "
                     "the undisplaced ones (HydroDyn's projection on the undisplaced member axes)",
         choices=LOAD_DIRECTIONS)
     hydrostatics: str = setting(
-        "linear", "hydrostatics: linear about the undisplaced position (W0 - C q, WAMIT's C) or nonlinear, "
+        "nonlinear", "hydrostatics: linear about the undisplaced position (W0 - C q, WAMIT's C) or nonlinear, "
                   "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
                   "member hydrostatics, MHstLMod 1), or free_surface, the still-water pressure -rho g z over "
                   "the displaced member surfaces up to the instantaneous free surface (a plane per element; "
@@ -223,12 +230,16 @@ class HydroOptions:
                 "or vertical (each strip and end plate wetted up to the instantaneous elevation at its x, y, "
                 "kinematics above z = 0 those at z = 0: WaveStMod 1; prescribed motion only: fowt-sim loads)",
         choices=STRETCHING)
+    slow_drift: str = setting(
+        "newman", "second-order slow-drift surge force: Newman's approximation from the platform's mean-drift "
+                  "coefficient table (drift_coefficients_n_m2; none without one) or none (HydroDyn's strip "
+                  "theory has none)", choices=SLOW_DRIFTS)
 
     def __post_init__(self) -> None:
         _validate(self, "hydro options")
 
 
-HYDRO_OPTION_NAMES = ("wetted_length", "load_directions", "hydrostatics")
+HYDRO_OPTION_NAMES = ("wetted_length", "load_directions", "hydrostatics", "slow_drift")
 
 
 @dataclass(frozen=True)
@@ -255,6 +266,7 @@ class RunConfig:
     wetted_length: str = like(HydroOptions, "wetted_length")
     load_directions: str = like(HydroOptions, "load_directions")
     hydrostatics: str = like(HydroOptions, "hydrostatics")
+    slow_drift: str = like(HydroOptions, "slow_drift")
 
     @property
     def hydro_options(self) -> HydroOptions:
@@ -274,8 +286,12 @@ def _validate(instance, where: str) -> None:
         raise ConfigError(str(exc)) from None
 
 
-# HydroDyn v5's choices (WaveDisp 0, WaveStMod 0, member hydrostatics)
-HYDRODYN = HydroOptions(wetted_length="undisplaced", load_directions="fixed", hydrostatics="nonlinear")
+# HydroDyn v5's choices (WaveDisp 0, WaveStMod 0, member hydrostatics; strip theory has no slow drift)
+HYDRODYN = HydroOptions(wetted_length="undisplaced", load_directions="fixed", hydrostatics="nonlinear",
+                        slow_drift="none")
+# the model's choices before the options were explicit
+EARLIER = HydroOptions(wetted_length="displaced", load_directions="rotating", hydrostatics="linear",
+                       slow_drift="none")
 
 
 # --------------------------------------------------------------------------- validation
@@ -476,6 +492,25 @@ def _inertia(f: _Fields) -> tuple[tuple[float, ...], ...]:
     return ((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))
 
 
+def _drift_coefficients(f: _Fields) -> tuple[tuple[float, float], ...]:
+    """``drift_coefficients_n_m2: [[w_rad_s, D_n_m2], ...]``, w ascending and positive, D >= 0."""
+    value = f.data.get("drift_coefficients_n_m2")
+    f.used.add("drift_coefficients_n_m2")
+    if value is None:
+        return ()
+    where = f.at("drift_coefficients_n_m2")
+    try:
+        pairs = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{where}: must be a list of [omega_rad_s, n_m2] pairs") from None
+    if pairs.ndim != 2 or pairs.shape[1] != 2 or len(pairs) < 2 or not np.all(np.isfinite(pairs)):
+        raise ConfigError(f"{where}: must be a list of at least two finite [omega_rad_s, n_m2] pairs")
+    if pairs[0, 0] <= 0 or np.any(np.diff(pairs[:, 0]) <= 0) or np.any(pairs[:, 1] < 0):
+        raise ConfigError(f"{where}: frequencies must be positive and ascending, coefficients >= 0 "
+                          "(Newman's approximation takes their square root)")
+    return tuple((float(w), float(d)) for w, d in pairs)
+
+
 def platform_from_dict(data: Any, source: str = "platform") -> Platform:
     """Validate a parsed platform YAML document."""
     f = _Fields(data, source)
@@ -501,7 +536,7 @@ def platform_from_dict(data: Any, source: str = "platform") -> Platform:
     platform = Platform(
         name=f.text("name"), description=f.text("description", ""), environment=env, mass=mass,
         hub_point_m=f.vector("hub_point_m"), members=tuple(_member(x, band_names) for x in f.items("members")),
-        mooring=mooring, drag_bands=drag_bands)
+        mooring=mooring, drag_bands=drag_bands, drift_coefficients_n_m2=_drift_coefficients(f))
     f.used.update(k for k in f.data if k.endswith(("_zones", "_end")))  # YAML anchors' holders
     f.finish()
     return platform
@@ -557,6 +592,7 @@ def platform_document(platform: Platform) -> dict:
                  "inertia_about_cog_kg_m2": {"ixx": ixx, "iyy": iyy, "izz": izz, "ixy": ixy, "ixz": ixz, "iyz": iyz}},
         "hub_point_m": list(platform.hub_point_m),
         "drag_bands": [_band_document(b) for b in bands] or None,
+        "drift_coefficients_n_m2": [list(pair) for pair in platform.drift_coefficients_n_m2] or None,
         "members": members,
         "mooring": {"stiffness_n_m": mooring.stiffness_n_m, "pretension_n": mooring.pretension_n,
                     "unstretched_length_m": mooring.unstretched_length_m,

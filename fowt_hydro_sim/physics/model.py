@@ -36,7 +36,8 @@ from fowt_hydro_sim.physics.dynamics import (
     StripData,
     WaveTable,
 )
-from fowt_hydro_sim.physics.loads import N_LOADS, ROW, ComponentInputs, component_data, external, params_of
+from fowt_hydro_sim.physics.loads import (FIRST_MODULE_ROW, N_LOADS, ROW, ComponentInputs, component_data, external,
+                                          params_of)
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
 from fowt_hydro_sim.physics.morison import (
@@ -152,7 +153,7 @@ class PlatformModel:
         bank = self.filter_bank
         mass = self.platform.mass
         params, tables = component_data(ComponentInputs(self.platform, self.geometry, self.hydrostatics,
-                                                        self.extension, self.options))
+                                                        self.extension, self.options, self.waves))
         strip_6x6 = added_mass_about(s.centre_m, strip_3x3)
         wet = np.empty(len(s.length_m))
         wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(len(s.length_m)), wet)
@@ -300,6 +301,9 @@ class PlatformModel:
         self.wave_table_step_s = float(step_s)
         self.waves = None
         self._synthesis = None
+        tables = list(self._data.component_tables)  # no components: no slow drift series
+        tables[ROW["drift"] - FIRST_MODULE_ROW] = np.zeros((4, 2))
+        self._data = self._data._replace(component_tables=tuple(tables))
         self._restart_history()  # the derivative at t changes with the table
 
     def write_waves(self, time_s: float, kinematics: np.ndarray, elevation_m: float) -> None:

@@ -111,6 +111,7 @@ class NodeSettings:
     wetted_length: str = like(RunConfig, "wetted_length")
     load_directions: str = like(RunConfig, "load_directions")
     hydrostatics: str = like(RunConfig, "hydrostatics")
+    slow_drift: str = like(RunConfig, "slow_drift")
     load_case: str = setting("lc5.3", "load case giving the sea state (lc5.0 .. lc6.5); hs_m/tp_s > 0 override it")
     hs_m: float = like(SeaState, "hs_m", default=0.0, unset=0.0, note="; 0 = the load case's")
     tp_s: float = like(SeaState, "tp_s", default=0.0, unset=0.0, note="; 0 = the load case's")
@@ -191,7 +192,7 @@ class SimulatorNode(Node):
         waves = None
         if s.wave_source == "internal":
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
-        options = HydroOptions(s.wetted_length, s.load_directions, s.hydrostatics)
+        options = HydroOptions(s.wetted_length, s.load_directions, s.hydrostatics, s.slow_drift)
         self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model, options=options)
         self.model.reset(motion=np.array(s.initial_state))
         self._feed: WaveFeed | None = None

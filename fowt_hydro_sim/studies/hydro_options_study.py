@@ -10,7 +10,7 @@ from __future__ import annotations
 import logging
 from dataclasses import asdict
 
-from fowt_hydro_sim.physics.config import HYDRODYN, HydroOptions, Platform, SeaState, load_case
+from fowt_hydro_sim.physics.config import EARLIER, HYDRODYN, HydroOptions, Platform, SeaState, load_case
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 from fowt_hydro_sim.studies.psd import BANDS_HZ, band_std, psd
@@ -18,11 +18,12 @@ from fowt_hydro_sim.studies.psd import BANDS_HZ, band_std, psd
 log = logging.getLogger(__name__)
 
 OPTION_SETS = {
-    "earlier (displaced, rotating, linear)": HydroOptions(),
-    "undisplaced wetted length": HydroOptions(wetted_length="undisplaced"),
-    "fixed directions": HydroOptions(load_directions="fixed"),
-    "undisplaced + fixed (linear hydrostatics)": HydroOptions("undisplaced", "fixed", "linear"),
+    "earlier (displaced, rotating, linear)": EARLIER,
+    "undisplaced wetted length": HydroOptions("undisplaced", "rotating", "linear", "none"),
+    "fixed directions": HydroOptions("displaced", "fixed", "linear", "none"),
+    "undisplaced + fixed (linear hydrostatics)": HydroOptions("undisplaced", "fixed", "linear", "none"),
     "HydroDyn (undisplaced, fixed, nonlinear)": HYDRODYN,
+    "default: HydroDyn + Newman slow drift (BEM table)": HydroOptions(),
 }
 
 

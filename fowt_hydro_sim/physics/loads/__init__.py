@@ -28,10 +28,11 @@ from numba import literal_unroll, njit
 from numba.core.errors import NumbaExperimentalFeatureWarning
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
-from fowt_hydro_sim.physics.loads import extension, external, gravity, hydrostatic, mooring
+from fowt_hydro_sim.physics.loads import drift, extension, external, gravity, hydrostatic, mooring
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics
 from fowt_hydro_sim.physics.strips import Discretisation
+from fowt_hydro_sim.physics.waves.components import WaveComponents
 
 # the kernel calls the components through a tuple of compiled functions (literal_unroll)
 warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
@@ -55,6 +56,8 @@ COMPONENTS = (
     LoadComponent("mooring", "mooring lines", True, True, mooring),
     LoadComponent("gravity", "weight at the centre of gravity", False, True, gravity),
     LoadComponent("external", "external wrench (controller, rotor)", True, True, external),
+    LoadComponent("drift", "second-order slow drift (Newman's approximation from the platform's drift table)",
+                  True, True, drift),
     LoadComponent("extension", "loads beyond the Morison model (the gap diagnosis's effects)", False, False,
                   extension),
 )
@@ -79,6 +82,7 @@ class ComponentInputs(NamedTuple):
     hydrostatics: Hydrostatics
     extension: Extension
     options: HydroOptions
+    waves: WaveComponents | None = None
 
 
 def component_data(inputs: ComponentInputs) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:

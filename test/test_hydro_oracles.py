@@ -1,0 +1,135 @@
+"""Closed-form oracles for the moving-body hydro options and the slow-drift component:
+a pitched column's inertia loads in a regular wave (rotating vs fixed directions), the mean
+surge force the displaced wetted length adds to a heaving column in a regular wave, and
+Newman's slow drift from the platform's drift table."""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from fowt_hydro_sim.physics.config import HydroOptions, load_platform
+from fowt_hydro_sim.physics.loads import ROW, drift
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.platform_edits import uniform_drag
+from fowt_hydro_sim.physics.waves.components import WaveComponents, wavenumber
+
+RHO = 1025.0
+DRAFT_M, RADIUS_M = 15.5, 7.5
+AMPLITUDE_M, PERIOD_S = 1.0, 10.0
+
+
+def _column():
+    """windmoor12's first column moved to the origin, no drag, no keel plate (Ca 1)."""
+    p = load_platform("windmoor12")
+    column = dataclasses.replace(uniform_drag(p.members[0], 0.0, 0.0), end_a_m=(0.0, 0.0, -DRAFT_M),
+                                 end_b_m=(0.0, 0.0, 15.0), end_a_plate=None)
+    return dataclasses.replace(p, members=(column,))
+
+
+def _regular_wave() -> WaveComponents:
+    return WaveComponents(np.array([1.0 / PERIOD_S]), np.array([AMPLITUDE_M]), np.zeros(1), np.zeros(1), PERIOD_S)
+
+
+def _depth_integrals(t_s, depth_m: float, g: float):
+    """int_{-d}^{0} (a_x, a_z) dz, analytically."""
+    omega = 2 * math.pi / PERIOD_S
+    k = float(wavenumber(np.array([omega]), depth_m, g)[0])
+    scale = AMPLITUDE_M * omega**2 / math.sinh(k * depth_m) / k
+    ix = -scale * (math.sinh(k * depth_m) - math.sinh(k * (depth_m - DRAFT_M))) * np.sin(omega * t_s)
+    iz = -scale * (math.cosh(k * depth_m) - math.cosh(k * (depth_m - DRAFT_M))) * np.cos(omega * t_s)
+    return ix, iz
+
+
+@pytest.mark.parametrize("directions", ["rotating", "fixed"])
+def test_pitched_column_inertia_in_a_regular_wave_is_the_rotated_normal_projection(directions):
+    """A column pitched by th about its water-line centre, kinematics and wetted length
+    undisplaced: each strip's inertia force is rho (1 + Ca) A times the fluid acceleration's
+    part normal to the axis e = (sin th, 0, cos th) with rotating directions, normal to the
+    undisplaced (vertical) axis with fixed ones; summed over the draft,
+    F = rho (1 + Ca) A (I - e e^T) int a dz."""
+    platform = _column()
+    env = platform.environment
+    pitch = 0.2
+    t = np.linspace(0.0, PERIOD_S, 9)[:-1]
+    pose = np.zeros((t.size, 6))
+    pose[:, 4] = pitch
+    still = np.zeros((t.size, 6))
+    options = HydroOptions("undisplaced", directions, "linear", "none")
+    model = PlatformModel(platform, _regular_wave(), options=options)
+    loads = model.prescribed_motion_loads(t, pose, still, still)[:, ROW["inertia"], :3]
+    ix, iz = _depth_integrals(t, env.water_depth_m, env.gravity_m_s2)
+    integral = np.stack([ix, np.zeros_like(ix), iz], axis=1)
+    axis = np.array([math.sin(pitch), 0.0, math.cos(pitch)]) if directions == "rotating" else np.array([0.0, 0.0, 1.0])
+    expected = RHO * 2.0 * math.pi * RADIUS_M**2 * (integral - np.outer(integral @ axis, axis))
+    scale = np.max(np.abs(expected))
+    assert np.max(np.abs(loads - expected)) < 2e-3 * scale
+    if directions == "rotating":  # the rotation is visible: a vertical force of order th F_x
+        assert np.max(np.abs(expected[:, 2])) > 0.1 * scale
+
+
+def test_displaced_wetted_length_adds_a_mean_surge_force_in_a_regular_wave():
+    """A column lifted by z(t) = z0 + Z cos(w t + b) (0 < z < the top strip) in a regular wave,
+    no surge, displaced wetted length, fixed directions: only the top strip's wetted length
+    changes, by -z, so the mean surge force is -rho (1 + Ca) A <z(t) a_x(z_c, t)>
+    = -rho (1 + Ca) A Z A w^2 cosh k(z_c + h) / sinh kh sin(b) / 2 at its centre z_c."""
+    platform = _column()
+    env = platform.environment
+    omega = 2 * math.pi / PERIOD_S
+    lift, heave, phase = 0.45, 0.3, 1.1
+    t = np.arange(0.0, 4 * PERIOD_S, PERIOD_S / 64)
+    motion, velocity, acceleration = (np.zeros((t.size, 6)) for _ in range(3))
+    motion[:, 2] = lift + heave * np.cos(omega * t + phase)
+    velocity[:, 2] = -heave * omega * np.sin(omega * t + phase)
+    acceleration[:, 2] = -heave * omega**2 * np.cos(omega * t + phase)
+    means = {}
+    for wetted in ("displaced", "undisplaced"):
+        model = PlatformModel(platform, _regular_wave(), options=HydroOptions(wetted, "fixed", "linear", "none"))
+        loads = model.prescribed_motion_loads(t, motion, velocity, acceleration)
+        means[wetted] = loads[:, ROW["inertia"], 0].mean()
+    strips = model.geometry.strips
+    top = int(np.argmax(np.where(strips.centre_m[:, 2] < 0, strips.centre_m[:, 2], -np.inf)))  # highest submerged
+    z_c = float(strips.centre_m[top, 2])
+    assert 0 < lift + heave < strips.length_m[top] and z_c < 0
+    k = float(wavenumber(np.array([omega]), env.water_depth_m, env.gravity_m_s2)[0])
+    a_x_amplitude = AMPLITUDE_M * omega**2 * math.cosh(k * (z_c + env.water_depth_m)) / math.sinh(k * env.water_depth_m)
+    expected = -RHO * 2.0 * math.pi * RADIUS_M**2 * heave * a_x_amplitude * math.sin(phase) / 2
+    assert means["displaced"] == pytest.approx(expected, rel=0.01)
+    assert abs(means["undisplaced"]) < 1e-3 * abs(expected)
+
+
+def test_newman_force_of_a_bichromatic_sea():
+    """F(t) = a1^2 D1 + a2^2 D2 + 2 a1 a2 sqrt(D1 D2) cos((w2 - w1) t + p2 - p1)."""
+    table = ((0.5, 1.0e4), (1.0, 9.0e4))
+    period = 200.0
+    waves = WaveComponents(np.array([20 / period, 28 / period]), np.array([1.5, 0.8]), np.array([0.3, 2.0]),
+                           np.zeros(2), period)
+    samples, step = drift.newman_force(waves, table)
+    t = np.arange(samples.shape[0]) * step
+    w = 2 * np.pi * waves.frequency_hz
+    d = np.interp(w, [0.0, 0.5, 1.0], [0.0, 1.0e4, 9.0e4])
+    a = waves.amplitude_m
+    expected = a[0]**2 * d[0] + a[1]**2 * d[1] + 2 * a[0] * a[1] * np.sqrt(d[0] * d[1]) * np.cos((w[1] - w[0]) * t + 2.0 - 0.3)
+    assert np.allclose(samples[:, 0], expected, rtol=1e-9, atol=1e-9 * expected.max())
+    assert np.allclose(samples[:, 1], 0.0, atol=1e-9 * expected.max())
+
+
+def test_slow_drift_component_gives_the_mean_drift_of_a_regular_wave():
+    """The model's drift row in a regular wave is the constant a^2 D(w) of the platform's table
+    (along the heading), and nothing with ``slow_drift: none``."""
+    platform = load_platform("windmoor12")
+    heading = math.radians(30.0)
+    waves = dataclasses.replace(_regular_wave(), direction_rad=np.array([heading]))
+    t = np.linspace(0.0, PERIOD_S, 7)
+    still = np.zeros((t.size, 6))
+    d = drift.coefficients(platform.drift_coefficients_n_m2, np.array([2 * math.pi / PERIOD_S]))[0]
+    assert d > 0
+    for slow_drift, expected in (("newman", AMPLITUDE_M**2 * d), ("none", 0.0)):
+        options = HydroOptions("undisplaced", "fixed", "linear", slow_drift)
+        loads = PlatformModel(platform, waves, options=options).prescribed_motion_loads(t, still, still, still)
+        row = loads[:, ROW["drift"]]
+        assert np.allclose(row[:, 0], expected * math.cos(heading), rtol=1e-9, atol=1e-6)
+        assert np.allclose(row[:, 1], expected * math.sin(heading), rtol=1e-9, atol=1e-6)
+        assert np.allclose(row[:, 2:], 0.0)
