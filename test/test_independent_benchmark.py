@@ -99,11 +99,11 @@ def fowt_sim(*args: str, timeout: float = 600) -> subprocess.CompletedProcess:
 
 def test_diagnose_benchmark_independent_small(tmp_path):
     """``--source independent`` on the frequency-dependent drift and a null, 900 s records, two
-    candidates, two least-squares evaluations each. What the diagnosis says today (not the
-    right answer for the drift): the model (HydroDyn's options, no slow drift of its own) has
-    about 1 % of the basin's low-frequency surge in every run, a baseline mismatch that the
-    catalogue's slow drift does not close in two evaluations, so no effect is named; in the
-    null, the slow drift closes part of the basin's own drift and is named."""
+    candidates, two least-squares evaluations each: the model (HydroDyn's options, no slow
+    drift of its own) has about 1 % of the basin's low-frequency surge in every run, and the
+    diagnosis reports that as a baseline mismatch with its sign in both scenarios, and the
+    injected drift's footprint as flagged. (Which effect it then names is not asserted: today
+    none for the drift and slow_drift for the null, both wrong by the scoring; README.)"""
     out = tmp_path / "bench"
     result = fowt_sim("diagnose-benchmark", "--source", "independent", "--inject", "frequency_dependent_drift",
                       "--strengths", "1", "--nulls", "1", "--out-of-catalogue", "0", "--effects", "slow_drift",
@@ -113,13 +113,11 @@ def test_diagnose_benchmark_independent_small(tmp_path):
     data = json.loads((out / "benchmark.json").read_text())
     scores = {s["scenario"]: s for s in data["scenarios"]}
     drift, null = scores["frequency_dependent_drift#1"], scores["null#1"]
-    assert drift["verdict"] == "baseline mismatch" and drift["named"] is None and not drift["correct"], drift
+    assert drift["verdict"] == "baseline mismatch", drift
     assert any(m.startswith("surge std.low_frequency: model below the measurement in every run")
                for m in drift["baseline_mismatches"]), drift
     assert drift["footprint"][0] == ["surge", "std.low_frequency"] and drift["footprint_flagged"], drift
-    # the null: the basin's own (baseline) drift, which the model lacks, is named "additionally"
-    # to the baseline mismatch: scored as a false alarm, though it is the basin's real drift
-    assert null["verdict"] == "baseline mismatch" and null["named"] == "slow_drift" and not null["correct"], null
+    assert null["verdict"] == "baseline mismatch", null
     assert any(m.startswith("surge std.low_frequency: model below the measurement in every run")
                for m in null["baseline_mismatches"]), null
     assert len(list((out / "runs").glob("*.npz"))) == 2 * 5 + 3  # both scenarios' runs, the drift's without it
