@@ -195,7 +195,7 @@ class SeaState:
         return (self.f_min_hz or 0.5 * fp, self.f_max_hz or 5.0 * fp)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)  # by name: the options grow
 class HydroOptions:
     """How the strip model treats a moving body: choices HydroDyn makes one way and the model
     made another, silently, until this was explicit. Fluid kinematics are taken at the

@@ -192,7 +192,8 @@ class SimulatorNode(Node):
         waves = None
         if s.wave_source == "internal":
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
-        options = HydroOptions(s.wetted_length, s.load_directions, s.hydrostatics, s.slow_drift)
+        options = HydroOptions(wetted_length=s.wetted_length, load_directions=s.load_directions,
+                               hydrostatics=s.hydrostatics, slow_drift=s.slow_drift)
         self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model, options=options)
         self.model.reset(motion=np.array(s.initial_state))
         self._feed: WaveFeed | None = None

@@ -2,13 +2,13 @@
 surge offset in the paper's load cases: the same sea, seed and drag model, one free-floating
 run per option set; the rows feed the README's table on the choice of defaults.
 
-This is the model's side only. The independent side (Newman's or Pinkster's second-order
-drift for the same hull, e.g. from a capytaine BEM run) is not computed here.
+This is the model's side only; the independent side (the capytaine BEM's mean drift and
+Newman's slow drift for the same hull) is ``studies/diagnosis/independent/drift_study.py``.
 """
 from __future__ import annotations
 
 import logging
-from dataclasses import asdict
+from dataclasses import asdict, replace
 
 from fowt_hydro_sim.physics.config import EARLIER, HYDRODYN, HydroOptions, Platform, SeaState, load_case
 from fowt_hydro_sim.physics.model import PlatformModel
@@ -19,9 +19,9 @@ log = logging.getLogger(__name__)
 
 OPTION_SETS = {
     "earlier (displaced, rotating, linear)": EARLIER,
-    "undisplaced wetted length": HydroOptions("undisplaced", "rotating", "linear", "none"),
-    "fixed directions": HydroOptions("displaced", "fixed", "linear", "none"),
-    "undisplaced + fixed (linear hydrostatics)": HydroOptions("undisplaced", "fixed", "linear", "none"),
+    "undisplaced wetted length": replace(EARLIER, wetted_length="undisplaced"),
+    "fixed directions": replace(EARLIER, load_directions="fixed"),
+    "undisplaced + fixed (linear hydrostatics)": replace(HYDRODYN, hydrostatics="linear"),
     "HydroDyn (undisplaced, fixed, nonlinear)": HYDRODYN,
     "default: HydroDyn + Newman slow drift (BEM table)": HydroOptions(),
 }
