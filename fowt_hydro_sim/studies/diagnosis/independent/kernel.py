@@ -48,13 +48,7 @@ def _mooring(x, fairlead, anchor, rest, pretension, stiffness, out):
         chord = anchor[line] - (x[:3] + arm)
         distance = math.sqrt(chord[0] ** 2 + chord[1] ** 2 + chord[2] ** 2)
         tension = max(0.0, pretension + stiffness * (distance - rest[line]))
-        force = tension * chord / distance
-        out[0] += force[0]
-        out[1] += force[1]
-        out[2] += force[2]
-        out[3] += arm[1] * force[2] - arm[2] * force[1]
-        out[4] += arm[2] * force[0] - arm[0] * force[2]
-        out[5] += arm[0] * force[1] - arm[1] * force[0]
+        _add_force(arm, tension * chord / distance, out)
 
 
 @njit(cache=True)
