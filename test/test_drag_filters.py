@@ -23,6 +23,7 @@ from fowt_hydro_sim.physics.config import (
     ConfigError,
     DragBand,
     DragCoefficients,
+    HydroOptions,
     MassProperties,
     Platform,
     SeaState,
@@ -201,8 +202,11 @@ def test_spinning_body_filters_in_the_member_frame():
     """A body spinning at a constant yaw rate of 2 pi 0.05 rad/s in still water: in each member's
     frame the relative velocity is steady, so the low-pass band passes it whole and the
     high-pass band nothing, and the drag equals a constant model with the low-frequency Cds.
-    (A world-frame filter would see a 0.05 Hz rotation and lose about half of it.)"""
+    (A world-frame filter would see a 0.05 Hz rotation and lose about half of it.) Load
+    directions rotating with the body: the fixed ones (the default, HydroDyn's small-angle
+    choice) keep the undisplaced member frames, which a full turn makes meaningless."""
     p = load_platform("windmoor12")
+    rotating = HydroOptions(load_directions="rotating")
 
     def low_frequency_only(cd: DragCoefficients) -> DragCoefficients:
         return cd if cd.bands is None else DragCoefficients(cd.bands[0])
@@ -211,7 +215,7 @@ def test_spinning_body_filters_in_the_member_frame():
     drag = {}
     for name, platform in (("filtered", dataclasses.replace(p, mass=HEAVY)),
                            ("constant", with_cds(p, low_frequency_only, mass=HEAVY))):
-        model = PlatformModel(platform, None, drag_model=name)
+        model = PlatformModel(platform, None, drag_model=name, options=rotating)
         model.set_external_wrench(np.array([0.0, 0.0, HEAVY_KG * p.environment.gravity_m_s2, 0, 0, 0]))
         model.reset(velocity=np.array([0, 0, 0, 0, 0, yaw_rate]))
         drag[name] = model.run(40.0).loads[:, DRAG]

@@ -389,19 +389,26 @@ def test_a_wave_bag_played_on_the_topic_is_recorded_again_bit_for_bit(wave_bag, 
     recorded are the bag's, byte for byte, and in order."""
     record = tmp_path / "run"
     from rosgraph_msgs.msg import Clock
+
+    from msg_adapters.stamps import seconds
     listener = Listener({"/clock": Clock})
     node = start("node", real_time_factor=0.0, wave_source="topic", drag_model="constant", record=str(record),
                  wave_timeout_s=60.0)  # as fast as possible, a silent topic soon means still water
+    last_sample_s = Bag(wave_bag).elevation().time_s[-1]
+
+    def simulated_s() -> float:
+        return max((seconds(m.clock) for m in listener.messages["/clock"]), default=-1.0)
     try:
         try:
             assert listener.wait_for(lambda: listener.messages["/clock"], 180.0)  # the node is up
+            player = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(wave_bag), "--rate",
+                                     "0", "--wait-for-subscribers", "1"], cwd=REPO, capture_output=True, text=True,
+                                    timeout=180)
+            assert player.returncode == 0, player.stderr
+            # the node has taken every sample once its simulated time is past the last one
+            assert listener.wait_for(lambda: simulated_s() > last_sample_s, 180.0), simulated_s()
         finally:
             listener.close()
-        player = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(wave_bag), "--rate", "0",
-                                 "--wait-for-subscribers", "1"], cwd=REPO, capture_output=True, text=True,
-                                timeout=180)
-        assert player.returncode == 0, player.stderr
-        time.sleep(3.0)  # the node takes the last samples
         node.send_signal(signal.SIGINT)
     finally:
         log = finish(node, timeout_s=60)  # the node is never left running
