@@ -62,7 +62,8 @@ def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, platform):
     # within 4 %: the model's slow drift (the default) makes the low-frequency surge less
     # sensitive to this Cd, so the fit's stopping tolerance maps to a wider Cd band (3.1 % seen)
     assert abs(result.parameters[LF_COLUMNS] / 0.8 - 1) < 0.04, result
-    assert abs(result.errors_before["surge.low_frequency"]) > 10  # 0.4 instead of 0.8: a real gap
+    # 0.4 instead of 0.8: a real gap (5 % of the low-frequency surge, most of which is now the slow drift's)
+    assert abs(result.errors_before["surge.low_frequency"]) > 4
     assert max(abs(e) for e in result.errors_after.values()) < 1.0
     assert result.model_runs <= 20
 
