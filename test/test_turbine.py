@@ -144,12 +144,16 @@ def static_offset(thrust_n: float, hub_z_m: float, exact_hydrostatics: bool) -> 
     return solution.x
 
 
-def linear_offset(thrust_n: float, hub_z_m: float, exact_hydrostatics: bool, step: float = 1e-6) -> np.ndarray:
-    """K^-1 F of the closed forms: K their (surge, heave, pitch) stiffness at rest."""
+def closed_form_stiffness(hub_z_m: float, exact_hydrostatics: bool, step: float = 1e-6) -> np.ndarray:
+    """The closed forms' (surge, heave, pitch) stiffness at rest, by central differences."""
     def loads(q):
         return static_loads(*q, 0.0, hub_z_m, exact_hydrostatics)
-    stiffness = -np.column_stack([(loads(step * e) - loads(-step * e)) / (2 * step) for e in np.eye(3)])
-    return np.linalg.solve(stiffness, thrust_n * np.array([1.0, 0.0, hub_z_m]))
+    return -np.column_stack([(loads(step * e) - loads(-step * e)) / (2 * step) for e in np.eye(3)])
+
+
+def linear_offset(thrust_n: float, hub_z_m: float, exact_hydrostatics: bool) -> np.ndarray:
+    """K^-1 F of the closed forms."""
+    return np.linalg.solve(closed_form_stiffness(hub_z_m, exact_hydrostatics), thrust_n * np.array([1.0, 0.0, hub_z_m]))
 
 
 @pytest.mark.parametrize("hydrostatics", ["linear", "nonlinear"])
@@ -168,9 +172,8 @@ def test_steady_platform_pitch_under_the_mean_thrust_is_the_static_offset(hydros
     options = replace(HydroOptions(), hydrostatics=hydrostatics)
     model = PlatformModel(platform, None, dt_s=0.05, drag_model="constant", options=options)
     hub_z, exact = platform.hub_point_m[2], hydrostatics == "nonlinear"
-    closed_form = -np.column_stack([(static_loads(*(1e-6 * e), 0.0, hub_z, exact)
-                                     - static_loads(*(-1e-6 * e), 0.0, hub_z, exact)) / 2e-6 for e in np.eye(3)])
-    assert model.restoring_matrix()[np.ix_([0, 2, 4], [0, 2, 4])] == pytest.approx(closed_form, rel=2e-3, abs=1e3)
+    assert model.restoring_matrix()[np.ix_([0, 2, 4], [0, 2, 4])] == pytest.approx(
+        closed_form_stiffness(hub_z, exact), rel=2e-3, abs=1e3)
     for share in (0.25, 1.0):
         model.reset()
         model.set_external_wrench(np.array([share * thrust, 0, 0, 0, 0, 0.0]), "hub")
