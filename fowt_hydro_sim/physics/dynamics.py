@@ -20,8 +20,9 @@ from numba import njit
 from fowt_hydro_sim.physics.drag_filters import band_velocities, drag_per_length, filter_rates
 from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, N_LOADS, ROW, component_loads
 from fowt_hydro_sim.physics.morison import (
+    add_wet_added_mass,
     added_mass_about,
-    deep_added_mass,
+    deep_added_mass_about,
     end_plate_loads,
     lever_arms,
     relative_velocities,
@@ -66,6 +67,7 @@ class StripData(NamedTuple):
     point: np.ndarray  # (n,) index of the kinematics point
     deep: np.ndarray  # (n,) bool: fully wet at rest (morison.strip_loads)
     deep_added_mass_6x6: np.ndarray  # (6, 6) their added mass fully wet, body axes, about the reference point
+    deep_moments: np.ndarray  # (13, 3, 3) moments of their 3x3 added mass (morison.added_mass_moments)
 
 
 class PlateData(NamedTuple):
@@ -134,12 +136,11 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
     if d.options.fixed_directions:  # world axes, lever arms R c
         frame = np.eye(3)
         arm, plate_arm = lever_arms(rotation, s.centre), lever_arms(rotation, plates.centre)
-        strip_6x6 = added_mass_about(arm, s.added_mass_3x3)
         plate_6x6 = added_mass_about(plate_arm, plates.added_mass_3x3)
-        added_mass_body = deep_added_mass(s.length, strip_6x6, s.deep)
+        added_mass_body = deep_added_mass_about(rotation, s.deep_moments)
     else:  # body axes
         frame, arm, plate_arm = rotation, s.centre, plates.centre
-        strip_6x6, plate_6x6 = s.added_mass_6x6, plates.added_mass_6x6
+        plate_6x6 = plates.added_mass_6x6
         added_mass_body = s.deep_added_mass_6x6.copy()
     wet_pose, wet_z = (np.eye(3), 0.0) if d.options.undisplaced_wetting else (rotation, position[2])
     body = np.zeros((3, 6))  # drag, inertia, centripetal added mass, frame axes
@@ -157,14 +158,20 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
     drag = np.empty((n_strips, 2))
     drag_per_length(v_rel, v_band, s.band_drag, s.drag, s.filtered, drag)
     strip_loads(frame, omega, wet, a_fluid, drag, arm, s.directions, s.length, s.inertia, s.added_mass,
-                strip_6x6, s.deep, body[0], body[1], body[2], added_mass_body)
+                body[0], body[1], body[2])
+    add_wet_added_mass(wet, s.length, s.deep, s.added_mass_6x6, arm, s.added_mass_3x3, d.options.fixed_directions,
+                       added_mass_body)
     end_plate_loads(frame, velocity, omega, kinematics, plate_arm, plates.normal, submerged, plates.pressure_area,
                     plates.added_mass, plates.drag, plate_6x6, plates.point, body[0], body[1], body[2],
                     added_mass_body)
+    component_loads(t, y, rotation, d.component_params, d.component_tables, loads, masses)
+    if d.options.fixed_directions:  # the frame is the world's
+        for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
+            loads[row] = body[c]
+        return added_mass_body
     for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
         loads[row, 0:3] = matvec(frame, body[c, 0:3])
         loads[row, 3:6] = matvec(frame, body[c, 3:6])
-    component_loads(t, y, rotation, d.component_params, d.component_tables, loads, masses)
     added_mass = np.empty((6, 6))
     for r in range(0, 6, 3):
         for c in range(0, 6, 3):
@@ -175,9 +182,13 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
 @njit(cache=True)
 def react(loads: np.ndarray, added_mass: np.ndarray, masses: np.ndarray, acceleration: np.ndarray) -> None:
     """Each left-hand-side mass's reaction -M a into its row."""
-    loads[ADDED_MASS] -= matvec(added_mass, acceleration)
+    for i in range(6):
+        for j in range(6):
+            loads[ADDED_MASS, i] -= added_mass[i, j] * acceleration[j]
     for k in range(masses.shape[0]):
-        loads[FIRST_MODULE_ROW + k] -= matvec(masses[k], acceleration)
+        for i in range(6):
+            for j in range(6):
+                loads[FIRST_MODULE_ROW + k, i] -= masses[k, i, j] * acceleration[j]
 
 
 @njit(cache=True)

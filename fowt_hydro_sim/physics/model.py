@@ -42,6 +42,7 @@ from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
 from fowt_hydro_sim.physics.morison import (
     added_mass_about,
+    added_mass_moments,
     added_mass_tensors,
     deep_added_mass,
     lever_arms,
@@ -97,8 +98,8 @@ class PlatformModel:
     of one run share it); without it the table is synthesised in blocks of ``wave_block_s``
     as the run advances (waves.kinematics.BlockSynthesis: the same rows, two blocks held in
     a ring, so that the memory does not grow with the repeat period). ``options``: how the moving body's hydrodynamics are taken
-    (config.HydroOptions; default today's: displaced wetted length, rotating directions,
-    linear hydrostatics; config.HYDRODYN is HydroDyn's).
+    (config.HydroOptions; default: undisplaced wetted length, fixed directions, nonlinear
+    hydrostatics and Newman's slow drift; config.HYDRODYN is HydroDyn's, without the drift).
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
@@ -164,7 +165,8 @@ class PlatformModel:
                              strip_3x3, strip_6x6, s.drag_kg_m2,
                              s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
                              s.filtered & filtered, s.kinematics_point.astype(np.int64), deep,
-                             deep_added_mass(s.length_m, strip_6x6, deep)),
+                             deep_added_mass(s.length_m, strip_6x6, deep),
+                             added_mass_moments(s.centre_m, strip_3x3, s.length_m, deep)),
             plates=PlateData(plates.centre_m, plates.normal, plates.pressure_area_m2, plates.added_mass_kg,
                              plates.drag_kg_m, plate_3x3, added_mass_about(plates.centre_m, plate_3x3),
                              plates.kinematics_point.astype(np.int64)),

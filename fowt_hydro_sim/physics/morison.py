@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from fowt_hydro_sim.physics.rigid_body import cross3
 from fowt_hydro_sim.physics.strips import Discretisation
 
 
@@ -33,11 +34,6 @@ def _to_body(rotation: np.ndarray, x: float, y: float, z: float) -> tuple[float,
     return (rotation[0, 0] * x + rotation[1, 0] * y + rotation[2, 0] * z,
             rotation[0, 1] * x + rotation[1, 1] * y + rotation[2, 1] * z,
             rotation[0, 2] * x + rotation[1, 2] * y + rotation[2, 2] * z)
-
-
-@njit(cache=True, inline="always")
-def _cross(a: tuple, b: tuple) -> tuple[float, float, float]:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 @njit(cache=True, inline="always")
@@ -91,28 +87,114 @@ def lever_arms(rotation: np.ndarray, points: np.ndarray) -> np.ndarray:
     return out
 
 
+@njit(cache=True, inline="always")
+def _add_mass_about(out: np.ndarray, scale: float, r: np.ndarray, a: np.ndarray) -> None:
+    """out += scale J^T A J = scale [[A, -A S], [S A, -S A S]], S = skew(r): the 6x6 about the
+    reference point of a symmetric 3x3 added mass A at lever arm r (written out: no
+    small-matrix products in the step loop). Column k of S A is r x A[:, k]; row j of
+    -S A S is r x (S A)[j, :]."""
+    cols = (cross3((r[0], r[1], r[2]), (a[0, 0], a[1, 0], a[2, 0])),
+            cross3((r[0], r[1], r[2]), (a[0, 1], a[1, 1], a[2, 1])),
+            cross3((r[0], r[1], r[2]), (a[0, 2], a[1, 2], a[2, 2])))
+    for j in range(3):
+        row = (cols[0][j], cols[1][j], cols[2][j])  # (S A)[j, :]
+        for k in range(3):
+            out[j, k] += scale * a[j, k]
+            out[3 + j, k] += scale * row[k]
+            out[k, 3 + j] += scale * row[k]  # -(A S) = (S A)^T, A symmetric
+        corner = cross3((r[0], r[1], r[2]), row)
+        out[3 + j, 3] += scale * corner[0]
+        out[3 + j, 4] += scale * corner[1]
+        out[3 + j, 5] += scale * corner[2]
+
+
 @njit(cache=True)
 def added_mass_about(arm: np.ndarray, mass_3x3: np.ndarray) -> np.ndarray:
     """6x6 added mass about the reference point of 3x3 added masses at points ``arm``:
-    J^T A J = [[A, -A S], [S A, -S A S]] with S = skew(arm) (written out: no small-matrix
-    products in the step loop)."""
-    out = np.empty((arm.shape[0], 6, 6))
-    sa, skew = np.empty((3, 3)), np.empty((3, 3))
+    J^T A J = [[A, -A S], [S A, -S A S]] with S = skew(arm)."""
+    out = np.zeros((arm.shape[0], 6, 6))
     for i in range(arm.shape[0]):
-        r, a = arm[i], mass_3x3[i]
-        skew[0, 0], skew[0, 1], skew[0, 2] = 0.0, -r[2], r[1]
-        skew[1, 0], skew[1, 1], skew[1, 2] = r[2], 0.0, -r[0]
-        skew[2, 0], skew[2, 1], skew[2, 2] = -r[1], r[0], 0.0
-        for j in range(3):
-            for k in range(3):
-                sa[j, k] = skew[j, 0] * a[0, k] + skew[j, 1] * a[1, k] + skew[j, 2] * a[2, k]
-        for j in range(3):
-            for k in range(3):
-                out[i, j, k] = a[j, k]
-                out[i, 3 + j, k] = sa[j, k]
-                out[i, k, 3 + j] = sa[j, k]  # -(A S) = (S A)^T, A symmetric
-                out[i, 3 + j, 3 + k] = -(sa[j, 0] * skew[0, k] + sa[j, 1] * skew[1, k] + sa[j, 2] * skew[2, k])
+        _add_mass_about(out[i], 1.0, arm[i], mass_3x3[i])
     return out
+
+
+def added_mass_moments(centre: np.ndarray, mass_3x3: np.ndarray, length: np.ndarray,
+                       deep: np.ndarray) -> np.ndarray:
+    """Moments of the ``deep`` strips' 3x3 added mass (world-fixed: fixed directions) over
+    their body-frame centres c: [sum L A, sum L c_n A (n = 0..2), sum L c_n c_q A (n, q =
+    0..2)], (13, 3, 3); ``deep_added_mass_about`` turns them into the deep strips' 6x6 at any
+    attitude without a sum over strips."""
+    weight = (length * deep)[:, None, None] * mass_3x3
+    first = np.einsum("in,ijk->njk", centre, weight)
+    second = np.einsum("in,iq,ijk->nqjk", centre, centre, weight).reshape(9, 3, 3)
+    return np.ascontiguousarray(np.concatenate([weight.sum(axis=0)[None], first, second]))
+
+
+@njit(cache=True, inline="always")
+def _levi(i: int, j: int, k: int) -> float:
+    """The Levi-Civita symbol: skew(r)[i, k] = sum_j eps_ijk r_j."""
+    return 0.5 * (i - j) * (j - k) * (k - i)
+
+
+@njit(cache=True)
+def deep_added_mass_about(rotation: np.ndarray, moments: np.ndarray) -> np.ndarray:
+    """The deep strips' sum of L J^T A J with lever arms r = R c, from ``added_mass_moments``:
+    S A from P_m = sum L r_m A = sum_n R_mn (sum L c_n A), S A S from Q_mp = sum L r_m r_p A =
+    sum_nq R_mn R_pq (sum L c_n c_q A), S = skew(r) being linear in r."""
+    first = np.zeros((3, 3, 3))  # P[m]
+    half = np.zeros((3, 3, 3, 3))  # [m, q]: sum_n R_mn (sum L c_n c_q A)
+    second = np.zeros((3, 3, 3, 3))  # Q[m, p]
+    for m in range(3):
+        for n in range(3):
+            rmn = rotation[m, n]
+            for j in range(3):
+                for k in range(3):
+                    first[m, j, k] += rmn * moments[1 + n, j, k]
+                    for q in range(3):
+                        half[m, q, j, k] += rmn * moments[4 + 3 * n + q, j, k]
+    for m in range(3):
+        for p in range(3):
+            for q in range(3):
+                rpq = rotation[p, q]
+                for j in range(3):
+                    for k in range(3):
+                        second[m, p, j, k] += rpq * half[m, q, j, k]
+    out = np.zeros((6, 6))
+    for j in range(3):
+        for k in range(3):
+            out[j, k] = moments[0, j, k]
+            sa, sas = 0.0, 0.0  # (S A)[j, k] = eps_jml P_m[l, k]; (S A S)[j, k] = eps_jml eps_pqk Q_mq[l, p]
+            for m in range(3):
+                for l in range(3):
+                    e = _levi(j, m, l)
+                    if e == 0.0:
+                        continue
+                    sa += e * first[m, l, k]
+                    for q in range(3):
+                        for p in range(3):
+                            sas += e * _levi(p, q, k) * second[m, q, l, p]
+            out[3 + j, k] = sa
+            out[k, 3 + j] = sa
+            out[3 + j, 3 + k] = -sas
+    return out
+
+
+@njit(cache=True)
+def add_wet_added_mass(wet: np.ndarray, length: np.ndarray, deep: np.ndarray, added_mass_6x6: np.ndarray,
+                       arm: np.ndarray, added_mass_3x3: np.ndarray, about_arm: bool, out: np.ndarray) -> None:
+    """Add each strip's 6x6 added mass times its wetted length to ``out``, which comes holding
+    the ``deep`` strips' fully wet (so a deep strip adds only its difference, none while it
+    stays under water: the step loop does not sum the strips that are always wet). The
+    strip's 6x6 is ``added_mass_6x6[i]`` (body axes, rotating directions) or, ``about_arm``,
+    its 3x3 at lever arm ``arm[i]`` (world axes, fixed directions)."""
+    for i in range(length.size):
+        scale = (wet[i] - 1.0) * length[i] if deep[i] else wet[i] * length[i]
+        if scale == 0.0:
+            continue
+        if about_arm:
+            _add_mass_about(out, scale, arm[i], added_mass_3x3[i])
+        else:
+            _add_scaled(out, scale, added_mass_6x6[i])
 
 
 @njit(cache=True)
@@ -130,7 +212,7 @@ def relative_velocities(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarr
         p = kinematics_point[i]
         u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
         a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
-        spin = _cross(w_body, (c[0], c[1], c[2]))
+        spin = cross3(w_body, (c[0], c[1], c[2]))
         vr0 = u[0] - v_body[0] - spin[0]
         vr1 = u[1] - v_body[1] - spin[1]
         vr2 = u[2] - v_body[2] - spin[2]
@@ -144,27 +226,21 @@ def relative_velocities(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarr
 def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: np.ndarray,
                 drag_per_length: np.ndarray, arm: np.ndarray,
                 directions: np.ndarray, length: np.ndarray, inertia: np.ndarray,
-                added_mass: np.ndarray, added_mass_6x6: np.ndarray, deep: np.ndarray,
-                out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
-                out_added_mass: np.ndarray) -> None:
+                added_mass: np.ndarray, out_drag: np.ndarray, out_inertia: np.ndarray,
+                out_centripetal: np.ndarray) -> None:
     """Add the strips' drag, fluid-inertia and centripetal added-mass wrenches (frame axes,
-    about the reference point) and their 6x6 added mass (frame axes) to the outputs.
+    about the reference point) to the outputs (their 6x6 added mass: ``add_wet_added_mass``).
 
     ``drag_per_length`` (n, 2) is the transverse drag per unit wetted length of the drag
-    model (drag_filters.drag_per_length). ``out_added_mass`` comes holding the 6x6 added
-    mass of the ``deep`` strips fully wet (``deep_added_mass``): a deep strip adds only its
-    difference from that (none while it stays under water), so the step loop does not sum
-    the 6x6 matrices of the strips that are always wet.
+    model (drag_filters.drag_per_length).
     """
     w_body = _to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
-        if deep[i] and wet[i] != 1.0:
-            _add_scaled(out_added_mass, (wet[i] - 1.0) * length[i], added_mass_6x6[i])
         if wet[i] == 0.0:
             continue
         c = arm[i]
         wet_length = wet[i] * length[i]
-        centripetal = _cross(w_body, _cross(w_body, (c[0], c[1], c[2])))
+        centripetal = cross3(w_body, cross3(w_body, (c[0], c[1], c[2])))
         d1, d2 = directions[i, 0], directions[i, 1]
         drag1, drag2 = drag_per_length[i, 0] * wet_length, drag_per_length[i, 1] * wet_length
         fluid1, fluid2 = inertia[i, 0] * a_fluid[i, 0] * wet_length, inertia[i, 1] * a_fluid[i, 1] * wet_length
@@ -179,13 +255,11 @@ def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: 
                     fluid1 * d1[2] + fluid2 * d2[2])
         _add_wrench(out_centripetal, c, spin1 * d1[0] + spin2 * d2[0], spin1 * d1[1] + spin2 * d2[1],
                     spin1 * d1[2] + spin2 * d2[2])
-        if not deep[i]:
-            _add_scaled(out_added_mass, wet_length, added_mass_6x6[i])
 
 
 @njit(cache=True)
 def deep_added_mass(length: np.ndarray, added_mass_6x6: np.ndarray, deep: np.ndarray) -> np.ndarray:
-    """Sum of the ``deep`` strips' 6x6 added mass, fully wet (strip_loads' starting value)."""
+    """Sum of the ``deep`` strips' 6x6 added mass, fully wet (add_wet_added_mass's starting value)."""
     out = np.zeros((6, 6))
     for i in range(length.size):
         if deep[i]:
@@ -211,8 +285,8 @@ def end_plate_loads(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, 
         u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
         a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
         point = (c[0], c[1], c[2])
-        spin = _cross(w_body, point)
-        centripetal = _cross(w_body, spin)
+        spin = cross3(w_body, point)
+        centripetal = cross3(w_body, spin)
         w_rel = ((u[0] - v_body[0] - spin[0]) * n[0] + (u[1] - v_body[1] - spin[1]) * n[1]
                  + (u[2] - v_body[2] - spin[2]) * n[2])
         a_n = a[0] * n[0] + a[1] * n[1] + a[2] * n[2]

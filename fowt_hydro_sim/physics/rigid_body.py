@@ -26,6 +26,12 @@ def euler_rates(roll: float, pitch: float, yaw: float, omega: np.ndarray) -> np.
     return np.array([roll_rate, pitch_rate, yaw_rate])
 
 
+@njit(cache=True, inline="always")
+def cross3(a: tuple, b: tuple) -> tuple[float, float, float]:
+    """a x b of two 3-tuples (no array made)."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
 @njit(cache=True)
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
@@ -42,11 +48,6 @@ def matvec(matrix: np.ndarray, x: np.ndarray) -> np.ndarray:
             acc += matrix[i, j] * x[j]
         out[i] = acc
     return out
-
-
-@njit(cache=True)
-def skew(r: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
 
 
 @njit(cache=True)
@@ -70,26 +71,28 @@ def mass_matrix_and_bias(mass: float, cog_body: np.ndarray, inertia_cog_body: np
                          rotation: np.ndarray, omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """6x6 mass matrix about the reference point (world axes) and the velocity terms
     [m w x (w x r_g); w x (I_G w) + m r_g x (w x (w x r_g))] that move to the right-hand side."""
-    r_g = np.zeros(3)
-    for i in range(3):
-        r_g[i] = rotation[i, 0] * cog_body[0] + rotation[i, 1] * cog_body[1] + rotation[i, 2] * cog_body[2]
+    g = (rotation[0, 0] * cog_body[0] + rotation[0, 1] * cog_body[1] + rotation[0, 2] * cog_body[2],
+         rotation[1, 0] * cog_body[0] + rotation[1, 1] * cog_body[1] + rotation[1, 2] * cog_body[2],
+         rotation[2, 0] * cog_body[0] + rotation[2, 1] * cog_body[1] + rotation[2, 2] * cog_body[2])
     inertia_g = rotate_inertia(rotation, inertia_cog_body)
-    s = skew(r_g)
+    s = ((0.0, -g[2], g[1]), (g[2], 0.0, -g[0]), (-g[1], g[0], 0.0))  # skew(r_g)
     out = np.zeros((6, 6))
     for i in range(3):
         out[i, i] = mass
         for j in range(3):
-            out[i, 3 + j] = -mass * s[i, j]
-            out[3 + i, j] = mass * s[i, j]
-            ss = s[i, 0] * s[0, j] + s[i, 1] * s[1, j] + s[i, 2] * s[2, j]
-            out[3 + i, 3 + j] = inertia_g[i, j] - mass * ss
-    centripetal = cross(omega, cross(omega, r_g))
-    i_omega = np.zeros(3)
-    for i in range(3):
-        i_omega[i] = inertia_g[i, 0] * omega[0] + inertia_g[i, 1] * omega[1] + inertia_g[i, 2] * omega[2]
+            out[i, 3 + j] = -mass * s[i][j]
+            out[3 + i, j] = mass * s[i][j]
+            out[3 + i, 3 + j] = inertia_g[i, j] - mass * (s[i][0] * s[0][j] + s[i][1] * s[1][j] + s[i][2] * s[2][j])
+    w = (omega[0], omega[1], omega[2])
+    centripetal = cross3(w, cross3(w, g))
+    i_omega = (inertia_g[0, 0] * w[0] + inertia_g[0, 1] * w[1] + inertia_g[0, 2] * w[2],
+               inertia_g[1, 0] * w[0] + inertia_g[1, 1] * w[1] + inertia_g[1, 2] * w[2],
+               inertia_g[2, 0] * w[0] + inertia_g[2, 1] * w[1] + inertia_g[2, 2] * w[2])
+    gyroscopic, offset = cross3(w, i_omega), cross3(g, centripetal)
     bias = np.empty(6)
-    bias[0:3] = mass * centripetal
-    bias[3:6] = cross(omega, i_omega) + mass * cross(r_g, centripetal)
+    for i in range(3):
+        bias[i] = mass * centripetal[i]
+        bias[3 + i] = gyroscopic[i] + mass * offset[i]
     return out, bias
 
 

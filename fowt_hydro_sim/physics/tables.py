@@ -6,17 +6,32 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True)
-def interpolate_table(table: np.ndarray, step_s: float, t: float) -> np.ndarray:
-    """Cubic (4-point Lagrange) interpolation in a periodic table (n, points, channels) at
-    time t: (points, channels)."""
-    n, n_points, n_channels = table.shape
+@njit(cache=True, inline="always")
+def _lagrange(step_s: float, t: float, n: int) -> tuple[tuple[float, float, float, float], tuple[int, int, int, int]]:
+    """The 4-point Lagrange weights and rows (periodic in n rows) at time t."""
     x = t / step_s
     i = int(np.floor(x))
     s = x - i
     w = (-s * (s - 1.0) * (s - 2.0) / 6.0, (s + 1.0) * (s - 1.0) * (s - 2.0) / 2.0,
          -(s + 1.0) * s * (s - 2.0) / 2.0, (s + 1.0) * s * (s - 1.0) / 6.0)
-    rows = ((i - 1) % n, i % n, (i + 1) % n, (i + 2) % n)
+    return w, ((i - 1) % n, i % n, (i + 1) % n, (i + 2) % n)
+
+
+@njit(cache=True)
+def interpolate_series(series: np.ndarray, step_s: float, t: float, channel: int) -> float:
+    """``interpolate_table`` of one channel of a periodic series (n, channels): a number, no
+    array made (for the load components)."""
+    w, rows = _lagrange(step_s, t, series.shape[0])
+    return (w[0] * series[rows[0], channel] + w[1] * series[rows[1], channel]
+            + w[2] * series[rows[2], channel] + w[3] * series[rows[3], channel])
+
+
+@njit(cache=True)
+def interpolate_table(table: np.ndarray, step_s: float, t: float) -> np.ndarray:
+    """Cubic (4-point Lagrange) interpolation in a periodic table (n, points, channels) at
+    time t: (points, channels)."""
+    n, n_points, n_channels = table.shape
+    w, rows = _lagrange(step_s, t, n)
     out = np.empty((n_points, n_channels))
     for p in range(n_points):
         for c in range(n_channels):

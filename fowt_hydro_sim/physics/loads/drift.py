@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.tables import interpolate_table
+from fowt_hydro_sim.physics.tables import interpolate_series
 
 STEP_S = 0.5  # force samples; the slow drift lies below 0.05 Hz, the envelope below ~0.5 Hz
 
@@ -57,6 +57,5 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """The slow-drift force F(t) (world x, y) at the reference point."""
-    force = interpolate_table(table.reshape((table.shape[0], 1, table.shape[1])), params[0], t)[0]
-    out[0] += force[0]
-    out[1] += force[1]
+    out[0] += interpolate_series(table, params[0], t, 0)
+    out[1] += interpolate_series(table, params[0], t, 1)

@@ -12,8 +12,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.rigid_body import matvec
-from fowt_hydro_sim.physics.tables import interpolate_table
+from fowt_hydro_sim.physics.tables import interpolate_series
 
 
 def _zeros(*shape: int):
@@ -86,8 +85,10 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """f(t) - B1 v - B2 |v| v - K q - K3 q^3, and M_x on the left-hand side."""
-    q, v = y[0:6], y[6:12]
-    force = interpolate_table(table.reshape((table.shape[0], 1, table.shape[1])), params[0], t)[0]
-    linear = matvec(params[1:37].reshape((6, 6)), v) + matvec(params[43:79].reshape((6, 6)), q)
-    out += force - linear - (params[37:43] * np.abs(v) * v + params[79:85] * q ** 3)
-    mass += params[85:121].reshape((6, 6))
+    for i in range(6):  # written out: no temporaries in the step loop
+        q, v = y[i], y[6 + i]
+        acc = interpolate_series(table, params[0], t, i) - params[37 + i] * abs(v) * v - params[79 + i] * q * q * q
+        for j in range(6):
+            acc -= params[1 + 6 * i + j] * y[6 + j] + params[43 + 6 * i + j] * y[j]
+            mass[i, j] += params[85 + 6 * i + j]
+        out[i] += acc

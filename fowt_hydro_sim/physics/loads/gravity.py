@@ -4,7 +4,6 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.rigid_body import cross, matvec
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
@@ -16,6 +15,9 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
 @njit(cache=True)
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
-    weight = np.array([0.0, 0.0, -params[0]])
-    out[0:3] += weight
-    out[3:6] += cross(matvec(rotation, params[1:4]), weight)
+    # the weight (0, 0, -m g) at the centre of gravity R c (world axes)
+    arm0 = rotation[0, 0] * params[1] + rotation[0, 1] * params[2] + rotation[0, 2] * params[3]
+    arm1 = rotation[1, 0] * params[1] + rotation[1, 1] * params[2] + rotation[1, 2] * params[3]
+    out[2] -= params[0]
+    out[3] -= arm1 * params[0]
+    out[4] += arm0 * params[0]

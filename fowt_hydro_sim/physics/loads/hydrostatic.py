@@ -28,10 +28,13 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.physics.config import ConfigError, Member, Platform
-from fowt_hydro_sim.physics.rigid_body import cross, matvec
 from fowt_hydro_sim.physics.strips import Strips, transverse_directions
 
 N_RADIAL, N_ANGULAR, N_SIDE = 6, 24, 8  # section quadrature (circle: radial x angular; rectangle: side^2)
+# where the water plane cuts a prism's side wall only, the integrands over the section are of
+# degree 2 at most: a Gauss rule exact to degree 3 is exact there (circle: 3 Gauss radii x 4
+# angles; rectangle: 2 x 2)
+COARSE = (3, 4, 2)
 
 
 @dataclass(frozen=True)
@@ -89,40 +92,69 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     return Hydrostatics(volume, centre, area, first, second, wrench, c)
 
 
-def section_quadrature(member: Member) -> tuple[np.ndarray, np.ndarray]:
+def section_quadrature(member: Member, n_radial: int = N_RADIAL, n_angular: int = N_ANGULAR,
+                       n_side: int = N_SIDE) -> tuple[np.ndarray, np.ndarray]:
     """Offsets (k, 3; body frame, from the member's axis) and area weights (k,) of the
     section quadrature at end a: exact for polynomials of degree 3 over the section."""
     a, b = np.array(member.end_a_m), np.array(member.end_b_m)
     d1, d2 = transverse_directions((b - a) / np.linalg.norm(b - a))
     if member.section == "circular":
         radius = member.width_m / 2
-        x, w = np.polynomial.legendre.leggauss(N_RADIAL)
+        x, w = np.polynomial.legendre.leggauss(n_radial)
         r = radius * (x + 1) / 2
-        theta = 2 * np.pi * (np.arange(N_ANGULAR) + 0.5) / N_ANGULAR
+        theta = 2 * np.pi * (np.arange(n_angular) + 0.5) / n_angular
         u, v = np.outer(r, np.cos(theta)).ravel(), np.outer(r, np.sin(theta)).ravel()
-        weights = np.outer(w * r * radius / 2, np.full(N_ANGULAR, 2 * np.pi / N_ANGULAR)).ravel()
+        weights = np.outer(w * r * radius / 2, np.full(n_angular, 2 * np.pi / n_angular)).ravel()
     else:  # width along d1, height along d2 (strips.py)
-        x, w = np.polynomial.legendre.leggauss(N_SIDE)
-        u = np.repeat(x * member.width_m / 2, N_SIDE)
-        v = np.tile(x * member.height_m / 2, N_SIDE)
+        x, w = np.polynomial.legendre.leggauss(n_side)
+        u = np.repeat(x * member.width_m / 2, n_side)
+        v = np.tile(x * member.height_m / 2, n_side)
         weights = np.outer(w * member.width_m / 2, w * member.height_m / 2).ravel()
     return np.outer(u, d1) + np.outer(v, d2), weights
 
 
-def quadrature_lines(platform: Platform) -> np.ndarray:
-    """Every member's quadrature lines as rows [start (3), start to end (3), axial length,
-    area weight at end a, radius ratio b/a], body frame: the nonlinear hydrostatics' table.
-    A line runs at a fixed fraction of the local radius, so it is parallel to the axis unless
-    the member is tapered."""
-    rows = []
+def member_lines(member: Member, sizes: tuple[int, int, int] = (N_RADIAL, N_ANGULAR, N_SIDE)) -> np.ndarray:
+    """A member's quadrature lines as rows [start (3), start to end (3), axial length, area
+    weight at end a, radius ratio b/a], body frame. A line runs at a fixed fraction of the
+    local radius, so it is parallel to the axis unless the member is tapered."""
+    a, b = np.array(member.end_a_m), np.array(member.end_b_m)
+    ratio = member.diameter_at(1.0) / member.width_m if member.section == "circular" else 1.0
+    offsets, weights = section_quadrature(member, *sizes)
+    return np.array([[*(a + offset), *(b + ratio * offset - a - offset), float(np.linalg.norm(b - a)), weight, ratio]
+                     for offset, weight in zip(offsets, weights)])
+
+
+def _reach(member: Member) -> float:
+    """The largest distance of a point of an end face from the member's axis."""
+    if member.section == "circular":
+        return max(member.width_m, member.diameter_at(1.0)) / 2
+    return math.hypot(member.width_m, member.height_m) / 2
+
+
+# a member's record in the nonlinear hydrostatics' parameters
+FIRST_FINE, N_FINE, FIRST_COARSE, N_COARSE, END_A, END_B, REACH, VOLUME, MOMENT = 0, 1, 2, 3, 4, 7, 10, 11, 12
+RECORD = 15
+
+
+def member_records(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
+    """Per member, a record (RECORD floats: where its fine and coarse lines are in the table,
+    its end centres, reach, whole volume and its first moment, body frame) and the table of
+    every member's fine then coarse lines (a tapered member's coarse lines are its fine ones:
+    its integrands are not polynomials)."""
+    records, tables, first = [], [], 0
     for m in platform.members:
-        a, b = np.array(m.end_a_m), np.array(m.end_b_m)
-        ratio = m.diameter_at(1.0) / m.width_m if m.section == "circular" else 1.0
-        offsets, weights = section_quadrature(m)
-        for offset, weight in zip(offsets, weights):
-            rows.append([*(a + offset), *(b + ratio * offset - a - offset), float(np.linalg.norm(b - a)), weight,
-                         ratio])
-    return np.array(rows)
+        fine = member_lines(m)
+        coarse = fine if m.tapered else member_lines(m, COARSE)
+        volume, moment = submerged_volume(np.eye(3), -np.inf, fine)  # wholly under water
+        record = np.zeros(RECORD)
+        record[[FIRST_FINE, N_FINE]] = first, len(fine)
+        record[[FIRST_COARSE, N_COARSE]] = (first, len(fine)) if m.tapered else (first + len(fine), len(coarse))
+        record[END_A:END_A + 3], record[END_B:END_B + 3] = m.end_a_m, m.end_b_m
+        record[REACH], record[VOLUME], record[MOMENT:MOMENT + 3] = _reach(m), volume, moment
+        records.append(record)
+        tables += [fine] if m.tapered else [fine, coarse]
+        first += len(fine) + (0 if m.tapered else len(coarse))
+    return np.concatenate(records), np.concatenate(tables)
 
 
 @njit(cache=True, inline="always")
@@ -134,9 +166,43 @@ def _weight_integrals(c: float, f: float) -> tuple[float, float]:
 
 @njit(cache=True)
 def submerged_volume(rotation: np.ndarray, position_z_m: float, lines: np.ndarray) -> tuple[float, np.ndarray]:
-    """Volume below z = 0 of the members at the pose, and its first moment (body frame)."""
+    """Volume below z = 0 of the quadrature lines' members at the pose, and its first moment
+    (body frame)."""
+    moment = np.zeros(3)
+    return _add_lines(rotation, position_z_m, lines, 0, lines.shape[0], moment), moment
+
+
+@njit(cache=True)
+def members_submerged_volume(rotation: np.ndarray, position_z_m: float, records: np.ndarray,
+                             lines: np.ndarray) -> tuple[float, np.ndarray]:
+    """``submerged_volume`` member by member (``member_records``): a member whose end faces are
+    all below the water plane adds its whole volume, one all above nothing, one cut through
+    its side wall only its coarse lines, any other its fine lines."""
     volume, moment = 0.0, np.zeros(3)
-    for q in range(lines.shape[0]):
+    for k in range(records.size // RECORD):
+        r = records[k * RECORD:(k + 1) * RECORD]
+        z_a = position_z_m + rotation[2, 0] * r[END_A] + rotation[2, 1] * r[END_A + 1] + rotation[2, 2] * r[END_A + 2]
+        z_b = position_z_m + rotation[2, 0] * r[END_B] + rotation[2, 1] * r[END_B + 1] + rotation[2, 2] * r[END_B + 2]
+        reach = r[REACH]
+        if max(z_a, z_b) + reach < 0.0:
+            volume += r[VOLUME]
+            for i in range(3):
+                moment[i] += r[MOMENT + i]
+        elif min(z_a, z_b) - reach > 0.0:
+            continue
+        elif min(z_a, z_b) + reach < 0.0 and max(z_a, z_b) - reach > 0.0:
+            volume += _add_lines(rotation, position_z_m, lines, int(r[FIRST_COARSE]), int(r[N_COARSE]), moment)
+        else:
+            volume += _add_lines(rotation, position_z_m, lines, int(r[FIRST_FINE]), int(r[N_FINE]), moment)
+    return volume, moment
+
+
+@njit(cache=True)
+def _add_lines(rotation: np.ndarray, position_z_m: float, lines: np.ndarray, first: int, count: int,
+               moment: np.ndarray) -> float:
+    """The submerged volume of lines[first:first + count]; their first moment added to ``moment``."""
+    volume = 0.0
+    for q in range(first, first + count):
         line = lines[q]
         z0 = position_z_m + rotation[2, 0] * line[0] + rotation[2, 1] * line[1] + rotation[2, 2] * line[2]
         rise = rotation[2, 0] * line[3] + rotation[2, 1] * line[4] + rotation[2, 2] * line[5]  # over the line
@@ -156,7 +222,7 @@ def submerged_volume(rotation: np.ndarray, position_z_m: float, lines: np.ndarra
         volume += wet
         for k in range(3):
             moment[k] += wet * line[k] + first * line[3 + k]
-    return volume, moment
+    return volume
 
 
 # --------------------------------------------------------------------------- load component
@@ -165,13 +231,16 @@ MODES = {"linear": 0.0, "nonlinear": 1.0, "free_surface": 0.0}
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
-    """[mode (0 linear, 1 nonlinear), rho g, W0 (6), C (36)] and, nonlinear, the quadrature
-    lines (quadrature_lines)."""
+    """[mode (0 linear, 1 nonlinear), rho g, W0 (6), C (36), and, nonlinear, the member
+    records] and, nonlinear, the quadrature lines (member_records)."""
     h, env = inputs.hydrostatics, inputs.platform.environment
     mode = inputs.options.hydrostatics
     params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], h.buoyancy_wrench,
                              h.stiffness.ravel()])
-    return params, quadrature_lines(inputs.platform) if mode == "nonlinear" else np.zeros((1, 1))
+    if mode != "nonlinear":
+        return params, np.zeros((1, 1))
+    records, lines = member_records(inputs.platform)
+    return np.concatenate([params, records]), lines
 
 
 @njit(cache=True)
@@ -180,12 +249,19 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
     """Linear: W0 - C q about the undisplaced position. Nonlinear: rho g V_sub through the
     displaced centre of buoyancy, about the displaced reference point."""
     if params[0] == 0.0:
-        stiffness = params[8:44].reshape((6, 6))
-        out += params[2:8] - matvec(stiffness, y[0:6])
+        for i in range(6):  # written out: no temporaries in the step loop
+            acc = params[2 + i]
+            for j in range(6):
+                acc -= params[8 + 6 * i + j] * y[j]
+            out[i] += acc
         return
-    volume, moment = submerged_volume(rotation, y[2], table)
+    volume, moment = members_submerged_volume(rotation, y[2], params[44:], table)
     if volume <= 0.0:
         return
-    force = np.array([0.0, 0.0, params[1] * volume])
-    out[0:3] += force
-    out[3:6] += cross(matvec(rotation, moment / volume), force)
+    force = params[1] * volume
+    # the centre of buoyancy's lever arm R m / V (world axes) crossed with (0, 0, force)
+    arm0 = (rotation[0, 0] * moment[0] + rotation[0, 1] * moment[1] + rotation[0, 2] * moment[2]) / volume
+    arm1 = (rotation[1, 0] * moment[0] + rotation[1, 1] * moment[1] + rotation[1, 2] * moment[2]) / volume
+    out[2] += force
+    out[3] += arm1 * force
+    out[4] -= arm0 * force

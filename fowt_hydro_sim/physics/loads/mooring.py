@@ -9,7 +9,6 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.rigid_body import cross, matvec
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
@@ -26,14 +25,18 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
     """Force and moment (world axes, about the reference point) of all lines."""
     stiffness, pretension, unstretched = params[0], params[1], params[2]
     n = (params.size - 3) // 6
-    fairleads = params[3:3 + 3 * n].reshape((n, 3))
-    anchors = params[3 + 3 * n:].reshape((n, 3))
-    position = y[0:3]
-    for i in range(n):
-        r = matvec(rotation, fairleads[i])
-        line = anchors[i] - (position + r)
-        length = np.sqrt(line[0] * line[0] + line[1] * line[1] + line[2] * line[2])
-        tension = pretension + stiffness * (length - unstretched)
-        force = tension * line / length
-        out[0:3] += force
-        out[3:6] += cross(r, force)
+    for i in range(n):  # written out: no temporaries in the step loop
+        f, a = 3 + 3 * i, 3 + 3 * n + 3 * i  # the fairlead (body frame) and anchor (world frame)
+        r0 = rotation[0, 0] * params[f] + rotation[0, 1] * params[f + 1] + rotation[0, 2] * params[f + 2]
+        r1 = rotation[1, 0] * params[f] + rotation[1, 1] * params[f + 1] + rotation[1, 2] * params[f + 2]
+        r2 = rotation[2, 0] * params[f] + rotation[2, 1] * params[f + 1] + rotation[2, 2] * params[f + 2]
+        l0, l1, l2 = params[a] - y[0] - r0, params[a + 1] - y[1] - r1, params[a + 2] - y[2] - r2
+        length = np.sqrt(l0 * l0 + l1 * l1 + l2 * l2)
+        scale = (pretension + stiffness * (length - unstretched)) / length
+        f0, f1, f2 = scale * l0, scale * l1, scale * l2
+        out[0] += f0
+        out[1] += f1
+        out[2] += f2
+        out[3] += r1 * f2 - r2 * f1
+        out[4] += r2 * f0 - r0 * f2
+        out[5] += r0 * f1 - r1 * f0
