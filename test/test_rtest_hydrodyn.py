@@ -304,11 +304,12 @@ def test_fowt_sim_loads_with_free_surface_hydrostatics_in_a_regular_wave(tmp_pat
 
 
 # ------------------------------------------------------------- vertical wave stretching (WaveStMod 1)
-@pytest.mark.parametrize("stretching", ["none", "vertical"])
-def test_vertical_stretching_wets_a_column_up_to_the_elevation_with_the_kinematics_at_z0(stretching):
+@pytest.mark.parametrize("stretching", ["none", "vertical", "wheeler"])
+def test_stretching_wets_a_column_up_to_the_elevation_with_the_stretched_kinematics(stretching):
     """A vertical column (no drag, no added mass) held in a regular wave: its horizontal
     Froude-Krylov force is rho A int a_x(z) dz over the wetted length: up to z = 0 without
-    stretching, up to eta with vertical stretching, a_x above z = 0 being a_x(0) (closed form,
+    stretching; up to eta with vertical stretching, a_x above z = 0 being a_x(0); up to eta
+    with Wheeler stretching, a_x at z taken at z' = d (z - eta) / (d + eta) (closed form,
     Airy kinematics at x = 0 where eta = A cos(omega t))."""
     p = load_platform("windmoor12")
     zone = dataclasses.replace(p.members[0].zones[0], below_z_m=math.inf, ca=(0.0, 0.0))
@@ -334,8 +335,13 @@ def test_vertical_stretching_wets_a_column_up_to_the_elevation_with_the_kinemati
 
     expected = []
     for time in t:
-        eta = amplitude_m * math.cos(omega * time) if stretching == "vertical" else 0.0
-        below = integrate.quad(lambda z: a_x(z, time), -draft, min(eta, 0.0), epsabs=1e-12)[0]
-        expected.append(RHO * math.pi * radius**2 * (below + max(eta, 0.0) * a_x(0.0, time)))
+        eta = amplitude_m * math.cos(omega * time) if stretching != "none" else 0.0
+        if stretching == "wheeler":
+            wetted = integrate.quad(lambda z: a_x(depth * (z - eta) / (depth + eta), time), -draft, eta,
+                                    epsabs=1e-12)[0]
+        else:
+            wetted = (integrate.quad(lambda z: a_x(z, time), -draft, min(eta, 0.0), epsabs=1e-12)[0]
+                      + max(eta, 0.0) * a_x(0.0, time))
+        expected.append(RHO * math.pi * radius**2 * wetted)
     expected = np.array(expected)
     assert np.max(np.abs(fx - expected)) < 1e-5 * np.max(np.abs(expected))  # measured 8e-8, 4e-7

@@ -115,7 +115,8 @@ class PlatformModel:
         self.dt_s = float(dt_s)
         self.drag_model = drag_model
         self.options = options or HydroOptions()
-        self.geometry: Discretisation = discretise(platform)
+        # Wheeler stretching takes each point above z = 0 at its own stretched depth
+        self.geometry: Discretisation = discretise(platform, points_above_water=self.options.stretching == "wheeler")
         bands = platform.drag_bands if drag_model == "filtered" else ()
         self.drag_bands = tuple(b.name for b in bands)
         self.filter_bank: StateSpace = bank_state_space(bands)
@@ -435,8 +436,9 @@ class PlatformModel:
         motion = np.asarray(motion, dtype=float)
         surfaces = self._surfaces(time_s, motion)
         out = np.zeros((n, N_LOADS, 6))
-        if self.options.kinematics == "displaced" and self.waves is not None and self.waves.frequency_hz.size:
-            data = self._data._replace(waves=self._displaced_table(time_s, motion))
+        per_time = self.options.kinematics == "displaced" or self.options.stretching == "wheeler"
+        if per_time and self.waves is not None and self.waves.frequency_hz.size:
+            data = self._data._replace(waves=self._moving_table(time_s, motion))
             dynamics.prescribed_motion_loads(time_s, states, acceleration, data, surfaces, out)
         else:
             for part in self._held_parts(time_s):
@@ -484,21 +486,31 @@ class PlatformModel:
             surfaces[i] = self.waves.elevation_at(xy, t, env.water_depth_m, env.gravity_m_s2)
         return surfaces
 
-    def _displaced_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:
+    def _moving_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:
         """A kinematics table whose row i holds, at time t_i = i dt, the kinematics at the
-        points' displaced positions (x + R p; z at most 0, as the undisplaced points): what the
-        kernel's table look-up then returns at t_i (WaveDisp 1). The times must be multiples
-        of one step."""
+        points' positions at t_i: what the kernel's table look-up then returns at t_i. The
+        points are displaced (x + R p; WaveDisp 1) or not, as ``options.kinematics`` says; a
+        point's z is at most 0 or, with Wheeler stretching, at most the elevation eta over
+        it and taken at d (z - eta) / (d + eta). The times must be multiples of one step."""
         step = float(time_s[1] - time_s[0]) if time_s.size > 1 else 1.0
         rows = np.round(time_s / step).astype(np.int64)
         if time_s.size < 2 or step <= 0 or np.max(np.abs(rows * step - time_s)) > 1e-6 * step or rows[0] < 0:
-            raise ConfigError("prescribed motion with displaced kinematics: the times must be multiples of one "
-                              "constant step from t >= 0")
+            raise ConfigError("prescribed motion with displaced kinematics or Wheeler stretching: the times must be "
+                              "multiples of one constant step from t >= 0")
         points = self.geometry.points_m
-        rotation = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
-        world = motion[:, None, 0:3] + np.einsum("ijn,pj->npi", rotation, points)
-        world[:, :, 2] = np.minimum(world[:, :, 2], 0.0)  # no kinematics above the water line
+        if self.options.kinematics == "displaced":
+            rotation = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
+            world = motion[:, None, 0:3] + np.einsum("ijn,pj->npi", rotation, points)
+        else:
+            world = np.repeat(points[None], time_s.size, axis=0)
         env = self.platform.environment
+        if self.options.stretching == "wheeler":
+            depth = env.water_depth_m
+            eta = np.stack([self.waves.elevation_at(world[i, :, 0:2], t, depth, env.gravity_m_s2)
+                            for i, t in enumerate(time_s)])
+            world[:, :, 2] = depth * (np.minimum(world[:, :, 2], eta) - eta) / (depth + eta)
+        else:
+            world[:, :, 2] = np.minimum(world[:, :, 2], 0.0)  # no kinematics above the water line
         values = moving_point_kinematics(self.waves, world.reshape(-1, 3), np.repeat(time_s, len(points)),
                                          env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
         table = np.zeros((rows[-1] + 3, len(points), 7))

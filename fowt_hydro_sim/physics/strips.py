@@ -69,7 +69,7 @@ class EndPlates:
 class Discretisation:
     strips: Strips
     plates: EndPlates
-    points_m: np.ndarray  # (p, 3) undisplaced kinematics points, z <= 0
+    points_m: np.ndarray  # (p, 3) undisplaced kinematics points, z <= 0 (unless points_above_water)
 
 
 def transverse_directions(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -120,7 +120,9 @@ def _taper_ring(rho: float, member: Member, fraction: float, length_m: float) ->
             0.5 * rho * ax.cd * math.pi * radius * abs(slope) * length_m)
 
 
-def discretise(platform: Platform) -> Discretisation:
+def discretise(platform: Platform, points_above_water: bool = False) -> Discretisation:
+    """The platform's strips, end plates and kinematics points; the points above the still water
+    line are one point at z = 0 unless ``points_above_water`` (Wheeler stretching)."""
     rho = platform.environment.water_density_kg_m3
     n_bands = len(platform.drag_bands)
     rows: dict[str, list] = {k: [] for k in ("centre", "axis", "dirs", "length", "area", "inertia",
@@ -187,7 +189,8 @@ def discretise(platform: Platform) -> Discretisation:
     strip_centres = np.array(rows["centre"])
     plate_centres = np.array(plates["centre"]).reshape(-1, 3)
     undisplaced = np.round(np.vstack([strip_centres, plate_centres]), 9)
-    undisplaced[:, 2] = np.minimum(undisplaced[:, 2], 0.0)  # no kinematics above the water line
+    if not points_above_water:  # kinematics above the water line are those at z = 0: one point
+        undisplaced[:, 2] = np.minimum(undisplaced[:, 2], 0.0)
     points, index = np.unique(undisplaced, axis=0, return_inverse=True)
     index = index.ravel()
     n = len(strip_centres)
