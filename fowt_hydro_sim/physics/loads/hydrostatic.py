@@ -15,6 +15,12 @@ integrand over the section is a polynomial of degree 3 at most, which the quadra
 integrates exactly, so volume and centroid are exact; where it also cuts an end, the error
 is the quadrature's on a kinked integrand.
 
+The step evaluates this member by member (``members_submerged_volume``): a member whose end
+faces are all below the water plane adds its whole volume and moment (computed once), one
+all above adds nothing, an untapered one cut through its side wall only uses a small rule
+(``COARSE``: the integrands are then of degree 2, so it is exact too), any other the full
+quadrature.
+
 The linear model's volume and centre of buoyancy are the strips' exact (frustum) volumes.
 
 Gravity acts separately at the centre of gravity.
