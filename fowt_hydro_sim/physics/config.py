@@ -258,9 +258,16 @@ class HydroOptions:
         "newman", "second-order slow-drift surge force: Newman's approximation from the platform's mean-drift "
                   "coefficient table (drift_coefficients_n_m2; none without one) or none (HydroDyn's strip "
                   "theory has none)", choices=SLOW_DRIFTS)
+    surface_grid_m: float | None = setting(
+        None, "free_surface hydrostatics only: the elevation interpolated bilinearly between the nodes of a "
+              "horizontal grid with this spacing through the origin, as HydroDyn reads it from SeaState's grid "
+              "(dX = X_HalfWidth / (NX - 1), taken equal in y) [m]; default the exact elevation", gt=0.0)
 
     def __post_init__(self) -> None:
         _validate(self, "hydro options")
+        if self.surface_grid_m is not None and self.hydrostatics != "free_surface":
+            raise ConfigError(f"hydro options: surface_grid_m applies to hydrostatics 'free_surface' only, not "
+                              f"{self.hydrostatics!r}")
 
 
 HYDRO_OPTION_NAMES = ("wetted_length", "load_directions", "hydrostatics", "slow_drift")
