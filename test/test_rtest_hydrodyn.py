@@ -1,9 +1,11 @@
 """Tapered members against closed forms (frustum buoyancy and centre of buoyancy, a pitched
-frustum by numerical integration, the Froude-Krylov force on a submerged frustum) and OpenFAST
-r-test HydroDyn cases (test/data/openfast_rtest, their README gives the source): one imported
-with ``fowt-sim platform import`` and run with ``fowt-sim loads``, one (a rectangular member in
-a regular wave, hydrostatics up to the instantaneous free surface) against the independent
-free-surface hydrostatics of ``physics/free_surface_hydrostatics.py``."""
+frustum by numerical integration, the Froude-Krylov force on a submerged frustum; a tapered,
+spun rectangular member's prismatoid, axes, wall pressure, waterplane and buoyancy against
+closed forms and a direct integration) and two OpenFAST r-test HydroDyn cases
+(test/data/openfast_rtest, their README gives the source), each imported with ``fowt-sim
+platform import`` and run with ``fowt-sim loads``: a tapered cylinder pitched in still water,
+and a tapered, spun rectangular member in a regular wave with hydrostatics up to the
+instantaneous free surface (``physics/free_surface_hydrostatics.py``)."""
 from __future__ import annotations
 
 import dataclasses
@@ -462,6 +464,32 @@ def test_tapered_spun_rectangular_member_buoyancy_matches_numerical_integration(
     expected = buoyancy_by_integration(platform, pose)
     got = hydrostatic_load(platform, pose, mode)
     assert np.allclose(got, expected, rtol=0, atol=tolerance * expected[2]), (got - expected) / expected[2]
+
+
+def test_tapered_rectangular_wall_carries_the_dynamic_pressure_on_its_slanted_sides():
+    """A submerged vertical column tapering 6 x 3 -> 4 x 5 m (spun 25 deg; no end plates: the
+    model has none on rectangles) held in a long regular wave: its only vertical load is the
+    slanted walls' dynamic pressure, F_z = int p_dyn (dA/dz) dz with A = w h (the walls facing
+    down where the section grows upward), p_dyn = rho g a cosh(k(z + d)) / cosh(kd) cos(omega t)
+    at x = 0; 0.25 m strips (midpoint rule)."""
+    platform = tapered_box((0.0, 0.0, -30.0), (0.0, 0.0, -8.0), (6.0, 3.0), (4.0, 5.0), 25.0, strip_length_m=0.25)
+    period_s, amplitude_m, depth = 12.0, 1.0, platform.environment.water_depth_m
+    waves = WaveComponents(np.array([1 / period_s]), np.array([amplitude_m]), np.array([0.0]), np.array([0.0]),
+                           period_s)
+    model = PlatformModel(platform, waves, options=HYDRODYN, wave_table_dt_s=period_s / 480)
+    t = np.linspace(0.0, period_s, 13)[:-1]
+    rest = np.zeros((t.size, 6))
+    fz = model.prescribed_motion_loads(t, rest, rest, rest)[:, ROW["inertia"], 2]
+    k = optimize_wavenumber(2 * math.pi / period_s, depth)
+
+    def area_slope(z):  # d(w h)/dz, w = 6 - 2 u, h = 3 + 2 u, u = (z + 30) / 22
+        u = (z + 30.0) / 22.0
+        return (-2.0 * (3 + 2 * u) + 2.0 * (6 - 2 * u)) / 22.0
+
+    profile = integrate.quad(lambda z: math.cosh(k * (z + depth)) / math.cosh(k * depth) * area_slope(z), -30.0, -8.0,
+                             epsabs=1e-12, epsrel=1e-12)[0]
+    expected = RHO * G * amplitude_m * profile * np.cos(2 * math.pi * t / period_s)
+    assert np.max(np.abs(fz - expected)) < 1e-4 * np.max(np.abs(expected))  # measured 3.1e-5
 
 
 def test_vertical_spun_tapered_rectangle_has_the_turned_waterplane():
