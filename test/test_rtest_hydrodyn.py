@@ -325,6 +325,20 @@ def test_tilted_member_through_the_water_line_refuses_linear_hydrostatics_only(i
     assert "crosses the water line tilted" in err and len(err.splitlines()) == 1
 
 
+def test_surface_grid_is_refused_without_free_surface_hydrostatics_and_when_not_positive(tmp_path, capsys):
+    with pytest.raises(ConfigError, match="surface_grid_m applies to hydrostatics 'free_surface' only, not 'nonlinear'"):
+        dataclasses.replace(HYDRODYN, surface_grid_m=5.0)
+    with pytest.raises(ConfigError, match="surface_grid_m: must be a positive number, got -1"):
+        dataclasses.replace(HYDRODYN, hydrostatics="free_surface", surface_grid_m=-1.0)
+    rest = tmp_path / "rest.dat"
+    np.savetxt(rest, np.c_[[0.0, 0.05], np.zeros((2, 18))])
+    for extra in (["--surface-grid", "5"], ["--hydrostatics", "free_surface", "--surface-grid", "0"]):
+        assert main(["loads", "--platform", str(RECT_CASE / "missing.yaml"), "--motion", str(rest), "--still-water",
+                     "--hydrodyn", *extra, "-o", str(tmp_path / "x.csv")]) == 2
+        err = capsys.readouterr().err.strip()
+        assert "surface" in err and len(err.splitlines()) == 1, err
+
+
 # ------------------------------------------------ tapered, spun rectangular members (geometry oracles)
 def tapered_box(end_a, end_b, sides_a, sides_b, spin_deg, cd=(0.0, 0.0), ca=(0.0, 0.0), strip_length_m=1.0):
     """One rectangular member from windmoor12's, tapered from sides_a to sides_b (width,
