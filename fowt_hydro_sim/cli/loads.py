@@ -11,7 +11,8 @@ from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, HYDRODYN, ConfigEr
 from fowt_hydro_sim.studies import loads as study
 from fowt_hydro_sim.studies.simulate import comp_file_waves, sea_state_waves
 
-OPTION_NAMES = (*HYDRO_OPTION_NAMES, "kinematics", "stretching")  # these two: prescribed motion only
+# kinematics, stretching and surface_grid_m: prescribed motion only
+OPTION_NAMES = (*HYDRO_OPTION_NAMES, "kinematics", "stretching", "surface_grid_m")
 
 
 def loads(args: argparse.Namespace) -> int:

@@ -92,14 +92,17 @@ class DragBand:
 class Zone:
     """Transverse coefficients for strips whose undisplaced centre is below ``below_z_m``.
 
-    Direction 1 is the section's width direction (horizontal for a horizontal member),
-    direction 2 its height direction; a circular section has the same values in both.
+    Direction 1 is the section's width direction (horizontal for a horizontal member
+    without spin), direction 2 its height direction; a circular section has the same values
+    in both. ``cp`` scales the Froude-Krylov (dynamic pressure) part of the fluid inertia,
+    HydroDyn's Cp.
     """
 
     name: str
     below_z_m: float
     ca: tuple[float, float]
     cd: tuple[DragCoefficients, DragCoefficients]
+    cp: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -113,27 +116,48 @@ class EndPlate:
 
 @dataclass(frozen=True)
 class Member:
+    """A straight member. Its section's width lies along direction d1 (horizontal for a
+    non-vertical member, x for a vertical one), its height along d2 = axis x d1; a rectangular
+    section may be turned about the axis by ``spin_deg`` (from d1 toward d2, HydroDyn's
+    MSpinOrient), and a member may taper linearly from its end-a size to its end-b size."""
+
     name: str
     section: str
     end_a_m: tuple[float, float, float]
     end_b_m: tuple[float, float, float]
-    width_m: float  # diameter for a circular section
-    height_m: float  # diameter for a circular section
+    width_m: float  # diameter for a circular section; at end a of a tapered member (HydroDyn's side A)
+    height_m: float  # diameter for a circular section; at end a of a tapered member (HydroDyn's side B)
     strip_length_m: float
     zones: tuple[Zone, ...]
     end_a_plate: EndPlate | None = None
     end_b_plate: EndPlate | None = None
     diameter_b_m: float | None = None  # circular only: the diameter at end b of a tapered member
     taper_axial: EndPlate = EndPlate(ca=0.0, cp=1.0, cd=0.0)  # HydroDyn's member AxCa, AxCp, AxCd
+    width_b_m: float | None = None  # rectangular only: the width at end b of a tapered member
+    height_b_m: float | None = None  # rectangular only: the height at end b of a tapered member
+    spin_deg: float = 0.0  # rectangular only: the section turned about the axis (MSpinOrient)
 
     @property
     def tapered(self) -> bool:
-        return self.diameter_b_m is not None and self.diameter_b_m != self.width_m
+        if self.section == "circular":
+            return self.diameter_b_m is not None and self.diameter_b_m != self.width_m
+        return self.sides_at(1.0) != (self.width_m, self.height_m)
 
     def diameter_at(self, fraction: float) -> float:
         """Diameter (circular) at ``fraction`` of the way from end a to end b: linear taper."""
         end_b = self.width_m if self.diameter_b_m is None else self.diameter_b_m
         return self.width_m + fraction * (end_b - self.width_m)
+
+    def sides_at(self, fraction: float) -> tuple[float, float]:
+        """Width and height at ``fraction`` of the way from end a to end b (linear taper; a
+        circle's are its diameter)."""
+        if self.section == "circular":
+            d = self.diameter_at(fraction)
+            return d, d
+        width_b = self.width_m if self.width_b_m is None else self.width_b_m
+        height_b = self.height_m if self.height_b_m is None else self.height_b_m
+        return (self.width_m + fraction * (width_b - self.width_m),
+                self.height_m + fraction * (height_b - self.height_m))
 
 
 @dataclass(frozen=True)
@@ -236,9 +260,16 @@ class HydroOptions:
         "newman", "second-order slow-drift surge force: Newman's approximation from the platform's mean-drift "
                   "coefficient table (drift_coefficients_n_m2; none without one) or none (HydroDyn's strip "
                   "theory has none)", choices=SLOW_DRIFTS)
+    surface_grid_m: float | None = setting(
+        None, "free_surface hydrostatics only: the elevation interpolated bilinearly between the nodes of a "
+              "horizontal grid with this spacing through the origin, as HydroDyn reads it from SeaState's grid "
+              "(dX = X_HalfWidth / (NX - 1), taken equal in y) [m]; default the exact elevation", gt=0.0)
 
     def __post_init__(self) -> None:
         _validate(self, "hydro options")
+        if self.surface_grid_m is not None and self.hydrostatics != "free_surface":
+            raise ConfigError(f"hydro options: surface_grid_m applies to hydrostatics 'free_surface' only, not "
+                              f"{self.hydrostatics!r}")
 
 
 HYDRO_OPTION_NAMES = ("wetted_length", "load_directions", "hydrostatics", "slow_drift")
@@ -440,14 +471,15 @@ def _drag_bands(f: _Fields) -> tuple[DragBand, ...]:
 
 def _zone(f: _Fields, section: str, is_last: bool, bands: tuple[str, ...]) -> Zone:
     below = math.inf if is_last and f.data.get("below_z_m") is None else f.number("below_z_m")
+    cp = f.number("cp", 1.0, non_negative=True)
     if section == "circular":
         ca = f.number("ca", non_negative=True)
         cd = _drag(f, "cd", bands)
-        zone = Zone(f.text("name", "zone"), below, (ca, ca), (cd, cd))
+        zone = Zone(f.text("name", "zone"), below, (ca, ca), (cd, cd), cp)
     else:
         zone = Zone(f.text("name", "zone"), below,
                     (f.number("ca_horizontal", non_negative=True), f.number("ca_vertical", non_negative=True)),
-                    (_drag(f, "cd_horizontal", bands), _drag(f, "cd_vertical", bands)))
+                    (_drag(f, "cd_horizontal", bands), _drag(f, "cd_vertical", bands)), cp)
     f.finish()
     return zone
 
@@ -459,15 +491,31 @@ def _end_plate(f: _Fields) -> EndPlate:
     return plate
 
 
+RECTANGULAR_ONLY = ("width_b_m", "height_b_m", "spin_deg")
+
+
 def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
     section = f.text("section", choices=SECTIONS)
+    own = ("diameter_b_m",) if section == "rectangular" else RECTANGULAR_ONLY
+    for name in own:
+        if f.data.get(name) is not None:
+            raise ConfigError(f"{f.at(name)}: only for {'circular' if section == 'rectangular' else 'rectangular'} "
+                              f"sections (this member is {section})")
     if section == "circular":
         width = height = f.number("diameter_m", positive=True)
     else:
         width, height = f.number("width_m", positive=True), f.number("height_m", positive=True)
     diameter_b = f.optional_number("diameter_b_m", positive=True) if section == "circular" else None
+    width_b, height_b = (f.optional_number(name, positive=True) if section == "rectangular" else None
+                         for name in ("width_b_m", "height_b_m"))
+    spin = f.number("spin_deg", 0.0) if section == "rectangular" else 0.0
+    f.used.update(own)
     taper_axial = _end_plate(f.sub("taper_axial")) if f.data.get("taper_axial") else EndPlate(0.0, 1.0, 0.0)
     f.used.add("taper_axial")
+    rectangular_taper = (width_b or width) != width or (height_b or height) != height
+    if rectangular_taper and (taper_axial.ca or taper_axial.cd):
+        raise ConfigError(f"{f.at('taper_axial')}: ca {taper_axial.ca:g}, cd {taper_axial.cd:g}: the axial added "
+                          "mass and drag of a tapered rectangular wall are not implemented (only cp; give 0)")
     a, b = f.vector("end_a_m"), f.vector("end_b_m")
     if math.dist(a, b) <= 0:
         raise ConfigError(f"{f.path}: end_a_m and end_b_m are the same point")
@@ -478,7 +526,7 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         zones=tuple(_zone(z, section, i == len(zones) - 1, bands) for i, z in enumerate(zones)),
         end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
-        diameter_b_m=diameter_b, taper_axial=taper_axial,
+        diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
     )
     f.used.update({"end_a_plate", "end_b_plate"})
     if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
@@ -554,6 +602,8 @@ def _zone_document(zone: Zone, section: str, bands: tuple[DragBand, ...]) -> dic
     out: dict = {"name": zone.name}
     if math.isfinite(zone.below_z_m):
         out["below_z_m"] = zone.below_z_m
+    if zone.cp != 1.0:
+        out["cp"] = zone.cp
     if section == "circular":
         return {**out, "ca": zone.ca[0], "cd": _cd_document(zone.cd[0], bands)}
     return {**out, "ca_horizontal": zone.ca[0], "ca_vertical": zone.ca[1],
@@ -575,8 +625,13 @@ def platform_document(platform: Platform) -> dict:
     members = []
     for m in platform.members:
         size = {"diameter_m": m.width_m} if m.section == "circular" else {"width_m": m.width_m, "height_m": m.height_m}
-        if m.tapered:
+        if m.tapered and m.section == "circular":
             size.update(diameter_b_m=m.diameter_b_m, taper_axial=vars(m.taper_axial).copy())
+        elif m.tapered:
+            size.update({k: getattr(m, k) for k in ("width_b_m", "height_b_m") if getattr(m, k) is not None},
+                        taper_axial=vars(m.taper_axial).copy())
+        if m.spin_deg:
+            size["spin_deg"] = m.spin_deg
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
                   "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
                   "zones": [_zone_document(z, m.section, bands) for z in m.zones]}

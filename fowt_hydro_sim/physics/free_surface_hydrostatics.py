@@ -148,16 +148,19 @@ def member_wrench(member: RectangularMember, eta: Elevation, t: float, rho: floa
 
 
 def platform_members(platform) -> list[RectangularMember]:
-    """The platform's members for these hydrostatics (width along the section's horizontal
-    direction = HydroDyn's side A); ConfigError naming a circular member (not implemented)."""
+    """The platform's members for these hydrostatics (width = HydroDyn's side A, along the
+    section's direction d1 before the spin, height = side B; taper and spin as the platform
+    gives them; one element per strip length, HydroDyn's MDivSize); ConfigError naming a
+    circular member (not implemented)."""
     members = []
     for m in platform.members:
         if m.section != "rectangular":
             raise ConfigError(f"hydrostatics 'free_surface': member {m.name} is {m.section}: implemented for "
                               "rectangular members only")
         length = math.dist(m.end_a_m, m.end_b_m)
-        members.append(RectangularMember(m.end_a_m, m.end_b_m, (m.width_m, m.width_m), (m.height_m, m.height_m),
-                                         0.0, max(1, math.ceil(length / m.strip_length_m - 1e-9))))
+        (w0, h0), (w1, h1) = m.sides_at(0.0), m.sides_at(1.0)
+        members.append(RectangularMember(m.end_a_m, m.end_b_m, (w0, w1), (h0, h1), m.spin_deg,
+                                         max(1, math.ceil(length / m.strip_length_m - 1e-9))))
     return members
 
 

@@ -448,6 +448,8 @@ class PlatformModel:
         if self.options.hydrostatics == "free_surface":
             env = self.platform.environment
             eta = free_surface.wave_elevation(self.waves, env.water_depth_m, env.gravity_m_s2)
+            if self.options.surface_grid_m is not None:
+                eta = free_surface.on_grid(eta, self.options.surface_grid_m, self.options.surface_grid_m)
             out[:, ROW["hydrostatic"]] = free_surface.prescribed_motion_wrenches(
                 free_surface.platform_members(self.platform), eta, time_s, motion,
                 env.water_density_kg_m3, env.gravity_m_s2)

@@ -11,7 +11,12 @@ horizontal member) and d2 = axis x d1. Loads (HydroDyn's conventions, platform s
 
 with A the section area, A_k the added-mass reference area (pi D^2/4; pi h^2/4 for flow
 along the width of a rectangle, pi w^2/4 along its height) and b_k the projected width
-(D; h for flow along the width, w along the height).
+(D; h for flow along the width, w along the height). Cp (the zone's ``cp``, HydroDyn's) scales
+the Froude-Krylov term: rho (Cp A + Ca_k A_k) a_k.
+
+A rectangular section's width lies along d1 and its height along d2, both turned about the
+axis by the member's ``spin_deg`` (d1 toward d2, HydroDyn's MSpinOrient): the drag and added-
+mass directions turn with it.
 
 A tapered circular member (diameter linear from end a to end b) takes each strip's diameter
 at the strip's midpoint (HydroDyn takes it at its nodes; the two agree to second order in the
@@ -24,7 +29,12 @@ member's axial coefficients ``taper_axial``), per unit length along the axis k:
 * drag              0.5 rho Cd_ax pi R |dR/dl| |w| w k   (w: relative axial velocity)
 
 They are applied as axial point terms at each strip's centre (the end plates' kernel: a
-strip's ring is wet when its centre is below the water line).
+strip's ring is wet when its centre is below the water line). A tapered rectangular member
+(width and height each linear from end a to end b) takes each strip's sides at its midpoint,
+its hydrostatic volume is each strip's exact prismatoid, and its wall carries the dynamic
+pressure term Cp_ax (dA/dl) p_dyn k (the pressure on the slanted walls projected on the axis;
+2 pi R dR/dl for a circle); its axial added mass and drag are not implemented (config.py
+refuses nonzero coefficients).
 """
 from __future__ import annotations
 
@@ -80,6 +90,18 @@ def transverse_directions(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return d1, np.cross(axis, d1)
 
 
+def member_directions(member: Member) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Axis (end a to end b) and the section directions d1 (width), d2 (height) of a member,
+    turned about the axis by its spin angle (d1 toward d2)."""
+    axis = np.subtract(member.end_b_m, member.end_a_m, dtype=float)
+    axis /= np.linalg.norm(axis)
+    d1, d2 = transverse_directions(axis)
+    if member.spin_deg:
+        c, s = math.cos(math.radians(member.spin_deg)), math.sin(math.radians(member.spin_deg))
+        d1, d2 = c * d1 + s * d2, -s * d1 + c * d2
+    return axis, d1, d2
+
+
 def _cuts(member: Member) -> np.ndarray:
     """Fractions along the member (0 at end a, 1 at end b) where strips must end."""
     a, b = np.array(member.end_a_m), np.array(member.end_b_m)
@@ -93,12 +115,21 @@ def _cuts(member: Member) -> np.ndarray:
 def _section(member: Member, fraction: float) -> tuple[float, tuple[float, float], tuple[float, float]]:
     """Section area, added-mass reference areas and projected widths per direction at
     ``fraction`` of the way from end a to end b."""
-    w, h = member.width_m, member.height_m
     if member.section == "circular":
         d = member.diameter_at(fraction)
         area = math.pi * d**2 / 4
         return area, (area, area), (d, d)
+    w, h = member.sides_at(fraction)
     return w * h, (math.pi * h**2 / 4, math.pi * w**2 / 4), (h, w)
+
+
+def prismatoid(member: Member, start: float, stop: float, length_m: float) -> tuple[float, float]:
+    """Volume of a rectangular member between fractions ``start`` and ``stop`` (``length_m``
+    long) and the distance of its centroid from ``start``: the area w h is quadratic along the
+    axis, so Simpson's rule integrates the area and its first moment exactly."""
+    areas = [math.prod(member.sides_at(start + u * (stop - start))) for u in (0.0, 0.5, 1.0)]
+    volume = length_m * (areas[0] + 4 * areas[1] + areas[2]) / 6
+    return volume, length_m * length_m * (2 * areas[1] + areas[2]) / 6 / volume
 
 
 def frustum(radius_0_m: float, radius_1_m: float, length_m: float) -> tuple[float, float]:
@@ -112,9 +143,13 @@ def _taper_ring(rho: float, member: Member, fraction: float, length_m: float) ->
     """A tapered wall's axial terms over ``length_m`` at ``fraction``: pressure area (signed,
     along a->b), added mass, drag factor (strips.py's docstring)."""
     full = float(np.linalg.norm(np.subtract(member.end_b_m, member.end_a_m)))
+    ax = member.taper_axial
+    if member.section == "rectangular":  # dA/dl = (w' h + w h') / L; ca = cd = 0 (config.py)
+        (w, h), (w1, h1) = member.sides_at(fraction), member.sides_at(1.0)
+        area_slope = ((w1 - member.width_m) * h + w * (h1 - member.height_m)) / full
+        return ax.cp * area_slope * length_m, 0.0, 0.0
     radius = member.diameter_at(fraction) / 2
     slope = (member.diameter_at(1.0) - member.width_m) / 2 / full  # dR/dl
-    ax = member.taper_axial
     return (ax.cp * 2 * math.pi * radius * slope * length_m,
             2 * rho * ax.ca * math.pi * radius**2 * abs(slope) * length_m,
             0.5 * rho * ax.cd * math.pi * radius * abs(slope) * length_m)
@@ -132,8 +167,7 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
     for index, member in enumerate(platform.members):
         a, b = np.array(member.end_a_m), np.array(member.end_b_m)
         length = float(np.linalg.norm(b - a))
-        axis = (b - a) / length
-        d1, d2 = transverse_directions(axis)
+        axis, d1, d2 = member_directions(member)
         cuts = _cuts(member)
         rings = []
         for s0, s1 in zip(cuts[:-1], cuts[1:]):
@@ -149,7 +183,9 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                                              member.diameter_at(start + (s1 - s0) / n) / 2, strip_length)
                     volume_centre = a + start * (b - a) + offset * axis
                 else:
-                    volume, volume_centre = area * strip_length, centre
+                    start = mid - 0.5 * (s1 - s0) / n
+                    volume, offset = prismatoid(member, start, start + (s1 - s0) / n, strip_length)
+                    volume_centre = a + start * (b - a) + offset * axis
                 rows["volume"].append(volume)
                 rows["volume_centre"].append(volume_centre)
                 if member.tapered:
@@ -160,7 +196,7 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                 rows["dirs"].append([d1, d2])
                 rows["length"].append(strip_length)
                 rows["area"].append(area)
-                rows["inertia"].append([rho * (area + zone.ca[k] * am_area[k]) for k in range(2)])
+                rows["inertia"].append([rho * (zone.cp * area + zone.ca[k] * am_area[k]) for k in range(2)])
                 rows["added"].append([rho * zone.ca[k] * am_area[k] for k in range(2)])
                 rows["drag"].append([0.5 * rho * zone.cd[k].constant * width[k] for k in range(2)])
                 rows["band_drag"].append([[0.5 * rho * (zone.cd[k].bands or (0.0,) * n_bands)[b] * width[k]

@@ -7,13 +7,18 @@ the file line by line by position: a deck of another layout is misread, not refu
 SeaState reader misreads newer files silently the same way). So the values read here are
 checked for what they must be (finite, known switches, joints that exist) and what the model
 cannot represent is refused with one line naming the member: potential-flow bodies and
-members, marine growth, filled members, tapered rectangular members, depth-based coefficient tables
-(HydroDyn interpolates in depth, the model's zones are piecewise constant), Cp or Cb other
-than 1, rectangular members spun about their axis or with different side-A and side-B
-coefficients (which side the model's horizontal direction is has not been checked against
-HydroDyn). A tapered circular member keeps both end diameters and the member's axial
+members, marine growth, filled members, depth-based coefficient tables (HydroDyn interpolates
+in depth, the model's zones are piecewise constant), Cb other than 1, rectangular members with
+different side-A and side-B Morison coefficients (which of the model's two drag and added-
+mass directions HydroDyn's CdA, CaA act in has not been checked against HydroDyn), and
+tapered rectangular members with axial added mass or drag (AxCa, AxCd). Cp is the zone's
+``cp``. A tapered member keeps both end sizes (circular: diameters; rectangular: side A as
+``width_m``/``width_b_m``, side B as ``height_m``/``height_b_m``) and the member's axial
 coefficients (AxCa, AxCp, AxCd of its coefficient table: the tapered wall's axial terms,
-strips.py).
+strips.py); MSpinOrient is ``spin_deg`` (side A's direction turned about the axis from the
+horizontal, as HydroDyn's Morison_DirCosMtrx; checked against HydroDyn's MHstLMod 2 loads on
+the r-test case hd_MHstLMod2_RectMmbr). MHstLMod is not read: member hydrostatics are a run
+option (``hydrostatics``: nonlinear for MHstLMod 1, free_surface for MHstLMod 2).
 
 Decks of the HydroDyn v4 layout (OpenFAST 4.0, as in the OpenFAST r-test), which lack the
 v5 lines NAddDOF and HstMod, are read with those lines added at their v4 meaning (0: no
@@ -84,7 +89,8 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
     member = hd["MemberID"][index]
     mode = hd["MCoefMod"][index]
     kind = "Cyl" if circular else "Rec"
-    names = ("Cd", "Ca", "Cp", "Cb", "AxCd", "AxCa", "AxCp") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb")
+    names = ("Cd", "Ca", "Cp", "Cb", "AxCd", "AxCa", "AxCp") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb",
+                                                                                "AxCd", "AxCa", "AxCp")
     if mode == 1:
         get = {name: hd[f"{kind}Simpl{name}"] for name in names}
     elif mode == 3:
@@ -101,15 +107,15 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
             get[name] = ends[0]
     else:
         raise ConfigError(f"{source}: member {member}: MCoefMod {mode} (depth-based coefficients) is not supported")
-    if get["Cp"] != 1.0 or get["Cb"] != 1.0:
-        raise ConfigError(f"{source}: member {member}: Cp {get['Cp']:g}, Cb {get['Cb']:g}: only 1 is supported")
+    if get["Cb"] != 1.0:
+        raise ConfigError(f"{source}: member {member}: Cb {get['Cb']:g}: only 1 is supported")
+    axial = {"taper_axial": {"ca": get["AxCa"], "cp": get["AxCp"], "cd": get["AxCd"]}}
     if circular:
-        return {"cd": get["Cd"], "ca": get["Ca"], "taper_axial": {"ca": get["AxCa"], "cp": get["AxCp"],
-                                                                 "cd": get["AxCd"]}}
+        return {"cd": get["Cd"], "ca": get["Ca"], "cp": get["Cp"], **axial}
     if get["CdA"] != get["CdB"] or get["CaA"] != get["CaB"]:
         raise ConfigError(f"{source}: member {member}: side A and side B coefficients differ: not supported")
     return {"cd_horizontal": get["CdA"], "cd_vertical": get["CdB"], "ca_horizontal": get["CaA"],
-            "ca_vertical": get["CaB"]}
+            "ca_vertical": get["CaB"], "cp": get["Cp"], **axial}
 
 
 def _end_plate(hd: dict, joint: int, circular: bool) -> dict | None:
@@ -140,17 +146,22 @@ def _member(hd: dict, index: int, source: str) -> dict:
         d = [hd["CylPropD"][hd["CylPropSetID"].index(s)] for s in sets]
         size = {"diameter_m": float(d[0])} if d[0] == d[1] else {"diameter_m": float(d[0]), "diameter_b_m": float(d[1])}
     else:
-        a = [hd["RecPropA"][hd["RecPropSetID"].index(s)] for s in sets]
-        b = [hd["RecPropB"][hd["RecPropSetID"].index(s)] for s in sets]
+        a = [float(hd["RecPropA"][hd["RecPropSetID"].index(s)]) for s in sets]
+        b = [float(hd["RecPropB"][hd["RecPropSetID"].index(s)]) for s in sets]
+        size = {"width_m": a[0], "height_m": b[0]}
         if a[0] != a[1] or b[0] != b[1]:
-            raise ConfigError(f"{source}: member {member}: tapered rectangular section: not supported")
-        if hd["MSpinOrient"][index] != 0.0:
-            raise ConfigError(f"{source}: member {member}: MSpinOrient {hd['MSpinOrient'][index]:g}: only 0 is "
-                              "supported")
-        size = {"width_m": float(a[0]), "height_m": float(b[0])}
+            size.update(width_b_m=a[1], height_b_m=b[1])
+        spin = float(hd["MSpinOrient"][index])
+        if not math.isfinite(spin):
+            raise ConfigError(f"{source}: member {member}: MSpinOrient {spin}: not a finite angle")
+        if spin:
+            size["spin_deg"] = spin
     coefficients = _coefficients(hd, index, circular, source)
-    taper_axial = coefficients.pop("taper_axial", None)
-    if "diameter_b_m" in size:
+    taper_axial = coefficients.pop("taper_axial")
+    if "diameter_b_m" in size or "width_b_m" in size:
+        if not circular and (taper_axial["ca"] or taper_axial["cd"]):
+            raise ConfigError(f"{source}: member {member}: tapered rectangular member with axial AxCa "
+                              f"{taper_axial['ca']:g}, AxCd {taper_axial['cd']:g}: only 0 is supported")
         size["taper_axial"] = taper_axial
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
            "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),

@@ -21,7 +21,20 @@ all above adds nothing, an untapered one cut through its side wall only uses a s
 (``COARSE``: the integrands are then of degree 2, so it is exact too), any other the full
 quadrature.
 
-The linear model's volume and centre of buoyancy are the strips' exact (frustum) volumes.
+A rectangular member may taper (width and height each linear from end a to end b) and be
+spun about its axis: its lines run at fixed fractions of the local half-sides along the spun
+section directions, and the area weight grows as (1 + c_w f)(1 + c_h f) along the line (f
+from 0 at end a to 1 at end b); where c_w != c_h that quadratic is three table rows on the same
+line, the kernel's (1 + c f)^2 weights with c = 0, 1, -1. For a member tilted from the
+vertical and tapered, the submerged length of a line is a rational function over the
+section, not a polynomial: the quadrature is then not exact by construction, but the tests
+find it at rounding (5e-15 against a direct integration) while the water plane cuts the side
+walls only, and within 6.3e-3 where it also cuts the ends (the r-test's member).
+
+The linear model's volume and centre of buoyancy are the strips' exact (frustum, prismatoid)
+volumes. Its waterplane is that of vertical members crossing the water line (any section,
+spin or taper); a platform with a tilted member through the water line has none, and asking
+for linear hydrostatics then fails in one line (nonlinear and free_surface need none).
 
 Gravity acts separately at the centre of gravity.
 """
@@ -34,7 +47,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.physics.config import ConfigError, Member, Platform
-from fowt_hydro_sim.physics.strips import Strips, transverse_directions
+from fowt_hydro_sim.physics.strips import Strips, member_directions
 
 N_RADIAL, N_ANGULAR, N_SIDE = 6, 24, 8  # section quadrature (circle: radial x angular; rectangle: side^2)
 # where the water plane cuts a prism's side wall only, the integrands over the section are of
@@ -51,28 +64,36 @@ class Hydrostatics:
     waterplane_first_moment_m3: np.ndarray  # (int x dA, int y dA)
     waterplane_second_moment_m4: np.ndarray  # [[int y^2, int xy], [int xy, int x^2]]
     buoyancy_wrench: np.ndarray  # (6,) at rest, about the reference point
-    stiffness: np.ndarray  # (6, 6) buoyancy restoring matrix
+    stiffness: np.ndarray  # (6, 6) buoyancy restoring matrix (NaN without a waterplane)
+    waterplane_error: str | None = None  # why the platform has no linear waterplane, if it has none
 
 
 def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
+    """Area, first moments (x, y) and second moments [[int y^2, int xy], [int xy, int x^2]]
+    of the sections of the vertical members crossing z = 0; ConfigError for a tilted one."""
     area, first, second = 0.0, np.zeros(2), np.zeros((2, 2))
     for m in platform.members:
         za, zb = m.end_a_m[2], m.end_b_m[2]
         if min(za, zb) >= 0.0 or max(za, zb) <= 0.0:
             continue
         if any(abs(a - b) > 1e-9 for a, b in zip(m.end_a_m[:2], m.end_b_m[:2])):
-            raise ConfigError(f"member {m.name}: only vertical members may cross the water line")
+            raise ConfigError(f"member {m.name} crosses the water line tilted from the vertical: the linear "
+                              "waterplane takes vertical members only")
         x, y = m.end_a_m[:2]
+        w, h = m.sides_at(za / (za - zb))  # at z = 0
         if m.section == "circular":
-            d = m.diameter_at(za / (za - zb))  # at z = 0
-            a = math.pi * d**2 / 4
-            i_xx = i_yy = math.pi * d**4 / 64
-        else:  # width along x, height along y for a vertical member
-            a = m.width_m * m.height_m
-            i_xx, i_yy = m.width_m * m.height_m**3 / 12, m.height_m * m.width_m**3 / 12
+            a = math.pi * w**2 / 4
+            i_uu = i_vv = math.pi * w**4 / 64
+        else:  # int u^2 dA (u along the width direction d1), int v^2 dA (v along d2)
+            a = w * h
+            i_uu, i_vv = h * w**3 / 12, w * h**3 / 12
+        _, d1, d2 = member_directions(m)  # horizontal for a vertical member
+        i_xx = d1[0] ** 2 * i_uu + d2[0] ** 2 * i_vv  # int x'^2 dA about the section's centre
+        i_yy = d1[1] ** 2 * i_uu + d2[1] ** 2 * i_vv
+        i_xy = d1[0] * d1[1] * i_uu + d2[0] * d2[1] * i_vv
         area += a
         first += a * np.array([x, y])
-        second += np.array([[i_xx + a * y * y, a * x * y], [a * x * y, i_yy + a * x * x]])
+        second += np.array([[i_yy + a * y * y, i_xy + a * x * y], [i_xy + a * x * y, i_xx + a * x * x]])
     return area, first, second
 
 
@@ -83,7 +104,12 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     volumes = strips.volume_m3[submerged]
     volume = float(volumes.sum())
     centre = volumes @ strips.volume_centre_m[submerged] / volume
-    area, first, second = _waterplane(platform)
+    try:
+        area, first, second = _waterplane(platform)
+    except ConfigError as exc:  # refused where linear hydrostatics are asked for (parameters)
+        force = np.array([0.0, 0.0, rho_g * volume])
+        return Hydrostatics(volume, centre, math.nan, np.full(2, math.nan), np.full((2, 2), math.nan),
+                            np.concatenate([force, np.cross(centre, force)]), np.full((6, 6), math.nan), str(exc))
     c = np.zeros((6, 6))
     c[2, 2] = rho_g * area
     c[2, 3] = c[3, 2] = rho_g * first[1]
@@ -98,43 +124,59 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     return Hydrostatics(volume, centre, area, first, second, wrench, c)
 
 
-def section_quadrature(member: Member, n_radial: int = N_RADIAL, n_angular: int = N_ANGULAR,
-                       n_side: int = N_SIDE) -> tuple[np.ndarray, np.ndarray]:
+def section_quadrature(member: Member, fraction: float = 0.0,
+                       sizes: tuple[int, int, int] = (N_RADIAL, N_ANGULAR, N_SIDE)) -> tuple[np.ndarray, np.ndarray]:
     """Offsets (k, 3; body frame, from the member's axis) and area weights (k,) of the
-    section quadrature at end a: exact for polynomials of degree 3 over the section."""
-    a, b = np.array(member.end_a_m), np.array(member.end_b_m)
-    d1, d2 = transverse_directions((b - a) / np.linalg.norm(b - a))
+    section quadrature ``fraction`` of the way from end a to end b (the same points, scaled
+    with the section): exact for polynomials of degree 3 over the section."""
+    _, d1, d2 = member_directions(member)
+    width, height = member.sides_at(fraction)
     if member.section == "circular":
-        radius = member.width_m / 2
+        radius = width / 2
+        n_radial, n_angular, n_side = sizes
         x, w = np.polynomial.legendre.leggauss(n_radial)
         r = radius * (x + 1) / 2
         theta = 2 * np.pi * (np.arange(n_angular) + 0.5) / n_angular
         u, v = np.outer(r, np.cos(theta)).ravel(), np.outer(r, np.sin(theta)).ravel()
         weights = np.outer(w * r * radius / 2, np.full(n_angular, 2 * np.pi / n_angular)).ravel()
-    else:  # width along d1, height along d2 (strips.py)
+    else:  # width along d1, height along d2 (strips.py), both spun
+        n_side = sizes[2]
         x, w = np.polynomial.legendre.leggauss(n_side)
-        u = np.repeat(x * member.width_m / 2, n_side)
-        v = np.tile(x * member.height_m / 2, n_side)
-        weights = np.outer(w * member.width_m / 2, w * member.height_m / 2).ravel()
+        u = np.repeat(x * width / 2, n_side)
+        v = np.tile(x * height / 2, n_side)
+        weights = np.outer(w * width / 2, w * height / 2).ravel()
     return np.outer(u, d1) + np.outer(v, d2), weights
+
+
+def weight_rows(growth_width: float, growth_height: float) -> list[tuple[float, float]]:
+    """(weight factor, ratio) rows whose (1 + (ratio - 1) f)^2 terms sum to the area growth
+    (1 + c_w f)(1 + c_h f) along a line: one row if c_w = c_h (a circle, a uniform taper),
+    else three with ratios 1, 2, 0 (1, (1 + f)^2, (1 - f)^2 span the quadratics)."""
+    if growth_width == growth_height:
+        return [(1.0, 1.0 + growth_width)]
+    p1, p2 = growth_width + growth_height, growth_width * growth_height
+    return [(1.0 - p2, 1.0), (p1 / 4 + p2 / 2, 2.0), (p2 / 2 - p1 / 4, 0.0)]
 
 
 def member_lines(member: Member, sizes: tuple[int, int, int] = (N_RADIAL, N_ANGULAR, N_SIDE)) -> np.ndarray:
     """A member's quadrature lines as rows [start (3), start to end (3), axial length, area
-    weight at end a, radius ratio b/a], body frame. A line runs at a fixed fraction of the
-    local radius, so it is parallel to the axis unless the member is tapered."""
+    weight at end a, ratio], body frame. A line runs at a fixed fraction of the local radius
+    (half-sides), so it is parallel to the axis unless the member is tapered; its area weight
+    grows as (1 + (ratio - 1) f)^2 (``weight_rows``)."""
     a, b = np.array(member.end_a_m), np.array(member.end_b_m)
-    ratio = member.diameter_at(1.0) / member.width_m if member.section == "circular" else 1.0
-    offsets, weights = section_quadrature(member, *sizes)
-    return np.array([[*(a + offset), *(b + ratio * offset - a - offset), float(np.linalg.norm(b - a)), weight, ratio]
-                     for offset, weight in zip(offsets, weights)])
+    (w0, h0), (w1, h1) = member.sides_at(0.0), member.sides_at(1.0)
+    offsets_a, weights = section_quadrature(member, 0.0, sizes)
+    offsets_b, _ = section_quadrature(member, 1.0, sizes)
+    growth = weight_rows(w1 / w0 - 1.0, h1 / h0 - 1.0)
+    return np.array([[*(a + offset_a), *(b + offset_b - a - offset_a), float(np.linalg.norm(b - a)), factor * weight,
+                      ratio]
+                     for offset_a, offset_b, weight in zip(offsets_a, offsets_b, weights) for factor, ratio in growth])
 
 
 def _reach(member: Member) -> float:
     """The largest distance of a point of an end face from the member's axis."""
-    if member.section == "circular":
-        return max(member.width_m, member.diameter_at(1.0)) / 2
-    return math.hypot(member.width_m, member.height_m) / 2
+    return max(math.hypot(*member.sides_at(f)) if member.section == "rectangular" else member.sides_at(f)[0]
+               for f in (0.0, 1.0)) / 2
 
 
 # a member's record in the nonlinear hydrostatics' parameters
@@ -241,8 +283,10 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     records] and, nonlinear, the quadrature lines (member_records)."""
     h, env = inputs.hydrostatics, inputs.platform.environment
     mode = inputs.options.hydrostatics
-    params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], h.buoyancy_wrench,
-                             h.stiffness.ravel()])
+    if mode == "linear" and h.waterplane_error:
+        raise ConfigError(f"hydrostatics 'linear': {h.waterplane_error}; use nonlinear or free_surface")
+    linear = (h.buoyancy_wrench, h.stiffness.ravel()) if mode == "linear" else (np.zeros(6), np.zeros(36))
+    params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], *linear])
     if mode != "nonlinear":
         return params, np.zeros((1, 1))
     records, lines = member_records(inputs.platform)
