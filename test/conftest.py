@@ -38,6 +38,8 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "ros: needs rclpy and the ROS message packages (skipped without them)")
     # the kernel's literal_unroll over the load registry, on purpose (physics/loads/__init__.py)
     config.addinivalue_line("filterwarnings", "ignore::numba.core.errors.NumbaExperimentalFeatureWarning")
+    if config.option.durations is None:  # the suite's time budget: say where it goes
+        config.option.durations = 15
 
 
 def pytest_collection_modifyitems(config, items):
