@@ -44,12 +44,13 @@ def one_shot_float64(waves, points, step, depth_m: float = DEPTH) -> np.ndarray:
 def test_block_rows_equal_the_component_sum(sea) -> None:
     """Oracle: direct summation (point_kinematics) at the rows' times and the one-shot inverse
     FFT in float64, within 1e-12 of each channel's peak, for blocks anywhere: across the end
-    of the repeat period, past it, before t = 0."""
+    of the repeat period, past it, before t = 0; and blocks longer than the period (made
+    whole by the inverse FFT)."""
     waves, points, step = sea
     full = one_shot_float64(waves, points, step)
     n = full.shape[0]
     scale = np.abs(full).max(axis=0)
-    for block_rows in (97, 700):
+    for block_rows in (97, 700, n + 37):
         synthesis = BlockSynthesis(waves, points, step, block_rows, DEPTH, G, RHO)
         for first in (0, 3 * block_rows + 5, n - 40, 2 * n + 11, -block_rows):
             got = synthesis.rows(first)

@@ -54,7 +54,7 @@ from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
 from fowt_hydro_sim.physics.waves.kinematics import (BlockSynthesis, KinematicsTable, complex_amplitudes,
-                                                     moving_point_kinematics, table_step)
+                                                     moving_point_kinematics, period_table, table_step)
 
 log = logging.getLogger(__name__)
 
@@ -138,9 +138,15 @@ class PlatformModel:
                 if not wave_block_s > 0:
                     raise ValueError(f"wave block: must be > 0 s, got {wave_block_s}")
                 block_rows = max(8, int(np.ceil(wave_block_s / step)))
-                self._synthesis = BlockSynthesis(waves, self.geometry.points_m, step, block_rows,
-                                                 env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
-                table = np.zeros((2 * block_rows, n_points, 7))
+                period_rows = int(round(waves.period_s / step))
+                depth = (env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
+                whole = abs(period_rows * step - waves.period_s) <= 1e-6 * waves.period_s
+                if whole and period_rows <= block_rows and waves.harmonic.max() < period_rows // 2:
+                    # a repeat period no longer than a block: its whole table, once, no ring
+                    table = period_table(waves, self.geometry.points_m, period_rows, *depth, np.float64)
+                else:
+                    self._synthesis = BlockSynthesis(waves, self.geometry.points_m, step, block_rows, *depth)
+                    table = np.zeros((2 * block_rows, n_points, 7))
             self._elevation = waves.elevation_series(0.0, 0.0, step, env.water_depth_m, env.gravity_m_s2)[:, None, None]
         self.wave_table_step_s = step
         self.extension = extension or Extension()

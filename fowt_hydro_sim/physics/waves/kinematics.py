@@ -140,6 +140,31 @@ def table_step(waves: WaveComponents) -> float:
 _CHUNK_BYTES = 32e6
 
 
+def period_table(waves: WaveComponents, points: np.ndarray, n_samples: int, depth_m: float, gravity_m_s2: float,
+                 density_kg_m3: float, dtype: type) -> np.ndarray:
+    """The kinematics at ``points`` over one repeat period in ``n_samples`` rows (n_samples,
+    n_points, 7), by inverse FFT."""
+    harmonic = waves.harmonic
+    values = np.zeros((n_samples, points.shape[0], N_CHANNELS), dtype=dtype)
+    if harmonic.size == 0:
+        return values
+    # points in chunks: one transform per chunk (few calls), the spectrum bounded to ~32 MB
+    chunk = max(1, int(_CHUNK_BYTES // (16 * N_CHANNELS * (n_samples // 2 + 1))))
+    unique = np.unique(harmonic).size == harmonic.size
+    for start in range(0, points.shape[0], chunk):
+        part = points[start:start + chunk]
+        amp = complex_amplitudes(waves, part, depth_m, gravity_m_s2, density_kg_m3)  # (p, 7, f)
+        spectrum = np.zeros((n_samples // 2 + 1, part.shape[0] * N_CHANNELS), dtype=complex)
+        terms = amp.reshape(-1, harmonic.size).T * (n_samples / 2.0)
+        if unique:
+            spectrum[harmonic] = terms
+        else:  # components sharing a frequency add up
+            np.add.at(spectrum, harmonic, terms)
+        signal = np.fft.irfft(spectrum, n_samples, axis=0)  # numpy's: no scipy import at start-up
+        values[:, start:start + part.shape[0], :] = signal.reshape(n_samples, part.shape[0], N_CHANNELS)
+    return values
+
+
 @dataclass
 class KinematicsTable:
     """Kinematics at fixed points over one repeat period, sampled every ``step_s``.
@@ -164,24 +189,8 @@ class KinematicsTable:
         if harmonic.size and harmonic.max() >= n_samples // 2:
             raise ValueError(f"wave table step {step_s:g} s is too coarse for the highest wave "
                              f"frequency {waves.frequency_hz.max():g} Hz")
-        values = np.zeros((n_samples, points.shape[0], N_CHANNELS), dtype=np.float32)
-        if harmonic.size == 0:
-            return cls(values, step_s, points)
-        # points in chunks: one transform per chunk (few calls), the spectrum bounded to ~32 MB
-        chunk = max(1, int(_CHUNK_BYTES // (16 * N_CHANNELS * (n_samples // 2 + 1))))
-        unique = np.unique(harmonic).size == harmonic.size
-        for start in range(0, points.shape[0], chunk):
-            part = points[start:start + chunk]
-            amp = complex_amplitudes(waves, part, depth_m, gravity_m_s2, density_kg_m3)  # (p, 7, f)
-            spectrum = np.zeros((n_samples // 2 + 1, part.shape[0] * N_CHANNELS), dtype=complex)
-            terms = amp.reshape(-1, harmonic.size).T * (n_samples / 2.0)
-            if unique:
-                spectrum[harmonic] = terms
-            else:  # components sharing a frequency add up
-                np.add.at(spectrum, harmonic, terms)
-            signal = np.fft.irfft(spectrum, n_samples, axis=0)  # numpy's: no scipy import at start-up
-            values[:, start:start + part.shape[0], :] = signal.reshape(n_samples, part.shape[0], N_CHANNELS)
-        return cls(values, step_s, points)
+        return cls(period_table(waves, points, n_samples, depth_m, gravity_m_s2, density_kg_m3, np.float32),
+                   step_s, points)
 
     @property
     def period_s(self) -> float:
