@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import re
+import signal
 import time
 
 import numpy as np
@@ -153,6 +154,39 @@ def test_pacing_follows_the_real_time_factor(factor: float):
     ratio = (sim[keep][-1] - sim[keep][0]) / (arrivals[keep][-1] - arrivals[keep][0])
     assert arrivals[keep][-1] - arrivals[keep][0] > 15.0
     assert ratio == pytest.approx(factor, rel=0.02)
+
+
+def test_wave_blocks_do_not_stall_the_paced_node():
+    """Oracle: the wall clock. A node at 20x real time (2.5 ms between poses) on a 12-hour sea
+    (duration_s sets the repeat period; a block costs about 1 s of synthesis on an idle
+    core, whatever its length) with 200 s blocks runs past 600 s: block boundaries at 200,
+    400 and 600 s (the last also the default 600 s block's). No pose interval at the
+    subscriber exceeds 0.25 s (100 periods: room for a loaded machine's scheduling), and the
+    stepping waited for wave blocks less than 0.1 s in all (the node's report). With each
+    block made in the stepping thread (main before issue 18's third round) the poses stopped
+    for the whole synthesis at every boundary."""
+    factor, period_s, block_s, bound_s = 20.0, 0.05, 200.0, 0.25
+    listener = Listener({"/platform/pose": PoseStamped})
+    node = start("node", real_time_factor=factor, drag_model="constant", duration_s=43200.0,
+                 wave_block_s=block_s, wait_for_subscribers=1)
+    try:
+        listener.wait_for(lambda: node.poll() is not None or (
+            bool(listener.messages["/platform/pose"])
+            and adapt.seconds(listener.messages["/platform/pose"][-1].header.stamp) > 3 * block_s + 20.0), 180.0)
+        sim = np.array([adapt.seconds(m.header.stamp) for m in listener.messages["/platform/pose"]])
+        arrivals = np.array(listener.arrival["/platform/pose"][:len(sim)])
+    finally:
+        node.send_signal(signal.SIGINT)  # the node then reports its stepping
+        output = finish(node, 20)
+        listener.close()
+    assert sim.size and sim[-1] > 3 * block_s + 20.0, output[-2000:]
+    keep = sim >= 0.5 * block_s  # past the start
+    intervals_s = np.diff(arrivals[keep])
+    np.testing.assert_allclose(np.diff(sim[keep]), period_s, atol=1e-6)  # every pose, in order
+    assert intervals_s.max() < bound_s, (f"longest pose interval {intervals_s.max() * 1e3:.0f} ms at t = "
+                                         f"{sim[keep][1 + intervals_s.argmax()]:.2f} s")
+    waited = re.search(r"([\d.]+) s waiting for wave blocks", output)
+    assert waited and float(waited[1]) < 0.1, output[-2000:]
 
 
 def _log_after(output: str, needle: str) -> bool:

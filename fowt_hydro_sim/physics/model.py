@@ -53,8 +53,9 @@ from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
-from fowt_hydro_sim.physics.waves.kinematics import (BlockSynthesis, KinematicsTable, complex_amplitudes,
-                                                     moving_point_kinematics, period_table, table_step)
+from fowt_hydro_sim.physics.waves.kinematics import (BlocksAhead, BlockSynthesis, KinematicsTable,
+                                                     complex_amplitudes, moving_point_kinematics, period_table,
+                                                     table_step)
 
 log = logging.getLogger(__name__)
 
@@ -97,7 +98,10 @@ class PlatformModel:
     ``kinematics``: the table of these waves at this platform's points, built before (replays
     of one run share it); without it the table is synthesised in blocks of ``wave_block_s``
     as the run advances (waves.kinematics.BlockSynthesis: the same rows, two blocks held in
-    a ring, so that the memory does not grow with the repeat period). ``options``: how the moving body's hydrodynamics are taken
+    a ring, so that the memory does not grow with the repeat period; with ``blocks_ahead`` the
+    next block is made in a worker thread while the run uses the current ones: the same rows,
+    and a run stepped in real time does not pause for them; a repeat period no longer than a
+    block is made whole, once). ``options``: how the moving body's hydrodynamics are taken
     (config.HydroOptions; default: undisplaced wetted length, fixed directions, nonlinear
     hydrostatics and Newman's slow drift; config.HYDRODYN is HydroDyn's, without the drift).
     """
@@ -105,7 +109,8 @@ class PlatformModel:
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
                  drag_model: str = "constant", wave_table_dt_s: float | None = None,
                  extension: Extension | None = None, kinematics: KinematicsTable | None = None,
-                 options: HydroOptions | None = None, wave_block_s: float = WAVE_BLOCK_S):
+                 options: HydroOptions | None = None, wave_block_s: float = WAVE_BLOCK_S,
+                 blocks_ahead: bool = True):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
         if drag_model == "filtered" and not platform.drag_bands:
@@ -123,7 +128,7 @@ class PlatformModel:
         self.hydrostatics: Hydrostatics = hydrostatics(platform, self.geometry.strips)
         env = platform.environment
         n_points = len(self.geometry.points_m)
-        self._synthesis: BlockSynthesis | None = None
+        self._blocks: BlocksAhead | None = None  # the blocked table's blocks
         self._ring_blocks = [None, None]  # the block held in each half of the ring table
         if waves is None or waves.frequency_hz.size == 0:
             table = np.zeros((4, n_points, 7))
@@ -145,7 +150,8 @@ class PlatformModel:
                     # a repeat period no longer than a block: its whole table, once, no ring
                     table = period_table(waves, self.geometry.points_m, period_rows, *depth, np.float64)
                 else:
-                    self._synthesis = BlockSynthesis(waves, self.geometry.points_m, step, block_rows, *depth)
+                    self._blocks = BlocksAhead(BlockSynthesis(waves, self.geometry.points_m, step, block_rows, *depth),
+                                               blocks_ahead)
                     table = np.zeros((2 * block_rows, n_points, 7))
             self._elevation = waves.elevation_series(0.0, 0.0, step, env.water_depth_m, env.gravity_m_s2)[:, None, None]
         self.wave_table_step_s = step
@@ -194,17 +200,29 @@ class PlatformModel:
 
     def _hold_rows(self, first_row: int, last_row: int) -> None:
         """Synthesise into the ring the blocks holding table rows first..last (at most two
-        consecutive blocks; block b in half b mod 2). No-op for a whole-period table."""
-        if self._synthesis is None:
+        consecutive blocks; block b in half b mod 2). From half way through a block on, the
+        next block not in the ring is made ahead (a run shorter than half a block makes
+        none it does not use). No-op for a whole-period table."""
+        if self._blocks is None:
             return
-        m = self._synthesis.block_rows
+        m = self._blocks.block_rows
         if last_row // m - first_row // m > 1:
             raise ValueError(f"wave table rows {first_row}..{last_row}: span more than two blocks")
         for block in range(first_row // m, last_row // m + 1):
             half = block % 2
             if self._ring_blocks[half] != block:
-                self._data.waves.values[half * m:(half + 1) * m] = self._synthesis.rows(block * m)
+                self._ring_blocks[half] = None  # until written whole
+                self._blocks.take(block, self._data.waves.values[half * m:(half + 1) * m])
                 self._ring_blocks[half] = block
+        if first_row >= 0 and first_row % m >= m // 2:
+            after = last_row // m + 1
+            self._blocks.prepare(after + 1 if after in self._ring_blocks else after)
+
+    @property
+    def wave_block_wait_s(self) -> float:
+        """Wall seconds the stepping spent on wave blocks: making them, or waiting for the
+        worker making them ahead (0 for a whole-period or streamed table)."""
+        return 0.0 if self._blocks is None else self._blocks.waited_s
 
     def _hold_times(self, first_s: float, last_s: float) -> None:
         """The rows the interpolation reads between these times (4 points around each)."""
@@ -214,9 +232,9 @@ class PlatformModel:
         """How many of the next n steps from ``first_step`` the ring can hold at once (two
         blocks from the one the current time needs), after synthesising them; all of them
         for a whole-period table."""
-        if self._synthesis is None:
+        if self._blocks is None:
             return n_steps
-        m = self._synthesis.block_rows
+        m = self._blocks.block_rows
         first_row = self._table_row(first_step * self.dt_s) - 1
         last_row = (first_row // m + 2) * m - 1  # the end of the next block
         n = min(n_steps, max(0, int((last_row - 3) * self.wave_table_step_s / self.dt_s) - first_step))
@@ -309,7 +327,7 @@ class PlatformModel:
         self._elevation = np.zeros((n_rows, 1, 1))
         self.wave_table_step_s = float(step_s)
         self.waves = None
-        self._synthesis = None
+        self._blocks = None
         tables = list(self._data.component_tables)  # no components: no slow drift series
         tables[ROW["drift"] - FIRST_MODULE_ROW] = np.zeros((4, 2))
         self._data = self._data._replace(component_tables=tuple(tables))
@@ -464,9 +482,9 @@ class PlatformModel:
     def _held_parts(self, time_s: np.ndarray) -> list[slice]:
         """Consecutive runs of times whose table rows the ring holds at once (all of them
         for a whole-period table)."""
-        if self._synthesis is None or time_s.size == 0:
+        if self._blocks is None or time_s.size == 0:
             return [slice(0, time_s.size)]
-        m = self._synthesis.block_rows
+        m = self._blocks.block_rows
         rows = np.floor(time_s / self.wave_table_step_s).astype(np.int64)
         parts, start = [], 0
         low = high = rows[0]

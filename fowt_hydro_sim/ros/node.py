@@ -47,7 +47,7 @@ from fowt_hydro_sim.physics.config import (
 )
 from fowt_hydro_sim.physics.loads import PUBLISHED, ROW, SUMMED
 from fowt_hydro_sim.physics.loads.external import check_wrench
-from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.model import WAVE_BLOCK_S, PlatformModel
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 from fowt_hydro_sim.physics.waves.feed import WaveFeed
 from fowt_hydro_sim.ros import parameters
@@ -129,6 +129,9 @@ class NodeSettings:
                                gt=0.0)
     wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed",
                                     gt=0.0)
+    wave_block_s: float = setting(WAVE_BLOCK_S, "the internal waves' kinematics are synthesised in blocks of this "
+                                                "many simulated seconds, two held, the next made ahead in a worker "
+                                                "thread [s]", gt=0.0)
     dt_s: float = like(RunConfig, "dt_s")
     initial_state: tuple[float, ...] = like(RunConfig, "initial_state")
     real_time_factor: float = setting(1.0, "1 = real time, N = N times faster, 0 = as fast as possible", ge=0.0)
@@ -194,7 +197,8 @@ class SimulatorNode(Node):
             waves = synthesize(s.sea_state, repeat_period(s.sea_state, s.duration_s))
         options = HydroOptions(wetted_length=s.wetted_length, load_directions=s.load_directions,
                                hydrostatics=s.hydrostatics, slow_drift=s.slow_drift)
-        self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model, options=options)
+        self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model, options=options,
+                                   wave_block_s=s.wave_block_s)
         self.model.reset(motion=np.array(s.initial_state))
         self._feed: WaveFeed | None = None
         self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
@@ -438,12 +442,14 @@ class SimulatorNode(Node):
 
     def _run(self) -> None:
         start_wall, start_cpu, start_sim = time.monotonic(), time.process_time(), self.model.time_s
+        start_blocks = self.model.wave_block_wait_s
         try:
             self._step_until_done()
         finally:
             wall, cpu = time.monotonic() - start_wall, time.process_time() - start_cpu
             report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
-                     f"simulated in {wall:.2f} s of wall time ({cpu:.2f} s of CPU), {self.published} messages published"
+                     f"simulated in {wall:.2f} s of wall time ({cpu:.2f} s of CPU), {self.published} messages " \
+                     f"published, {self.model.wave_block_wait_s - start_blocks:.3f} s waiting for wave blocks"
             if self.lateness_s:
                 late = np.array(self.lateness_s) * 1e3
                 report += (f"; pacing lateness p50 {np.percentile(late, 50):.3f} ms, p99 "

@@ -11,14 +11,16 @@ the kinematics at z = 0 (no stretching, as HydroDyn with WaveStMod = 0).
 undisplaced strip points (HydroDyn's WaveDisp = 0) over one repeat period by inverse FFT,
 and is read with 4-point (cubic) Lagrange interpolation in time. ``BlockSynthesis`` gives
 the same table's rows a block at a time (a chirp-z transform of the component sum), so that
-a run holds one or two blocks instead of the whole period.
+a run holds one or two blocks instead of the whole period; ``BlocksAhead`` makes the next
+block in a worker thread while a run uses the current ones.
 """
 from __future__ import annotations
 
+import math
+import time
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import NamedTuple
-
-import math
 
 import numpy as np
 from numba import njit
@@ -247,15 +249,17 @@ class BlockSynthesis:
         """e^{i pi numerator / N} for integer numerators, reduced modulo 2N first."""
         return np.exp(1j * np.pi * (numerator % (2 * self.n_samples)) / self.n_samples)
 
-    def rows(self, first_row: int) -> np.ndarray:
-        """Rows first_row .. first_row + block_rows - 1: (block_rows, n_points, 7), float64."""
+    def rows(self, first_row: int, out: np.ndarray | None = None) -> np.ndarray:
+        """Rows first_row .. first_row + block_rows - 1: (block_rows, n_points, 7), float64,
+        written into ``out`` if given (an array of that shape)."""
         import scipy.fft
         n = self.n_samples
         start = int(first_row) % n
         j, m = self._harmonics, self._rows
         into = self._phase(2 * j * start + j * j)[self._offsets]  # per component
         out_phase = self._phase(2 * self._first_harmonic * ((start + m) % n) + m * m)
-        out = np.empty((self.block_rows, self.points_m.shape[0], N_CHANNELS))
+        if out is None:
+            out = np.empty((self.block_rows, self.points_m.shape[0], N_CHANNELS))
         n_transforms = N_CHANNELS if self._heading is None else N_CHANNELS - 2
         spectrum = np.zeros((n_transforms, self._fft_rows), dtype=complex)
         for i, point in enumerate(self.points_m):  # one point at a time bounds the temporaries
@@ -277,3 +281,46 @@ class BlockSynthesis:
             else:
                 out[:, i, :] = values[:, [0, 0, 1, 2, 2, 3, 4]] * np.array([cos_b, sin_b, 1.0, cos_b, sin_b, 1.0, 1.0])
         return out
+
+
+class BlocksAhead:
+    """The blocks of a ``BlockSynthesis`` for a run that moves forward: ``prepare(b)`` starts
+    making block b in a worker thread (into one spare block; numpy's and scipy's transforms
+    release the GIL) while the run uses the blocks before it; ``take(b, out)`` writes block
+    b into ``out``: the worker's rows if b was prepared (waiting for them only if the run
+    has caught up with the worker), else made now in the calling thread. The same rows
+    either way, bit for bit. ``ahead`` False makes every block in ``take``."""
+
+    def __init__(self, synthesis: BlockSynthesis, ahead: bool = True):
+        self.synthesis = synthesis
+        self.block_rows = synthesis.block_rows
+        self.ahead = ahead
+        self.waited_s = 0.0  # wall seconds ``take`` spent: waiting for the worker or making a block
+        self.made_ahead = 0  # blocks taken from the worker
+        self._worker: ThreadPoolExecutor | None = None
+        self._spare: np.ndarray | None = None
+        self._pending: tuple[int, Future] | None = None  # the block being made ahead
+
+    def prepare(self, block: int) -> None:
+        """Start making ``block`` in the worker (a block prepared before and not taken is
+        dropped)."""
+        if not self.ahead or (self._pending is not None and self._pending[0] == block):
+            return
+        if self._pending is not None:
+            self._pending[1].cancel()  # if it runs already, it ends before the next one starts
+        if self._worker is None:
+            self._worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="wave_blocks")
+            self._spare = np.empty((self.block_rows, self.synthesis.points_m.shape[0], N_CHANNELS))
+        self._pending = (block, self._worker.submit(self.synthesis.rows, block * self.block_rows, self._spare))
+
+    def take(self, block: int, out: np.ndarray) -> None:
+        """Block ``block``'s rows into ``out`` (block_rows, n_points, 7)."""
+        start = time.perf_counter()
+        if self._pending is not None and self._pending[0] == block:
+            self._pending[1].result()  # the worker is done with the spare (one job at a time)
+            self._pending = None
+            out[:] = self._spare
+            self.made_ahead += 1
+        else:
+            self.synthesis.rows(block * self.block_rows, out)
+        self.waited_s += time.perf_counter() - start
