@@ -232,7 +232,8 @@ def test_a_diverging_state_stops_the_stepping():
     """A 0.9 GN thrust at the hub (accepted, under the absurd limit) overturns the platform:
     the node says the state diverged, stops stepping and publishes nothing beyond the bound."""
     listener = Listener({"/platform/pose": PoseStamped})
-    node = start("node", real_time_factor=0.0, drag_model="constant", lockstep=False, duration_s=600.0)
+    # long enough that the wrench arrives mid-run (600 s take about a second as fast as possible)
+    node = start("node", real_time_factor=0.0, drag_model="constant", lockstep=False, duration_s=36000.0)
     wrenches = listener.publisher(WrenchStamped, "/platform/external_wrench")
     try:
         listener.wait_for(lambda: len(listener.messages["/platform/pose"]) > 0, 60.0)
