@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fowt_hydro_sim.physics.config import HYDRODYN, HydroOptions, Platform, load_case
+from fowt_hydro_sim.physics.config import HydroOptions, Platform, load_case
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import scaled_added_mass, scaled_drag, scaled_mooring_stiffness
@@ -39,10 +39,8 @@ ELEVATION_STEP_S = 0.1
 TRUTH_DT_S = 0.05  # the "basin": a finer step than the replays'
 SENSOR_NOISE = 0.01  # white noise STD, share of each signal's STD
 # the model diagnosed (and the twin's truth), per source: the default options (with the BEM's
-# slow drift) on the twin, as ``fowt-sim diagnose`` uses; HydroDyn's (no slow drift) on the
-# independent source, whose measured figures in the README were made so before the default
-# had its drift (to be rerun with the default)
-MODEL_OPTIONS = {"twin": HydroOptions(), "independent": HYDRODYN}
+# slow drift), as ``fowt-sim diagnose`` uses; the independent basin has the same BEM drift table
+MODEL_OPTIONS = {"twin": HydroOptions(), "independent": HydroOptions()}
 SOURCES = ("twin", "independent")
 PERTURBATION = {"cd": 0.05, "ca": 0.03, "mooring": 0.03}  # uniform +- share of each property
 
