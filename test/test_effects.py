@@ -271,9 +271,25 @@ def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
     assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3}, before, settings) == []
     stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3}, before, settings)
     assert len(stiff) == 1 and "line_stiffness_scale = 1.52 lies outside its plausible 0.7 to 1.3" in stiff[0]
-    edge = concerns(CATALOGUE["linear_damping"], {"surge_damping_ratio": 0.0, "heave_damping_ratio": 0.05,
-                                                  "pitch_damping_ratio": 0.05}, before, settings)
-    assert len(edge) == 1 and "surge_damping_ratio = 0 sits at the edge" in edge[0]
+    moment = base.Effect("pitch_moment", "a constant pitch moment", (base.Parameter("moment_n_m", "N m", 1e6, -1e8, 1e8),),
+                         lambda variant, run, values: variant)  # no plausible range: the fit's bounds
+    edge = concerns(moment, {"moment_n_m": 1e8}, before, settings)
+    assert len(edge) == 1 and "moment_n_m = 1e+08 sits at the edge of the fitted range" in edge[0]
+    assert concerns(moment, {"moment_n_m": 5e7}, before, settings) == []
+
+
+def test_an_effect_off_in_one_of_its_terms_is_no_concern():
+    """Extra damping found in surge and pitch and none in heave (0, the bound where that term
+    is off: damping cannot be negative) is a legitimate answer, not a fit at the edge of its
+    range; likewise no slow drift at all."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    settings = GapSettings()
+    before = [_gap(settings, "r", {("surge", "std.low_frequency"): 0.6})]
+    for name, values in (("quadratic_damping", {"surge_ratio_at_1m": 0.0199, "heave_ratio_at_1m": 0.0,
+                                                "pitch_ratio_at_1deg": 0.03}),
+                         ("linear_damping", {"surge_damping_ratio": 0.05, "heave_damping_ratio": 0.0,
+                                             "pitch_damping_ratio": 0.04})):
+        assert concerns(CATALOGUE[name], values, before, settings) == [], name
 
 
 def test_an_effect_that_moves_the_model_the_wrong_way_is_a_concern():

@@ -40,7 +40,7 @@ import numpy as np
 import scipy.optimize
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
-from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
+from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, gap, spectra
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun, Variant, replay
 
@@ -232,6 +232,16 @@ def window_closure(flagged: list[Gap], before: list[Gap], after: list[Gap], mask
     return 1.0 - num / den if den > 0 else math.nan
 
 
+def at_edge(p: Parameter, value: float) -> bool:
+    """Whether a fitted value sits at a bound of the fit's range (within EDGE of its span) that
+    is not the parameter's off value: a bound where the term is off (no extra damping in one
+    DOF of a per-DOF effect, no drift) is a physical limit and a legitimate answer, not a sign
+    that the parameter absorbs something else."""
+    span = p.high - p.low
+    return ((value - p.low <= EDGE * span and p.low != p.off)
+            or (p.high - value <= EDGE * span and p.high != p.off))
+
+
 def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
              mask: np.ndarray | None = None) -> list[str]:
     """Why a fitted effect is implausible: a parameter outside the range a real platform's
@@ -243,7 +253,7 @@ def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settin
         value, (low, high) = values[p.name], p.plausible_range
         if not low <= value <= high:
             out.append(f"{p.name} = {value:.4g} lies outside its plausible {low:g} to {high:g} ({p.why})")
-        elif min(value - p.low, p.high - value) <= EDGE * (p.high - p.low):
+        elif at_edge(p, value):
             out.append(f"{p.name} = {value:.4g} sits at the edge of the fitted range {p.low:g} to {p.high:g}")
     cells = [f"{dof}.{metric}" for dof, metric in settings.cells()]
     right = wrong = 0.0
