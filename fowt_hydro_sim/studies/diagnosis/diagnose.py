@@ -360,6 +360,7 @@ class Diagnosis:
     model_runs: int = 0
     mismatches: list[Mismatch] = field(default_factory=list)  # the baseline's, found before any effect
     fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but mismatches)
+    first_round: list[CandidateFit] = field(default_factory=list)  # the fits on every cell, if refitted without some
 
     @property
     def tuning_before(self) -> list[Gap]:
@@ -394,6 +395,11 @@ class Diagnosis:
                 "baseline": [g.as_dict(self.settings) for g in self.baseline],
                 "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
                 "candidates": [c.as_dict(self.settings) for c in self.candidates],
+                "first_round": [{key: value for key, value in c.as_dict(self.settings).items() if key != "gaps"}
+                                | {"cell_closure": {f"{dof}.{metric}": cell_closure(self.tuning_before, c.gaps, i)
+                                                    for i, (dof, metric) in enumerate(self.settings.cells())
+                                                    if any(g.flagged[i] for g in self.tuning_before)}}
+                                for c in self.first_round],
                 "model_runs": self.model_runs}
 
 
@@ -544,7 +550,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         unexplained[i] = not any(explains(diagnosis.tuning_before, c.gaps, i) for c in candidates if not c.concerns)
     if unexplained.any():
         remaining = ~unexplained
-        diagnosis.fit_cells = remaining
+        diagnosis.fit_cells, diagnosis.first_round = remaining, candidates
         diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining)
         if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
             expect_fits()
