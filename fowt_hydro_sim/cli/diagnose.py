@@ -82,7 +82,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     b = sub.add_parser("diagnose-benchmark", help="score the diagnosis on runs whose effect is withheld",
                        description="Make 'measured' runs with one effect switched on (each at two strengths, five "
                                    "sea states, 1 % sensor noise, small property errors), plus null and "
-                                   "out-of-catalogue scenarios; diagnose each with the plain model (HydroDyn's hydro "
+                                   "out-of-catalogue scenarios; diagnose each with the plain model (the default hydro "
                                    "options) and score: top-1 accuracy, false alarms, unexplained, blind closure. "
                                    "--source twin: the runs are the model's own, the effect in its catalogue form; "
                                    "independent: the Cummins/BEM simulator's, effects in other forms (runs cached "

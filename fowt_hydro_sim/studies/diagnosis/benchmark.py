@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fowt_hydro_sim.physics.config import HYDRODYN, HydroOptions, Platform, load_case
+from fowt_hydro_sim.physics.config import HydroOptions, Platform, load_case
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import scaled_added_mass, scaled_drag, scaled_mooring_stiffness
@@ -39,10 +39,8 @@ ELEVATION_STEP_S = 0.1
 TRUTH_DT_S = 0.05  # the "basin": a finer step than the replays'
 SENSOR_NOISE = 0.01  # white noise STD, share of each signal's STD
 # the model diagnosed (and the twin's truth), per source: the default options (with the BEM's
-# slow drift) on the twin, as ``fowt-sim diagnose`` uses; HydroDyn's (no slow drift) on the
-# independent source, whose measured figures in the README were made so before the default
-# had its drift (to be rerun with the default)
-MODEL_OPTIONS = {"twin": HydroOptions(), "independent": HYDRODYN}
+# slow drift), as ``fowt-sim diagnose`` uses; the independent basin has the same BEM drift table
+MODEL_OPTIONS = {"twin": HydroOptions(), "independent": HydroOptions()}
 SOURCES = ("twin", "independent")
 PERTURBATION = {"cd": 0.05, "ca": 0.03, "mooring": 0.03}  # uniform +- share of each property
 
@@ -274,11 +272,11 @@ def _truth_task(job: tuple[Scenario, str, bool], platform: Platform, duration_s:
 def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: GapSettings,
                   effects: dict[str, Effect] | None = None, duration_s: float = DURATION_S,
                   max_evaluations: int = 4, report=None, dt_s: float = REPLAY_DT_S, source: str = "twin",
-                  cache: Path | None = None) -> list[Score]:
+                  cache: Path | None = None, reports: Path | None = None) -> list[Score]:
     """Make every scenario's measured runs on the cluster (``source`` twin: the model with
     the effect; independent: the Cummins/BEM simulator, cached in ``cache``), diagnose each
     with the plain model (``MODEL_OPTIONS[source]``), score it; ``report(score)`` is called as each
-    scenario ends."""
+    scenario ends; each diagnosis's report is written to ``reports/SCENARIO`` if given."""
     import time
 
     from fowt_hydro_sim.studies.cluster import map_with_progress
@@ -297,6 +295,9 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
         evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s,
                                     MODEL_OPTIONS[source])
         diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations)
+        if reports is not None:
+            from fowt_hydro_sim.studies.diagnosis.report import write_report
+            write_report(diagnosis, reports / scenario.name.replace("#", "_"))
         cells = (footprint(tuning, [made[scenario.name, c, False] for c in TUNING_CASES], settings)
                  if scenario.kind == "injected" else [])
         scores.append(score_scenario(scenario, diagnosis, cells, time.perf_counter() - start))
@@ -310,9 +311,9 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
               duration_s: float = DURATION_S, max_evaluations: int = 4, dt_s: float = REPLAY_DT_S,
               scheduler: str | None = None, workers: int | None = None, source: str = "twin") -> list[str]:
     """``fowt-sim diagnose-benchmark``: every scenario on a Dask cluster; ``benchmark.json``
-    in ``output`` (each scenario's score also appended to ``scenarios.jsonl`` as it ends; the
-    independent source's runs cached in ``output/runs``); returns the
-    report's lines (one per scenario, then the summary)."""
+    in ``output`` (as each scenario ends, its score appended to ``scenarios.jsonl`` and its
+    diagnosis written to ``reports/SCENARIO``; the independent source's runs cached in
+    ``output/runs``); returns the report's lines (one per scenario, then the summary)."""
     import json
     import logging
 
@@ -348,7 +349,8 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
 
     with dask_client(scheduler, workers) as client:
         scores = run_benchmark(client, chosen, platform, settings, effects, duration_s, max_evaluations, report,
-                               dt_s, source, output / "runs" if source == "independent" else None)
+                               dt_s, source, output / "runs" if source == "independent" else None,
+                               output / "reports")
     figures = summary(scores)
     (output / "benchmark.json").write_text(json.dumps({"summary": figures, "scenarios": [s.__dict__ for s in scores]},
                                                       indent=1) + "\n")

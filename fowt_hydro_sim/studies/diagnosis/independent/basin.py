@@ -12,18 +12,18 @@ from pathlib import Path
 import numpy as np
 
 from fowt_hydro_sim.physics.config import Platform, load_case
-from fowt_hydro_sim.studies.diagnosis.independent import bem, cummins
+from fowt_hydro_sim.studies.diagnosis.independent import bem, cummins, drift, drift_study
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
 
 VERSION = 1  # bump when the simulator's results change: the cache keys change with it
 DT_S = 0.05
 SENSOR_NOISE = 0.01  # white noise STD, share of each signal's STD
 
-# The basin's own slow drift, which the model lacks: a surge mean-drift coefficient D(w)
-# (rad/s, N/m^2) by Newman's approximation. An estimate of a semi-submersible of this size
-# (zero at low frequency, rising through the wave band), to be replaced by the hull's BEM
-# mean-drift table (issue 14) when it lands: ``baseline_drift`` of basin_run.
-BASELINE_DRIFT: cummins.Table = ((0.3, 0.0), (0.5, 1.0e4), (0.8, 3.0e4), (1.2, 6.0e4), (3.2, 8.0e4))
+# The basin's own slow drift: the hull's BEM surge mean-drift coefficient D(w) (rad/s, N/m^2,
+# the freely floating hull's, drift.py) by Newman's approximation, the same table as the
+# model's default ``slow_drift: newman``: a null run then differs from the model only by the
+# two simulators' structure and the scenario's baseline differences.
+BASELINE_DRIFT: cummins.Table = drift_study.drift_coefficients(drift.load_table())
 # the injected drift: a steeper frequency-dependent table on top of the baseline's
 INJECTED_DRIFT: cummins.Table = ((0.3, 1.0e4), (0.5, 6.0e4), (0.8, 1.5e5), (1.2, 2.5e5), (3.2, 3.0e5))
 # the baseline differences' spread: Cd scale, Ca scale (uniform +-), strip lengths drawn from
