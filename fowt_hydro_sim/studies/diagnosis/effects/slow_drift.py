@@ -31,8 +31,8 @@ def drift_force(elevation_m: np.ndarray, step_s: float, coefficient_n_m2: float,
     n = len(eta)
     spectrum = np.fft.rfft(eta)
     omega = 2.0 * np.pi * np.fft.rfftfreq(n, step_s)
-    weight = (np.clip(omega, 0.0, W_MAX_RAD_S) / W_REF_RAD_S) ** (0.5 * exponent) if exponent else np.ones_like(omega)
-    weight[0] = 0.0
+    weight = np.zeros_like(omega)  # none at zero frequency (where a negative exponent would divide by 0)
+    weight[1:] = (np.minimum(omega[1:], W_MAX_RAD_S) / W_REF_RAD_S) ** (0.5 * exponent)
     one_sided = np.zeros(n, dtype=complex)  # the analytic signal's spectrum
     one_sided[:spectrum.size] = 2.0 * spectrum * weight
     if n % 2 == 0:
