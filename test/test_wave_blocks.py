@@ -44,8 +44,7 @@ def one_shot_float64(waves, points, step, depth_m: float = DEPTH) -> np.ndarray:
 def test_block_rows_equal_the_component_sum(sea) -> None:
     """Oracle: direct summation (point_kinematics) at the rows' times and the one-shot inverse
     FFT in float64, within 1e-12 of each channel's peak, for blocks anywhere: across the end
-    of the repeat period, past it, before t = 0; and blocks longer than the period (made
-    whole by the inverse FFT)."""
+    of the repeat period, past it, before t = 0; and blocks longer than the period."""
     waves, points, step = sea
     full = one_shot_float64(waves, points, step)
     n = full.shape[0]
