@@ -61,7 +61,9 @@ setup(
         # the turbine node's controller: NREL's ROSCO (compiled library, toolbox, IEA 15 MW files)
         'rosco': ['rosco>=2.10,<2.11'],
         # independent bag readers, to check the bags we write
-        'test': ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', 'rosco>=2.10,<2.11', 'moorpy'],
+        # (capytaine: the BEM drift reference's check against the closed-form cylinder drift)
+        'test': ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', 'rosco>=2.10,<2.11', 'moorpy',
+                 'capytaine>=3.0'],
         # fowt-sim platform import (OpenFAST HydroDyn decks)
         'hydrodyn': ['openfast-io>=5.0'],
         # rebuilding the independent simulator's BEM database (the stored one needs neither)
