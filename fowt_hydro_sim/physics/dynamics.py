@@ -182,13 +182,17 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, mas
 @njit(cache=True)
 def react(loads: np.ndarray, added_mass: np.ndarray, masses: np.ndarray, acceleration: np.ndarray) -> None:
     """Each left-hand-side mass's reaction -M a into its row."""
+    _subtract_product(loads[ADDED_MASS], added_mass, acceleration)
+    for k in range(masses.shape[0]):
+        _subtract_product(loads[FIRST_MODULE_ROW + k], masses[k], acceleration)
+
+
+@njit(cache=True, inline="always")
+def _subtract_product(row: np.ndarray, matrix: np.ndarray, x: np.ndarray) -> None:
+    """row -= matrix @ x (6x6), in place: no temporary in the step loop."""
     for i in range(6):
         for j in range(6):
-            loads[ADDED_MASS, i] -= added_mass[i, j] * acceleration[j]
-    for k in range(masses.shape[0]):
-        for i in range(6):
-            for j in range(6):
-                loads[FIRST_MODULE_ROW + k, i] -= masses[k, i, j] * acceleration[j]
+            row[i] -= matrix[i, j] * x[j]
 
 
 @njit(cache=True)

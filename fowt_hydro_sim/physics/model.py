@@ -44,7 +44,7 @@ from fowt_hydro_sim.physics.morison import (
     added_mass_about,
     added_mass_moments,
     added_mass_tensors,
-    deep_added_mass,
+    deep_added_mass_about,
     lever_arms,
     relative_velocities,
     wetted_fractions,
@@ -172,14 +172,14 @@ class PlatformModel:
         wet = np.empty(len(s.length_m))
         wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(len(s.length_m)), wet)
         deep = wet == 1.0
+        moments = added_mass_moments(s.centre_m, strip_3x3, s.length_m, deep)
         return KernelData(
             waves=WaveTable(table, step),
             strips=StripData(s.centre_m, s.axis, s.directions, s.length_m, s.inertia_kg_m, s.added_mass_kg_m,
                              strip_3x3, strip_6x6, s.drag_kg_m2,
                              s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
                              s.filtered & filtered, s.kinematics_point.astype(np.int64), deep,
-                             deep_added_mass(s.length_m, strip_6x6, deep),
-                             added_mass_moments(s.centre_m, strip_3x3, s.length_m, deep)),
+                             deep_added_mass_about(np.eye(3), moments), moments),
             plates=PlateData(plates.centre_m, plates.normal, plates.pressure_area_m2, plates.added_mass_kg,
                              plates.drag_kg_m, plate_3x3, added_mass_about(plates.centre_m, plate_3x3),
                              plates.kinematics_point.astype(np.int64)),

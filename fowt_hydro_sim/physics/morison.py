@@ -183,10 +183,11 @@ def deep_added_mass_about(rotation: np.ndarray, moments: np.ndarray) -> np.ndarr
 def add_wet_added_mass(wet: np.ndarray, length: np.ndarray, deep: np.ndarray, added_mass_6x6: np.ndarray,
                        arm: np.ndarray, added_mass_3x3: np.ndarray, about_arm: bool, out: np.ndarray) -> None:
     """Add each strip's 6x6 added mass times its wetted length to ``out``, which comes holding
-    the ``deep`` strips' fully wet (so a deep strip adds only its difference, none while it
-    stays under water: the step loop does not sum the strips that are always wet). The
-    strip's 6x6 is ``added_mass_6x6[i]`` (body axes, rotating directions) or, ``about_arm``,
-    its 3x3 at lever arm ``arm[i]`` (world axes, fixed directions)."""
+    the ``deep`` strips' fully wet (``deep_added_mass_about``; so a deep strip adds only its
+    difference, none while it stays under water: the step loop does not sum the strips that
+    are always wet). The strip's 6x6 is ``added_mass_6x6[i]`` (body axes, rotating
+    directions) or, ``about_arm``, its 3x3 at lever arm ``arm[i]`` (world axes, fixed
+    directions)."""
     for i in range(length.size):
         scale = (wet[i] - 1.0) * length[i] if deep[i] else wet[i] * length[i]
         if scale == 0.0:
@@ -255,16 +256,6 @@ def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: 
                     fluid1 * d1[2] + fluid2 * d2[2])
         _add_wrench(out_centripetal, c, spin1 * d1[0] + spin2 * d2[0], spin1 * d1[1] + spin2 * d2[1],
                     spin1 * d1[2] + spin2 * d2[2])
-
-
-@njit(cache=True)
-def deep_added_mass(length: np.ndarray, added_mass_6x6: np.ndarray, deep: np.ndarray) -> np.ndarray:
-    """Sum of the ``deep`` strips' 6x6 added mass, fully wet (add_wet_added_mass's starting value)."""
-    out = np.zeros((6, 6))
-    for i in range(length.size):
-        if deep[i]:
-            _add_scaled(out, length[i], added_mass_6x6[i])
-    return out
 
 
 @njit(cache=True)
