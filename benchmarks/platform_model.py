@@ -6,9 +6,10 @@ integration time, wall time, real-time factor, and the filtered model's cost per
 second relative to the constant model's (target: at most 1.3). Integration times are the
 best of ``--repeats`` runs, alternating the models, to be robust to a busy machine.
 Then where a right-hand side's time goes (each part of ``dynamics.applied_loads`` called
-alone in a compiled loop, at the model's state after the run), and the arithmetic bound: the floating-point operations the filtered step needs per strip
-(counted from the kernels, ``FLOPS_PER_STRIP``) x strips x steps per simulated second,
-against this core's rate measured with a compiled loop of independent multiply-adds.
+alone in a compiled loop, at the model's state after the run), and the arithmetic bound: the
+floating-point operations the filtered step needs (counted from the kernels:
+``FLOPS_PER_WET_STRIP_RHS`` and the rest below) x steps per simulated second, against this
+core's rate measured with a compiled loop of independent multiply-adds.
 Run: python benchmarks/platform_model.py [--duration S] [--repeats N]
 The numba kernels are compiled (or loaded from cache) by a short warm-up run first.
 """
@@ -23,33 +24,30 @@ import numpy as np
 from numba import njit, objmode
 
 from fowt_hydro_sim.physics.config import DRAG_MODELS, load_case, load_platform
-from fowt_hydro_sim.physics.drag_filters import band_velocities, drag_per_length, filter_rates
+from fowt_hydro_sim.physics.drag_filters import band_velocities, filter_rates
 from fowt_hydro_sim.physics.dynamics import N_BODY_STATES, derivative
-from fowt_hydro_sim.physics.loads import N_LOADS, component_loads
+from fowt_hydro_sim.physics.loads import component_loads
 from fowt_hydro_sim.physics.model import PlatformModel
-from fowt_hydro_sim.physics.morison import (add_wet_added_mass, deep_added_mass_about, lever_arms,
-                                            relative_velocities, strip_loads, wetted_fractions)
+from fowt_hydro_sim.physics.morison import (added_mass_from_moments, centripetal_from_moments, end_plate_loads,
+                                            lever_arms, relative_velocities, rotated_moments, strip_loads)
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
-from fowt_hydro_sim.physics.tables import interpolate_table
+from fowt_hydro_sim.physics.tables import interpolate_into
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 
 
-# floating-point operations per strip and transverse direction pair, per right-hand side of
-# the filtered model (2 bands, 6 filter states, 10 non-zero A entries, 2 non-zero C entries),
-# counted from the kernels (sqrt counted as one)
-FLOPS_PER_STRIP_RHS = {
-    "relative velocity (morison.relative_velocities)": 62,  # 2 rotations 15, w x r 9, 3, 2 x 2 dots 5
-    "filter rates (drag_filters.filter_rates)": 52,  # 2 x (6 B u + 10 A x FMAs)
-    "band velocities (drag_filters.band_velocities)": 12,  # 2 x (2 D u + 2 C x FMAs)
-    "drag per length (drag_filters.drag_per_length)": 20,  # |v| 4, 2 bands x (|v_b| 4 + 2 x 2)
-    "strip wrenches (morison.strip_loads)": 147,  # w x (w x r) 18, 2 x (10 + 9 + 3 wrenches 15) ...
-    "wetted fraction (morison.wetted_fractions)": 17,
+# floating-point operations per right-hand side of the filtered model (2 bands, 6 filter
+# states, 10 non-zero A entries, 2 non-zero C entries), counted from the kernels (sqrt as one):
+# per strip wetted at rest (the others never load: strips wetted as at rest, the default)
+FLOPS_PER_WET_STRIP_RHS = {
+    "lever arm R c (morison.lever_arms)": 15,
+    "relative velocity and fluid acceleration (morison.relative_velocities)": 35,  # w x r 9, 6, 4 dots 20
+    "drag per length (morison.strip_loads)": 22,  # 2 bands x (|v_b| 4, 2 x 3), wetted length 2
+    "fluid inertia (morison.strip_loads)": 6,
+    "drag and inertia wrenches (morison.strip_loads)": 48,  # 2 x (forces 9, r x f 9, sums 6)
 }
-# the 6x6 added mass about the reference point, only for strips not fully wet at rest (the
-# others are summed from precomputed moments: morison.deep_added_mass_about, ~1,500 flops)
-FLOPS_WATERLINE_STRIP_RHS = 108  # S A 27, the 6x6 blocks 36 + 27, scaling 18
-FLOPS_DEEP_SUM_RHS = 1500
-FLOPS_ABM_PER_STATE = 18  # predictor and corrector, 9 each, per filter state and step
+FLOPS_PER_FILTER_COLUMN_RHS = 40  # every strip direction: rates 16 FMAs, band velocities 4 FMAs
+FLOPS_MOMENTS_RHS = 1500  # the 6x6 added mass and the centripetal wrench from the moments
+FLOPS_ABM_PER_STATE = 18  # predictor and corrector, 9 each, per state and step
 RHS_PER_STEP = 2  # ABM4 PECE
 
 
@@ -71,79 +69,80 @@ def _clock() -> float:
 
 
 @njit(cache=True)
-def _parts(y: np.ndarray, d, masses: np.ndarray, n: int) -> np.ndarray:
-    """Seconds for n calls of: the whole right-hand side, then each part of it alone."""
-    out, loads = np.empty_like(y), np.zeros((N_LOADS, 6))
-    s, bank = d.strips, d.filters
+def _parts(y: np.ndarray, d, w, n: int) -> np.ndarray:
+    """Seconds for n calls of: the whole right-hand side, then each part of it alone, as
+    ``dynamics.applied_loads`` calls them for the default options (fixed directions, strips
+    wetted as at rest)."""
+    out = np.empty_like(y)
+    s, plates, bank = d.strips, d.plates, d.filters
     rotation = rotation_matrix(y[3], y[4], y[5])
-    n_strips = s.length.size
-    fixed = d.options.fixed_directions
-    frame = np.eye(3) if fixed else rotation
-    arm = lever_arms(rotation, s.centre) if fixed else s.centre
-    wet, v_rel, a_fluid = np.empty(n_strips), np.empty((n_strips, 2)), np.empty((n_strips, 2))
-    states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * n_strips))
-    rates, v_band = np.empty_like(states), np.empty((bank.d.size, 2 * n_strips))
-    drag, body = np.empty((n_strips, 2)), np.zeros((3, 6))
-    kinematics = interpolate_table(d.waves.values, d.waves.step_s, 0.0)
-    surface = d.still_surface[:n_strips]
+    states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * s.length.size))
+    rates = np.empty_like(states)
+    v_flat = w.v_rel.reshape(2 * s.length.size)
+    eye = np.eye(3)
     times = np.zeros(8)
     start = _clock()
     for k in range(n):
-        derivative(k * 1e-3, y, d, loads, masses, out)
+        derivative(k * 1e-3, y, d, w, out)
     times[0] = _clock() - start
     start = _clock()
     for k in range(n):
-        kinematics = interpolate_table(d.waves.values, d.waves.step_s, k * 1e-3)
+        interpolate_into(d.waves.values, d.waves.step_s, k * 1e-3, w.kinematics)
     times[1] = _clock() - start
     start = _clock()
     for _ in range(n):
-        wetted_fractions(np.eye(3), 0.0, s.centre, s.axis, s.length, surface, wet)
-        arm = lever_arms(rotation, s.centre) if fixed else s.centre
-        relative_velocities(frame, y[6:9], y[9:12], kinematics, arm, s.directions, s.point, v_rel, a_fluid)
+        lever_arms(rotation, s.centre, w.arm)
+        relative_velocities(eye, True, y[6:9], y[9:12], w.kinematics, w.arm, s.directions, s.point, s.rest_wet,
+                            True, w.v_rel, w.a_fluid)
     times[2] = _clock() - start
     start = _clock()
     for _ in range(n):
-        band_velocities(states, v_rel.ravel(), bank.c, bank.c_nonzero, bank.d, v_band)
-        filter_rates(states, v_rel.ravel(), bank.a, bank.a_nonzero, bank.b, rates)
+        band_velocities(states, v_flat, bank.c, bank.c_nonzero, bank.d, w.v_band)
+        filter_rates(states, v_flat, bank.a, bank.a_nonzero, bank.b, rates)
     times[3] = _clock() - start
     start = _clock()
     for _ in range(n):
-        drag_per_length(v_rel, v_band, s.band_drag, s.drag, s.filtered, drag)
+        strip_loads(eye, y[9:12], s.rest_wet, w.v_rel, w.a_fluid, w.v_band, w.arm, s.directions, s.length,
+                    s.inertia, s.added_mass, s.band_drag, s.drag, s.filtered, False, w.body)
     times[4] = _clock() - start
     start = _clock()
     for _ in range(n):
-        strip_loads(frame, y[9:12], wet, a_fluid, drag, arm, s.directions, s.length, s.inertia, s.added_mass,
-                    body[0], body[1], body[2])
+        rotated_moments(rotation, s.rest_moments, w.first, w.half, w.second)
+        added_mass_from_moments(s.rest_moments[0], w.first, w.second, w.added_mass)
+        centripetal_from_moments(w.first, w.second, (y[9], y[10], y[11]), w.spin)
     times[5] = _clock() - start
     start = _clock()
     for _ in range(n):
-        added = deep_added_mass_about(rotation, s.deep_moments) if fixed else s.deep_added_mass_6x6.copy()
-        add_wet_added_mass(wet, s.length, s.deep, s.added_mass_6x6, arm, s.added_mass_3x3, fixed, added)
+        lever_arms(rotation, plates.centre, w.plate_arm)
+        end_plate_loads(eye, y[6:9], y[9:12], w.kinematics, w.plate_arm, plates.normal, w.submerged,
+                        plates.pressure_area, plates.added_mass, plates.drag, plates.added_mass_6x6,
+                        plates.added_mass_3x3, True, plates.point, w.body[0], w.body[1], w.body[2], w.added_mass)
     times[6] = _clock() - start
     start = _clock()
     for k in range(n):
-        component_loads(k * 1e-3, y, rotation, d.component_params, d.component_tables, loads, masses)
+        component_loads(k * 1e-3, y, rotation, d.component_params, d.component_tables, w.loads, w.masses)
     times[7] = _clock() - start
     return times
 
 
 PARTS = ("whole right-hand side (dynamics.derivative)", "kinematics interpolation (tables)",
-         "wetted fractions + relative velocities (morison)", "filter rates + band velocities (drag_filters)",
-         "drag per length (drag_filters)", "strip wrenches (morison.strip_loads)",
-         "strip 6x6 added mass (morison)", "load components (hydrostatics, mooring, drift, ...)")
+         "lever arms + relative velocities (morison)", "filter rates + band velocities (drag_filters)",
+         "drag and inertia wrenches (morison.strip_loads)",
+         "6x6 added mass + centripetal wrench from moments (morison)", "end plates (morison)",
+         "load components (hydrostatics, mooring, drift, ...)")
 
 
 def profile(model: PlatformModel, n: int = 20_000) -> str:
     """Microseconds per call of each part of the right-hand side, at the model's state."""
     y = model._state.copy()  # noqa: SLF001 (a benchmark reads the model's kernel data)
-    d, masses = model._data, model._masses  # noqa: SLF001
-    _parts(y, d, masses, 10)
-    times = _parts(y, d, masses, n)
+    d, w = model._data, model._work  # noqa: SLF001
+    _parts(y, d, w, 10)
+    times = _parts(y, d, w, n)
     lines = [f"  where a right-hand side's time goes ({n} calls each, load average {os.getloadavg()[0]:.1f}):"]
     for name, seconds in zip(PARTS, times):
         lines.append(f"    {name:55s}{1e6 * seconds / n:8.2f} us{seconds / times[0]:7.0%}")
     rest = times[0] - times[1:].sum()
-    lines.append(f"    {'the rest (end plates, mass matrix, solve, allocations)':55s}{1e6 * rest / n:8.2f} us"
+    lines.append(f"    {'the rest (mass matrix, solve, filter rates copy, ...)':55s}{1e6 * rest / n:8.2f} us"
                  f"{rest / times[0]:7.0%}")
     return "\n".join(lines)
 
@@ -159,15 +158,18 @@ def core_rate_gflops(n: int = 20_000_000) -> float:
     return 2 * 16 * n / best / 1e9
 
 
-def arithmetic_bound(n_strips: int, n_waterline: int, n_states: int, dt_s: float, measured_s_per_s: float) -> str:
+def arithmetic_bound(n_strips: int, n_wet: int, n_states: int, dt_s: float, measured_s_per_s: float) -> str:
     """What the filtered step needs, against the core's rate and the measured time."""
-    per_step = RHS_PER_STEP * sum(FLOPS_PER_STRIP_RHS.values()) + FLOPS_ABM_PER_STATE * 2 * n_states
-    flops_per_s = (per_step * n_strips + RHS_PER_STEP * (FLOPS_WATERLINE_STRIP_RHS * n_waterline
-                                                          + FLOPS_DEEP_SUM_RHS)) / dt_s
+    per_rhs = (sum(FLOPS_PER_WET_STRIP_RHS.values()) * n_wet + FLOPS_PER_FILTER_COLUMN_RHS * 2 * n_strips
+               + FLOPS_MOMENTS_RHS)
+    per_step = RHS_PER_STEP * per_rhs + FLOPS_ABM_PER_STATE * n_states
+    flops_per_s = per_step / dt_s
     rate = core_rate_gflops()
     bound_s_per_s = flops_per_s / (rate * 1e9)
-    lines = [f"  arithmetic bound (filtered): {per_step} flops per strip per step x {n_strips} strips, plus the "
-             f"6x6 added mass of {n_waterline} waterline strips and the deep strips' sum, x {1 / dt_s:g} steps "
+    lines = [f"  arithmetic bound (filtered): {RHS_PER_STEP} right-hand sides of {per_rhs:,} flops ("
+             f"{sum(FLOPS_PER_WET_STRIP_RHS.values())} per strip wetted at rest x {n_wet}, "
+             f"{FLOPS_PER_FILTER_COLUMN_RHS} per filtered input x {2 * n_strips}, {FLOPS_MOMENTS_RHS} for the "
+             f"moments) and {FLOPS_ABM_PER_STATE} per state x {n_states} states per step, x {1 / dt_s:g} steps "
              f"per s = {flops_per_s / 1e6:.2f} Mflop per simulated second",
              f"  core multiply-add rate {rate:.1f} Gflop/s -> bound {1e3 * bound_s_per_s:.3f} ms per simulated "
              f"second ({1 / bound_s_per_s:,.0f}x real time); measured {1e3 * measured_s_per_s:.3f} ms "
@@ -223,8 +225,8 @@ def main() -> None:
           f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
     filtered = models["filtered"]
     print(profile(filtered))
-    n_waterline = int((~filtered._data.strips.deep).sum())  # noqa: SLF001
-    print(arithmetic_bound(filtered.n_strips, n_waterline, filtered.filter_bank.n_states, args.dt,
+    n_wet = int((filtered._data.strips.rest_wet > 0.0).sum())  # noqa: SLF001
+    print(arithmetic_bound(filtered.n_strips, n_wet, filtered._state.size, args.dt,  # noqa: SLF001
                            integration["filtered"] / args.duration))
 
 

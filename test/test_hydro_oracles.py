@@ -160,8 +160,34 @@ def test_deep_strips_added_mass_from_moments_is_the_sum_of_each_strips_rigid_tra
         r = rotation @ centre
         jacobian = np.hstack([np.eye(3), -np.array([[0, -r[2], r[1]], [r[2], 0, -r[0]], [-r[1], r[0], 0]])])
         expected += length * jacobian.T @ a @ jacobian
-    got = deep_added_mass_about(rotation, added_mass_moments(s.centre_m, mass_3x3, s.length_m, deep))
+    got = deep_added_mass_about(rotation, added_mass_moments(s.centre_m, mass_3x3, s.length_m * deep))
     assert deep.sum() > 100
+    assert np.allclose(got, expected, rtol=0, atol=1e-12 * np.abs(expected).max())
+
+
+@pytest.mark.parametrize("angles", [(0.0, 0.0, 0.0), (0.05, -0.12, 0.3), (-0.2, 0.15, -1.1)])
+def test_centripetal_added_mass_wrench_from_moments_is_the_sum_over_strips(angles):
+    """The centripetal added-mass wrench of strips wetted as at rest, made from the same
+    moments as their 6x6 added mass, equals -sum L A w x (w x r) and its moment r x f about
+    the reference point, summed strip by strip with numpy at lever arms r = R c (fixed
+    directions) for an angular velocity with all three components."""
+    from fowt_hydro_sim.physics.morison import (added_mass_moments, added_mass_tensors, centripetal_from_moments,
+                                                rotated_moments, wetted_fractions)
+    from fowt_hydro_sim.physics.strips import discretise
+    geometry = discretise(load_platform("windmoor12"))
+    s = geometry.strips
+    mass_3x3, _ = added_mass_tensors(geometry)
+    wet = np.empty(len(s.length_m))
+    wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(wet.size), wet)
+    rotation, omega = _rotation(*angles), np.array([0.03, -0.05, 0.02])
+    expected = np.zeros(6)
+    for centre, a, wet_length in zip(s.centre_m, mass_3x3, s.length_m * wet):
+        r = rotation @ centre
+        force = -wet_length * a @ np.cross(omega, np.cross(omega, r))
+        expected += np.concatenate([force, np.cross(r, force)])
+    first, half, second, got = np.empty((3, 3, 3)), np.empty((3, 3, 3, 3)), np.empty((3, 3, 3, 3)), np.empty(6)
+    rotated_moments(rotation, added_mass_moments(s.centre_m, mass_3x3, s.length_m * wet), first, half, second)
+    centripetal_from_moments(first, second, tuple(omega), got)
     assert np.allclose(got, expected, rtol=0, atol=1e-12 * np.abs(expected).max())
 
 

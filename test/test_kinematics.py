@@ -14,7 +14,7 @@ import pytest
 from scipy.optimize import brentq
 
 from fowt_hydro_sim.physics.config import SeaState
-from fowt_hydro_sim.physics.dynamics import interpolate_table
+from fowt_hydro_sim.physics.tables import interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents, read_comp_file, synthesize
 from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, depth_factors, point_kinematics, table_step
 

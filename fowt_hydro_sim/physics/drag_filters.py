@@ -168,24 +168,3 @@ def filter_rates(states: np.ndarray, v_rel: np.ndarray, a: np.ndarray, a_nonzero
         r, j = a_nonzero[e, 0], a_nonzero[e, 1]
         for i in range(v_rel.size):
             out[r, i] += a[r, j] * states[j, i]
-
-
-@njit(cache=True)
-def drag_per_length(v_rel: np.ndarray, v_band: np.ndarray, band_drag: np.ndarray,
-                    constant_drag: np.ndarray, filtered: np.ndarray, out: np.ndarray) -> None:
-    """Transverse drag per unit (wetted) length (n, 2): over the bands for filtered directions,
-    0.5 rho Cd_b D |v_b| v_b (``band_drag`` (n, n_bands, 2) = 0.5 rho Cd_b D; ``v_band``
-    (n_bands, 2 n)), otherwise 0.5 rho Cd D |v_rel| v_rel (``constant_drag`` (n, 2)).
-    No bands: the constant-Cd model."""
-    n_bands = v_band.shape[0]
-    for i in range(v_rel.shape[0]):
-        speed = math.sqrt(v_rel[i, 0] ** 2 + v_rel[i, 1] ** 2)
-        for k in range(2):
-            out[i, k] = 0.0 if filtered[i, k] else constant_drag[i, k] * speed * v_rel[i, k]
-        for b in range(n_bands):
-            v0, v1 = v_band[b, 2 * i], v_band[b, 2 * i + 1]
-            band_speed = math.sqrt(v0 ** 2 + v1 ** 2)
-            if filtered[i, 0]:
-                out[i, 0] += band_drag[i, b, 0] * band_speed * v0
-            if filtered[i, 1]:
-                out[i, 1] += band_drag[i, b, 1] * band_speed * v1

@@ -17,15 +17,16 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.drag_filters import band_velocities, drag_per_length, filter_rates
+from fowt_hydro_sim.physics.drag_filters import band_velocities, filter_rates
 from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, N_LOADS, ROW, component_loads
 from fowt_hydro_sim.physics.morison import (
     add_wet_added_mass,
-    added_mass_about,
-    deep_added_mass_about,
+    added_mass_from_moments,
+    centripetal_from_moments,
     end_plate_loads,
     lever_arms,
     relative_velocities,
+    rotated_moments,
     strip_loads,
     submerged_points,
     wetted_fractions,
@@ -33,12 +34,11 @@ from fowt_hydro_sim.physics.morison import (
 from fowt_hydro_sim.physics.rigid_body import (
     euler_rates,
     mass_matrix_and_bias,
-    matvec,
     rotate_inertia,
     rotation_matrix,
     solve_spd,
 )
-from fowt_hydro_sim.physics.tables import interpolate_table
+from fowt_hydro_sim.physics.tables import interpolate_into
 
 N_BODY_STATES = 12
 DRAG, INERTIA, ADDED_MASS = ROW["drag"], ROW["inertia"], ROW["added_mass"]  # the strip model's rows
@@ -68,6 +68,9 @@ class StripData(NamedTuple):
     deep: np.ndarray  # (n,) bool: fully wet at rest (morison.strip_loads)
     deep_added_mass_6x6: np.ndarray  # (6, 6) their added mass fully wet, body axes, about the reference point
     deep_moments: np.ndarray  # (13, 3, 3) moments of their 3x3 added mass (morison.added_mass_moments)
+    rest_wet: np.ndarray  # (n,) wetted fractions at rest: constant with the undisplaced wetted length
+    rest_added_mass_6x6: np.ndarray  # (6, 6) all strips' added mass wetted as at rest, body axes
+    rest_moments: np.ndarray  # (13, 3, 3) the moments of all strips' 3x3 added mass wetted as at rest
 
 
 class PlateData(NamedTuple):
@@ -119,64 +122,126 @@ class KernelData(NamedTuple):
     still_surface: np.ndarray  # zeros (n_strips + n_plates): the water surface at z = 0 (no stretching)
 
 
+class Workspace(NamedTuple):
+    """The right-hand side's scratch and outputs, made once per model (``workspace``): the step
+    loop allocates nothing."""
+
+    loads: np.ndarray  # (N_LOADS, 6) the loads at the last evaluation
+    masses: np.ndarray  # (N_MODULE_COMPONENTS, 6, 6) the module components' left-hand-side masses
+    kinematics: np.ndarray  # (n_points, 7) the wave kinematics at the evaluation's time
+    wet: np.ndarray  # (n_strips,)
+    v_rel: np.ndarray  # (n_strips, 2)
+    a_fluid: np.ndarray  # (n_strips, 2)
+    v_band: np.ndarray  # (n_bands, 2 n_strips)
+    arm: np.ndarray  # (n_strips, 3) lever arms in the frame
+    plate_arm: np.ndarray  # (n_plates, 3)
+    submerged: np.ndarray  # (n_plates,)
+    body: np.ndarray  # (3, 6) drag, inertia, centripetal added mass, frame axes
+    first: np.ndarray  # (3, 3, 3) first moments of the strips' added mass (morison.rotated_moments)
+    half: np.ndarray  # (3, 3, 3, 3)
+    second: np.ndarray  # (3, 3, 3, 3) second moments
+    spin: np.ndarray  # (6,) centripetal added-mass wrench from the moments
+    added_mass: np.ndarray  # (6, 6) the strips' and plates' added mass, frame axes
+    world_added_mass: np.ndarray  # (6, 6) the same in world axes (rotating directions)
+    system: np.ndarray  # (6, 6) the left-hand side
+    factor: np.ndarray  # (6, 6) its Cholesky factor
+    forces: np.ndarray  # (6,) the right-hand side
+    bias: np.ndarray  # (6,) the rigid body's velocity terms
+
+
 @njit(cache=True)
-def applied_loads(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, masses: np.ndarray,
-                  filter_rates_out: np.ndarray, surface: np.ndarray) -> np.ndarray:
-    """Fill ``loads`` (N_LOADS, 6; world axes, about the reference point) at state y and time
-    t, with only the centripetal part in the added-mass row, the module components' masses
-    (N_MODULE_COMPONENTS, 6, 6) and the drag filter states' rates; return the strips' 6x6
-    added mass (world axes) that multiplies the body acceleration. ``surface`` (n_strips +
-    n_plates) is the water surface height the strips and plates are wetted up to."""
+def workspace(d: KernelData) -> Workspace:
+    """The scratch ``derivative`` and ``integrate`` work in, for kernel data ``d``."""
+    n = d.strips.length.size
+    return Workspace(np.zeros((N_LOADS, 6)), np.zeros((N_MODULE_COMPONENTS, 6, 6)),
+                     np.zeros(d.waves.values.shape[1:]), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2)),
+                     np.zeros((d.filters.d.size, 2 * n)),
+                     d.strips.centre.copy(), d.plates.centre.copy(), np.zeros(d.plates.centre.shape[0]),
+                     np.zeros((3, 6)), np.zeros((3, 3, 3)), np.zeros((3, 3, 3, 3)), np.zeros((3, 3, 3, 3)),
+                     np.zeros(6), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)),
+                     np.zeros(6), np.zeros(6))
+
+
+@njit(cache=True)
+def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_rates_out: np.ndarray,
+                  surface: np.ndarray, constant_wetting: bool) -> np.ndarray:
+    """Fill ``w.loads`` (N_LOADS, 6; world axes, about the reference point) at state y and
+    time t from the kinematics in ``w.kinematics`` (at t), with only the centripetal part in
+    the added-mass row, ``w.masses`` with the module components' masses and the drag filter
+    states' rates; return the strips' and plates' 6x6 added mass (world axes) that multiplies
+    the body acceleration. ``surface`` (n_strips + n_plates) is the water surface height the
+    strips and plates are wetted up to; ``constant_wetting``: the strips stay wetted as at
+    rest (undisplaced wetted length, still surface), so the dry ones are skipped and the
+    added mass and its centripetal wrench are sums of precomputed moments."""
     position, angles = y[0:3], y[3:6]
     velocity, omega = y[6:9], y[9:12]
     rotation = rotation_matrix(angles[0], angles[1], angles[2])
-    kinematics = interpolate_table(d.waves.values, d.waves.step_s, t)
     s, plates, bank = d.strips, d.plates, d.filters
-
-    if d.options.fixed_directions:  # world axes, lever arms R c
+    fixed = d.options.fixed_directions
+    if constant_wetting:
+        w.wet[:] = s.rest_wet
+    elif d.options.undisplaced_wetting:
+        wetted_fractions(np.eye(3), 0.0, s.centre, s.axis, s.length, surface[:s.length.size], w.wet)
+    else:
+        wetted_fractions(rotation, position[2], s.centre, s.axis, s.length, surface[:s.length.size], w.wet)
+    moments = s.rest_moments if constant_wetting else s.deep_moments
+    if fixed:  # world axes, lever arms R c
         frame = np.eye(3)
-        arm, plate_arm = lever_arms(rotation, s.centre), lever_arms(rotation, plates.centre)
-        plate_6x6 = added_mass_about(plate_arm, plates.added_mass_3x3)
-        added_mass_body = deep_added_mass_about(rotation, s.deep_moments)
-    else:  # body axes
-        frame, arm, plate_arm = rotation, s.centre, plates.centre
-        plate_6x6 = plates.added_mass_6x6
-        added_mass_body = s.deep_added_mass_6x6.copy()
-    wet_pose, wet_z = (np.eye(3), 0.0) if d.options.undisplaced_wetting else (rotation, position[2])
-    body = np.zeros((3, 6))  # drag, inertia, centripetal added mass, frame axes
-    n_strips = s.length.size
-    wet, v_rel, a_fluid = np.empty(n_strips), np.empty((n_strips, 2)), np.empty((n_strips, 2))
-    wetted_fractions(wet_pose, wet_z, s.centre, s.axis, s.length, surface[:n_strips], wet)
-    submerged = np.empty(plates.centre.shape[0])
-    submerged_points(wet_pose, wet_z, plates.centre, surface[n_strips:], submerged)
-    relative_velocities(frame, velocity, omega, kinematics, arm, s.directions, s.point, v_rel, a_fluid)
-    filter_states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * n_strips))
-    v_flat = v_rel.reshape(2 * n_strips)
-    v_band = np.empty((bank.d.size, 2 * n_strips))
-    band_velocities(filter_states, v_flat, bank.c, bank.c_nonzero, bank.d, v_band)
+        lever_arms(rotation, s.centre, w.arm)
+        lever_arms(rotation, plates.centre, w.plate_arm)
+        rotated_moments(rotation, moments, w.first, w.half, w.second)
+        added_mass_from_moments(moments[0], w.first, w.second, w.added_mass)
+    else:  # body axes: w.arm and w.plate_arm hold the body-frame centres, the moments are at R = I
+        frame = rotation
+        rotated_moments(np.eye(3), moments, w.first, w.half, w.second)
+        w.added_mass[:] = s.rest_added_mass_6x6 if constant_wetting else s.deep_added_mass_6x6
+    if d.options.undisplaced_wetting:
+        submerged_points(np.eye(3), 0.0, plates.centre, surface[s.length.size:], w.submerged)
+    else:
+        submerged_points(rotation, position[2], plates.centre, surface[s.length.size:], w.submerged)
+    relative_velocities(frame, fixed, velocity, omega, w.kinematics, w.arm, s.directions, s.point, w.wet,
+                        constant_wetting, w.v_rel, w.a_fluid)
+    filter_states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * s.length.size))
+    v_flat = w.v_rel.reshape(2 * s.length.size)
+    band_velocities(filter_states, v_flat, bank.c, bank.c_nonzero, bank.d, w.v_band)
     filter_rates(filter_states, v_flat, bank.a, bank.a_nonzero, bank.b, filter_rates_out.reshape(filter_states.shape))
-    drag = np.empty((n_strips, 2))
-    drag_per_length(v_rel, v_band, s.band_drag, s.drag, s.filtered, drag)
-    strip_loads(frame, omega, wet, a_fluid, drag, arm, s.directions, s.length, s.inertia, s.added_mass,
-                body[0], body[1], body[2])
-    add_wet_added_mass(wet, s.length, s.deep, s.added_mass_6x6, arm, s.added_mass_3x3, d.options.fixed_directions,
-                       added_mass_body)
-    end_plate_loads(frame, velocity, omega, kinematics, plate_arm, plates.normal, submerged, plates.pressure_area,
-                    plates.added_mass, plates.drag, plate_6x6, plates.point, body[0], body[1], body[2],
-                    added_mass_body)
-    component_loads(t, y, rotation, d.component_params, d.component_tables, loads, masses)
-    if d.options.fixed_directions:  # the frame is the world's
+    strip_loads(frame, omega, w.wet, w.v_rel, w.a_fluid, w.v_band, w.arm, s.directions, s.length, s.inertia,
+                s.added_mass, s.band_drag, s.drag, s.filtered, not constant_wetting, w.body)
+    if constant_wetting:
+        centripetal_from_moments(w.first, w.second, _in_frame(frame, omega), w.spin)
+        w.body[2] = w.spin
+    else:
+        add_wet_added_mass(w.wet, s.length, s.deep, s.added_mass_6x6, w.arm, s.added_mass_3x3, fixed, w.added_mass)
+    end_plate_loads(frame, velocity, omega, w.kinematics, w.plate_arm, plates.normal, w.submerged,
+                    plates.pressure_area, plates.added_mass, plates.drag, plates.added_mass_6x6,
+                    plates.added_mass_3x3, fixed, plates.point, w.body[0], w.body[1], w.body[2], w.added_mass)
+    component_loads(t, y, rotation, d.component_params, d.component_tables, w.loads, w.masses)
+    if fixed:  # the frame is the world's
         for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
-            loads[row] = body[c]
-        return added_mass_body
+            w.loads[row] = w.body[c]
+        return w.added_mass
     for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
-        loads[row, 0:3] = matvec(frame, body[c, 0:3])
-        loads[row, 3:6] = matvec(frame, body[c, 3:6])
-    added_mass = np.empty((6, 6))
+        _rotate_wrench(frame, w.body[c], w.loads[row])
     for r in range(0, 6, 3):
         for c in range(0, 6, 3):
-            added_mass[r:r + 3, c:c + 3] = rotate_inertia(frame, added_mass_body[r:r + 3, c:c + 3])
-    return added_mass
+            rotate_inertia(frame, w.added_mass[r:r + 3, c:c + 3], w.world_added_mass[r:r + 3, c:c + 3])
+    return w.world_added_mass
+
+
+@njit(cache=True, inline="always")
+def _in_frame(frame: np.ndarray, x: np.ndarray) -> tuple[float, float, float]:
+    """frame^T x: a world-axes vector in the frame's axes."""
+    return (frame[0, 0] * x[0] + frame[1, 0] * x[1] + frame[2, 0] * x[2],
+            frame[0, 1] * x[0] + frame[1, 1] * x[1] + frame[2, 1] * x[2],
+            frame[0, 2] * x[0] + frame[1, 2] * x[1] + frame[2, 2] * x[2])
+
+
+@njit(cache=True, inline="always")
+def _rotate_wrench(rotation: np.ndarray, wrench: np.ndarray, out: np.ndarray) -> None:
+    """out = [R f; R m] of a body-axes wrench."""
+    for i in range(3):
+        out[i] = rotation[i, 0] * wrench[0] + rotation[i, 1] * wrench[1] + rotation[i, 2] * wrench[2]
+        out[3 + i] = rotation[i, 0] * wrench[3] + rotation[i, 1] * wrench[4] + rotation[i, 2] * wrench[5]
 
 
 @njit(cache=True)
@@ -196,25 +261,35 @@ def _subtract_product(row: np.ndarray, matrix: np.ndarray, x: np.ndarray) -> Non
 
 
 @njit(cache=True)
-def derivative(t: float, y: np.ndarray, d: KernelData, loads: np.ndarray, masses: np.ndarray,
-               out: np.ndarray) -> None:
-    """Write dy/dt at time t to ``out`` (entries 6-12 are the accelerations); fill ``loads``,
-    whose rows then include the reactions -M a of the masses on the left-hand side, and
-    ``masses`` (N_MODULE_COMPONENTS, 6, 6; the caller's scratch) with the components' masses."""
-    added_mass = applied_loads(t, y, d, loads, masses, out[N_BODY_STATES:], d.still_surface)
+def derivative(t: float, y: np.ndarray, d: KernelData, w: Workspace, out: np.ndarray) -> None:
+    """Write dy/dt at time t to ``out`` (entries 6-12 are the accelerations); fill ``w.loads``,
+    whose rows then include the reactions -M a of the masses on the left-hand side."""
+    interpolate_into(d.waves.values, d.waves.step_s, t, w.kinematics)
+    _derivative(t, y, d, w, out)
+
+
+@njit(cache=True)
+def _derivative(t: float, y: np.ndarray, d: KernelData, w: Workspace, out: np.ndarray) -> None:
+    """``derivative`` with the kinematics at t already in ``w.kinematics``."""
+    added_mass = applied_loads(t, y, d, w, out[N_BODY_STATES:], d.still_surface, d.options.undisplaced_wetting)
     rotation = rotation_matrix(y[3], y[4], y[5])
-    mass6, bias = mass_matrix_and_bias(d.body.mass, d.body.cog, d.body.inertia_cog, rotation, y[9:12])
-    total = -bias
-    for c in range(N_LOADS):
-        total += loads[c]
-    lhs = mass6 + added_mass
+    mass_matrix_and_bias(d.body.mass, d.body.cog, d.body.inertia_cog, rotation, y[9:12], w.system, w.bias)
+    for i in range(6):
+        total = -w.bias[i]
+        for c in range(N_LOADS):
+            total += w.loads[c, i]
+        w.forces[i] = total
+        for j in range(6):
+            w.system[i, j] += added_mass[i, j]
     for k in range(N_MODULE_COMPONENTS):
-        lhs += masses[k]
-    acceleration = solve_spd(lhs, total)
-    react(loads, added_mass, masses, acceleration)
+        for i in range(6):
+            for j in range(6):
+                w.system[i, j] += w.masses[k, i, j]
+    acceleration = out[6:12]
+    solve_spd(w.system, w.forces, w.factor, acceleration)
+    react(w.loads, added_mass, w.masses, acceleration)
     out[0:3] = y[6:9]
-    out[3:6] = euler_rates(y[3], y[4], y[5], y[9:12])
-    out[6:12] = acceleration
+    euler_rates(y[3], y[4], y[5], y[9:12], out[3:6])
 
 
 @njit(cache=True)
@@ -224,25 +299,26 @@ def prescribed_motion_loads(times: np.ndarray, states: np.ndarray, accelerations
     the water surface height over each strip and plate (n, n_strips + n_plates); for a model
     without drag filter states."""
     no_filter_states = np.empty(0)
-    masses = np.empty((N_MODULE_COMPONENTS, 6, 6))
+    w = workspace(d)
     for n in range(times.size):
-        added_mass = applied_loads(times[n], states[n], d, out_loads[n], masses, no_filter_states, surfaces[n])
-        react(out_loads[n], added_mass, masses, accelerations[n])
+        interpolate_into(d.waves.values, d.waves.step_s, times[n], w.kinematics)
+        added_mass = applied_loads(times[n], states[n], d, w, no_filter_states, surfaces[n], False)
+        out_loads[n] = w.loads
+        react(out_loads[n], added_mass, w.masses, accelerations[n])
 
 
 @njit(cache=True)
-def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, loads: np.ndarray,
-         masses: np.ndarray) -> None:
+def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, w: Workspace) -> None:
     k2, k3, k4 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
-    derivative(t + 0.5 * dt, y + 0.5 * dt * k1, d, loads, masses, k2)
-    derivative(t + 0.5 * dt, y + 0.5 * dt * k2, d, loads, masses, k3)
-    derivative(t + dt, y + dt * k3, d, loads, masses, k4)
+    derivative(t + 0.5 * dt, y + 0.5 * dt * k1, d, w, k2)
+    derivative(t + 0.5 * dt, y + 0.5 * dt * k2, d, w, k3)
+    derivative(t + dt, y + dt * k3, d, w, k4)
     y += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
 
 
 @njit(cache=True, nogil=True)  # a node publishes the last batch while the next one runs
 def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_every: int,
-              d: KernelData, history: np.ndarray, newest: np.ndarray, out_t: np.ndarray,
+              d: KernelData, w: Workspace, history: np.ndarray, newest: np.ndarray, out_t: np.ndarray,
               out_y: np.ndarray, out_acceleration: np.ndarray, out_loads: np.ndarray) -> int:
     """Advance ``n_steps`` steps of the 4th-order Adams-Bashforth-Moulton predictor-corrector
     (PECE, as OpenFAST's ElastoDyn), started with RK4 until four derivatives are known.
@@ -252,10 +328,9 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
     not yet filled are marked by NaN. Time is counted in whole steps (t = step dt), so
     stepping one at a time and in a batch give the same numbers. The body state,
     accelerations and loads at every ``record_every``-th step end are written to the
-    outputs; returns the number written.
+    outputs; returns the number written. Both evaluations of a step are at its end time: the
+    kinematics are interpolated once for them.
     """
-    loads = np.zeros((N_LOADS, 6))
-    masses = np.empty((N_MODULE_COMPONENTS, 6, 6))
     predicted, fp = np.empty_like(y), np.empty_like(y)
     h = dt / 24.0
     written = 0
@@ -265,19 +340,21 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
         i0 = newest[0]
         f0, f1, f2, f3 = history[i0], history[(i0 + 3) % 4], history[(i0 + 2) % 4], history[(i0 + 1) % 4]
         if np.isnan(f3[0]):
-            _rk4(t, dt, y, f0, d, loads, masses)
+            _rk4(t, dt, y, f0, d, w)
+            interpolate_into(d.waves.values, d.waves.step_s, t_next, w.kinematics)
         else:
             for m in range(y.size):  # (loops: no temporaries over the filter states)
                 predicted[m] = y[m] + h * (55.0 * f0[m] - 59.0 * f1[m] + 37.0 * f2[m] - 9.0 * f3[m])
-            derivative(t_next, predicted, d, loads, masses, fp)
+            interpolate_into(d.waves.values, d.waves.step_s, t_next, w.kinematics)
+            _derivative(t_next, predicted, d, w, fp)
             for m in range(y.size):
                 y[m] += h * (9.0 * fp[m] + 19.0 * f0[m] - 5.0 * f1[m] + f2[m])
         newest[0] = (i0 + 1) % 4  # the oldest row takes the new derivative
-        derivative(t_next, y, d, loads, masses, history[newest[0]])
+        _derivative(t_next, y, d, w, history[newest[0]])
         if (n + 1) % record_every == 0:
             out_t[written] = t_next
             out_y[written] = y[:N_BODY_STATES]
             out_acceleration[written] = history[newest[0], 6:12]
-            out_loads[written] = loads
+            out_loads[written] = w.loads
             written += 1
     return written

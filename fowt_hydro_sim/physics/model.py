@@ -27,7 +27,6 @@ from fowt_hydro_sim.physics.drag_filters import (
 )
 from fowt_hydro_sim.physics.dynamics import (
     N_BODY_STATES,
-    N_MODULE_COMPONENTS,
     FilterBank,
     HydroFlags,
     KernelData,
@@ -51,7 +50,7 @@ from fowt_hydro_sim.physics.morison import (
 )
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
-from fowt_hydro_sim.physics.tables import interpolate_table
+from fowt_hydro_sim.physics.tables import interpolate_into, interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
 from fowt_hydro_sim.physics.waves.kinematics import (BlocksAhead, BlockSynthesis, KinematicsTable,
                                                      complex_amplitudes, moving_point_kinematics, period_table,
@@ -172,14 +171,16 @@ class PlatformModel:
         wet = np.empty(len(s.length_m))
         wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(len(s.length_m)), wet)
         deep = wet == 1.0
-        moments = added_mass_moments(s.centre_m, strip_3x3, s.length_m, deep)
+        moments = added_mass_moments(s.centre_m, strip_3x3, s.length_m * deep)
+        rest_moments = added_mass_moments(s.centre_m, strip_3x3, s.length_m * wet)
         return KernelData(
             waves=WaveTable(table, step),
             strips=StripData(s.centre_m, s.axis, s.directions, s.length_m, s.inertia_kg_m, s.added_mass_kg_m,
                              strip_3x3, strip_6x6, s.drag_kg_m2,
                              s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
                              s.filtered & filtered, s.kinematics_point.astype(np.int64), deep,
-                             deep_added_mass_about(np.eye(3), moments), moments),
+                             deep_added_mass_about(np.eye(3), moments), moments, wet,
+                             deep_added_mass_about(np.eye(3), rest_moments), rest_moments),
             plates=PlateData(plates.centre_m, plates.normal, plates.pressure_area_m2, plates.added_mass_kg,
                              plates.drag_kg_m, plate_3x3, added_mass_about(plates.centre_m, plate_3x3),
                              plates.kinematics_point.astype(np.int64)),
@@ -253,8 +254,7 @@ class PlatformModel:
             self._state[6:12] = velocity
         self._state[N_BODY_STATES:] = self._steady_filter_states().ravel()
         self._step_index = 0
-        self._loads = np.zeros((N_LOADS, 6))
-        self._masses = np.zeros((N_MODULE_COMPONENTS, 6, 6))  # the derivative's scratch
+        self._work = dynamics.workspace(self._data)
         self._restart_history()
 
     def _steady_filter_states(self) -> np.ndarray:
@@ -287,12 +287,13 @@ class PlatformModel:
         """Transverse relative velocity (n_strips, 2) at the current state in the given point
         kinematics (points, 7)."""
         s = self.geometry.strips
-        frame = self._frame()
-        arm = lever_arms(rotation_matrix(*self._state[3:6]), s.centre_m) if self.options.load_directions == "fixed" \
-            else s.centre_m
+        fixed = self.options.load_directions == "fixed"
+        arm = s.centre_m.copy()
+        if fixed:
+            lever_arms(rotation_matrix(*self._state[3:6]), s.centre_m, arm)
         v_rel, a_fluid = np.empty((self.n_strips, 2)), np.empty((self.n_strips, 2))
-        relative_velocities(frame, self._state[6:9], self._state[9:12], kinematics, arm, s.directions,
-                            s.kinematics_point, v_rel, a_fluid)
+        relative_velocities(self._frame(), fixed, self._state[6:9], self._state[9:12], kinematics, arm,
+                            s.directions, s.kinematics_point, np.ones(self.n_strips), False, v_rel, a_fluid)
         return v_rel
 
     def _restart_history(self) -> None:
@@ -300,7 +301,7 @@ class PlatformModel:
         self._history = np.full((4, self._state.size), np.nan)
         self._newest = np.zeros(1, dtype=np.int64)  # the ring's latest row
         self._hold_times(self.time_s, self.time_s)
-        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._masses, self._history[0])
+        dynamics.derivative(self.time_s, self._state, self._data, self._work, self._history[0])
 
     def set_external_wrench(self, wrench: np.ndarray, frame: str = "world") -> None:
         """Hold a wrench [Fx, Fy, Fz, Mx, My, Mz] until the next call.
@@ -312,8 +313,7 @@ class PlatformModel:
                             self.platform.hub_point_m)
         # the derivative at the current time changes with the input
         self._hold_times(self.time_s, self.time_s)
-        dynamics.derivative(self.time_s, self._state, self._data, self._loads, self._masses,
-                            self._history[self._newest[0]])
+        dynamics.derivative(self.time_s, self._state, self._data, self._work, self._history[self._newest[0]])
 
     def use_streamed_waves(self, step_s: float, n_rows: int = 256) -> None:
         """Take the wave kinematics from ``write_waves`` (a stream, e.g. a wave topic) instead of
@@ -372,7 +372,7 @@ class PlatformModel:
     @property
     def loads(self) -> np.ndarray:
         """(N_LOADS, 6) loads at the current time (load registry order)."""
-        return self._loads.copy()
+        return self._work.loads.copy()
 
     def wave_elevation(self, time_s: float | np.ndarray) -> np.ndarray:
         """Elevation at the reference point (0, 0), from the model's wave table."""
@@ -390,7 +390,7 @@ class PlatformModel:
         (default every step), the current time included as the first row."""
         n_steps = int(round(duration_s / self.dt_s))
         every = max(1, int(round((output_interval_s or self.dt_s) / self.dt_s)))
-        first = (self.time_s, self._state[:N_BODY_STATES].copy(), self.acceleration, self._loads.copy())
+        first = (self.time_s, self._state[:N_BODY_STATES].copy(), self.acceleration, self._work.loads.copy())
         t, y, acc, loads = self._advance(n_steps, every)
         time = np.concatenate([[first[0]], t])
         states = np.vstack([first[1], y])
@@ -434,12 +434,10 @@ class PlatformModel:
                 raise ValueError(f"output interval {every * self.dt_s:g} s: longer than the wave table's "
                                  f"blocks hold; use a longer wave_block_s")
             written += dynamics.integrate(self._state, self._step_index, self.dt_s, part, every, self._data,
-                                          self._history, self._newest, out_t[written:], out_y[written:],
+                                          self._work, self._history, self._newest, out_t[written:], out_y[written:],
                                           out_acc[written:], out_loads[written:])
             self._step_index += part
             done += part
-        if n_out:
-            self._loads[:] = out_loads[-1]
         return out_t, out_y, out_acc, out_loads
 
     # ------------------------------------------------------------------ analysis
@@ -546,14 +544,16 @@ class PlatformModel:
     def mass_matrix(self) -> np.ndarray:
         """Rigid-body plus added mass (and any load component's mass) at rest, 6x6 about the
         reference point."""
-        loads, masses = np.zeros((N_LOADS, 6)), np.zeros((N_MODULE_COMPONENTS, 6, 6))
+        work = dynamics.workspace(self._data)
         rest = np.zeros_like(self._state)
         self._hold_times(0.0, 0.0)
-        added = dynamics.applied_loads(0.0, rest, self._data, loads, masses, np.empty(rest.size - N_BODY_STATES),
-                                       self._data.still_surface)
+        interpolate_into(self._data.waves.values, self._data.waves.step_s, 0.0, work.kinematics)
+        added = dynamics.applied_loads(0.0, rest, self._data, work, np.empty(rest.size - N_BODY_STATES),
+                                       self._data.still_surface, False)
         body = self._data.body
-        rigid, _ = dynamics.mass_matrix_and_bias(body.mass, body.cog, body.inertia_cog, np.eye(3), np.zeros(3))
-        return rigid + added + masses.sum(axis=0)
+        rigid, bias = np.empty((6, 6)), np.empty(6)
+        dynamics.mass_matrix_and_bias(body.mass, body.cog, body.inertia_cog, np.eye(3), np.zeros(3), rigid, bias)
+        return rigid + added + work.masses.sum(axis=0)
 
     def restoring_matrix(self, step: float = 1e-4) -> np.ndarray:
         """Linear restoring matrix (hydrostatics, gravity, mooring) at rest, by central
@@ -561,16 +561,15 @@ class PlatformModel:
         still = self._data.waves._replace(values=np.zeros_like(self._data.waves.values[:4]))
         data = self._data._replace(waves=still)
         out = np.zeros((6, 6))
-        loads, masses = np.zeros((N_LOADS, 6)), np.zeros((N_MODULE_COMPONENTS, 6, 6))
+        work = dynamics.workspace(data)
         restoring = [ROW[name] for name in ("hydrostatic", "mooring", "gravity")]
         for j in range(6):
             wrench = []
             for sign in (1.0, -1.0):
                 y = np.zeros_like(self._state)
                 y[j] = sign * step
-                dynamics.applied_loads(0.0, y, data, loads, masses, np.empty(y.size - N_BODY_STATES),
-                                       data.still_surface)
-                wrench.append(loads[restoring].sum(axis=0))
+                dynamics.applied_loads(0.0, y, data, work, np.empty(y.size - N_BODY_STATES), data.still_surface, False)
+                wrench.append(work.loads[restoring].sum(axis=0))
             out[:, j] = -(wrench[0] - wrench[1]) / (2 * step)
         return out
 

@@ -13,6 +13,8 @@ stretching below the instantaneous elevation over it, continuous as the strip cr
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -78,13 +80,12 @@ def submerged_points(rotation: np.ndarray, position_z_m: float, centre: np.ndarr
 
 
 @njit(cache=True)
-def lever_arms(rotation: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """R r of each body-frame point (n, 3): its world-axes offset from the reference point."""
-    out = np.empty(points.shape)
+def lever_arms(rotation: np.ndarray, points: np.ndarray, out: np.ndarray) -> None:
+    """R r of each body-frame point (n, 3) into ``out`` (n, 3): its world-axes offset from the
+    reference point."""
     for i in range(points.shape[0]):
         for r in range(3):
             out[i, r] = rotation[r, 0] * points[i, 0] + rotation[r, 1] * points[i, 1] + rotation[r, 2] * points[i, 2]
-    return out
 
 
 @njit(cache=True, inline="always")
@@ -118,13 +119,12 @@ def added_mass_about(arm: np.ndarray, mass_3x3: np.ndarray) -> np.ndarray:
     return out
 
 
-def added_mass_moments(centre: np.ndarray, mass_3x3: np.ndarray, length: np.ndarray,
-                       deep: np.ndarray) -> np.ndarray:
-    """Moments of the ``deep`` strips' 3x3 added mass (world-fixed: fixed directions) over
-    their body-frame centres c: [sum L A, sum L c_n A (n = 0..2), sum L c_n c_q A (n, q =
-    0..2)], (13, 3, 3); ``deep_added_mass_about`` turns them into the deep strips' 6x6 at any
-    attitude without a sum over strips."""
-    weight = (length * deep)[:, None, None] * mass_3x3
+def added_mass_moments(centre: np.ndarray, mass_3x3: np.ndarray, wet_length: np.ndarray) -> np.ndarray:
+    """Moments of the strips' 3x3 added mass (world-fixed: fixed directions) times their
+    ``wet_length`` over their body-frame centres c: [sum L A, sum L c_n A (n = 0..2), sum L c_n
+    c_q A (n, q = 0..2)], (13, 3, 3); ``deep_added_mass_about`` turns them into the strips'
+    6x6 at any attitude without a sum over strips."""
+    weight = wet_length[:, None, None] * mass_3x3
     first = np.einsum("in,ijk->njk", centre, weight)
     second = np.einsum("in,iq,ijk->nqjk", centre, centre, weight).reshape(9, 3, 3)
     return np.ascontiguousarray(np.concatenate([weight.sum(axis=0)[None], first, second]))
@@ -137,13 +137,14 @@ def _levi(i: int, j: int, k: int) -> float:
 
 
 @njit(cache=True)
-def deep_added_mass_about(rotation: np.ndarray, moments: np.ndarray) -> np.ndarray:
-    """The deep strips' sum of L J^T A J with lever arms r = R c, from ``added_mass_moments``:
-    S A from P_m = sum L r_m A = sum_n R_mn (sum L c_n A), S A S from Q_mp = sum L r_m r_p A =
-    sum_nq R_mn R_pq (sum L c_n c_q A), S = skew(r) being linear in r."""
-    first = np.zeros((3, 3, 3))  # P[m]
-    half = np.zeros((3, 3, 3, 3))  # [m, q]: sum_n R_mn (sum L c_n c_q A)
-    second = np.zeros((3, 3, 3, 3))  # Q[m, p]
+def rotated_moments(rotation: np.ndarray, moments: np.ndarray, first: np.ndarray, half: np.ndarray,
+                    second: np.ndarray) -> None:
+    """From ``added_mass_moments``, at lever arms r = R c: P_m = sum L r_m A = sum_n R_mn (sum L
+    c_n A) into ``first`` (3, 3, 3) and Q_mp = sum L r_m r_p A = sum_nq R_mn R_pq (sum L c_n c_q
+    A) into ``second`` (3, 3, 3, 3); ``half`` (3, 3, 3, 3) is scratch."""
+    first[:] = 0.0
+    half[:] = 0.0
+    second[:] = 0.0
     for m in range(3):
         for n in range(3):
             rmn = rotation[m, n]
@@ -159,11 +160,17 @@ def deep_added_mass_about(rotation: np.ndarray, moments: np.ndarray) -> np.ndarr
                 for j in range(3):
                     for k in range(3):
                         second[m, p, j, k] += rpq * half[m, q, j, k]
-    out = np.zeros((6, 6))
+
+
+@njit(cache=True)
+def added_mass_from_moments(total: np.ndarray, first: np.ndarray, second: np.ndarray, out: np.ndarray) -> None:
+    """The strips' sum of L J^T A J = [[A, -A S], [S A, -S A S]] (S = skew(r), linear in r)
+    into ``out`` (6, 6), from sum L A (``total``) and ``rotated_moments``' P and Q:
+    (S A)[j, k] = eps_jml P_m[l, k], (S A S)[j, k] = eps_jml eps_pqk Q_mq[l, p]."""
     for j in range(3):
         for k in range(3):
-            out[j, k] = moments[0, j, k]
-            sa, sas = 0.0, 0.0  # (S A)[j, k] = eps_jml P_m[l, k]; (S A S)[j, k] = eps_jml eps_pqk Q_mq[l, p]
+            out[j, k] = total[j, k]
+            sa, sas = 0.0, 0.0
             for m in range(3):
                 for l in range(3):
                     e = _levi(j, m, l)
@@ -176,6 +183,37 @@ def deep_added_mass_about(rotation: np.ndarray, moments: np.ndarray) -> np.ndarr
             out[3 + j, k] = sa
             out[k, 3 + j] = sa
             out[3 + j, 3 + k] = -sas
+
+
+@njit(cache=True)
+def centripetal_from_moments(first: np.ndarray, second: np.ndarray, omega: tuple, out: np.ndarray) -> None:
+    """The strips' centripetal added-mass wrench -sum L A w x (w x r) (moment about the
+    reference point) into ``out`` (6,), from ``rotated_moments``' P and Q: with w x (w x r)
+    = W r, W = w w^T - |w|^2 I, the force is -sum_kl W_kl P_l[:, k] and the moment
+    -eps_jab sum_kl W_kl Q_al[b, k]; ``omega`` a 3-tuple in the moments' axes."""
+    w2 = omega[0] ** 2 + omega[1] ** 2 + omega[2] ** 2
+    for j in range(6):
+        out[j] = 0.0
+    for k in range(3):
+        for l in range(3):
+            w_kl = omega[k] * omega[l] - (w2 if k == l else 0.0)
+            if w_kl == 0.0:
+                continue
+            for j in range(3):
+                out[j] -= w_kl * first[l, j, k]
+                for a in range(3):
+                    for b in range(3):
+                        e = _levi(j, a, b)
+                        if e != 0.0:
+                            out[3 + j] -= e * w_kl * second[a, l, b, k]
+
+
+def deep_added_mass_about(rotation: np.ndarray, moments: np.ndarray) -> np.ndarray:
+    """The strips' sum of L J^T A J with lever arms r = R c, (6, 6), from
+    ``added_mass_moments`` (the deep strips', or all strips' wetted as at rest)."""
+    first, half, second, out = np.empty((3, 3, 3)), np.empty((3, 3, 3, 3)), np.empty((3, 3, 3, 3)), np.empty((6, 6))
+    rotated_moments(rotation, moments, first, half, second)
+    added_mass_from_moments(moments[0], first, second, out)
     return out
 
 
@@ -199,73 +237,117 @@ def add_wet_added_mass(wet: np.ndarray, length: np.ndarray, deep: np.ndarray, ad
 
 
 @njit(cache=True)
-def relative_velocities(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, kinematics: np.ndarray,
-                        arm: np.ndarray, directions: np.ndarray, kinematics_point: np.ndarray,
-                        v_rel: np.ndarray, a_fluid: np.ndarray) -> None:
+def relative_velocities(frame: np.ndarray, world_axes: bool, velocity: np.ndarray, omega: np.ndarray,
+                        kinematics: np.ndarray, arm: np.ndarray, directions: np.ndarray,
+                        kinematics_point: np.ndarray, wet: np.ndarray, skip_dry: bool, v_rel: np.ndarray,
+                        a_fluid: np.ndarray) -> None:
     """Per strip: transverse relative velocity (d1, d2) and transverse fluid acceleration
-    (d1, d2) in the frame's axes, written to ``v_rel`` and ``a_fluid``: the inputs of the drag
-    and inertia terms. Dry strips get them too (with the kinematics at the water line), so
-    that drag filters see a continuous input. ``arm``: the strips' centres in the frame."""
+    (d1, d2) in the frame's axes, written to ``v_rel`` and ``a_fluid`` (n, 2): the inputs of
+    the drag and inertia terms. ``arm``: the strips' centres in the frame; ``world_axes``: the
+    frame is the identity (fixed directions), the kinematics are taken as they are. Dry strips
+    (``wet`` 0) get them too, so that drag filters see a continuous input, unless
+    ``skip_dry`` (strips wetted as at rest at every step: a dry strip never loads, and its
+    entries are left as they are: zero)."""
     v_body = _to_body(frame, velocity[0], velocity[1], velocity[2])
     w_body = _to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
-        c = arm[i]
+        if skip_dry and wet[i] == 0.0:
+            continue
         p = kinematics_point[i]
-        u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
-        a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
-        spin = cross3(w_body, (c[0], c[1], c[2]))
+        if world_axes:
+            u = (kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+            a = (kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+        else:
+            u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+            a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+        spin = cross3(w_body, (arm[i, 0], arm[i, 1], arm[i, 2]))
         vr0 = u[0] - v_body[0] - spin[0]
         vr1 = u[1] - v_body[1] - spin[1]
         vr2 = u[2] - v_body[2] - spin[2]
         for k in range(2):
-            d = directions[i, k]
-            v_rel[i, k] = vr0 * d[0] + vr1 * d[1] + vr2 * d[2]
-            a_fluid[i, k] = a[0] * d[0] + a[1] * d[1] + a[2] * d[2]
+            d0, d1, d2 = directions[i, k, 0], directions[i, k, 1], directions[i, k, 2]
+            v_rel[i, k] = vr0 * d0 + vr1 * d1 + vr2 * d2
+            a_fluid[i, k] = a[0] * d0 + a[1] * d1 + a[2] * d2
+
+
+@njit(cache=True, inline="always")
+def _plus_wrench(wrench: tuple, point: tuple, f0: float, f1: float, f2: float) -> tuple:
+    """wrench + [f; point x f], as a 6-tuple (kept in registers over the strip loop)."""
+    return (wrench[0] + f0, wrench[1] + f1, wrench[2] + f2, wrench[3] + (point[1] * f2 - point[2] * f1),
+            wrench[4] + (point[2] * f0 - point[0] * f2), wrench[5] + (point[0] * f1 - point[1] * f0))
 
 
 @njit(cache=True)
-def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, a_fluid: np.ndarray,
-                drag_per_length: np.ndarray, arm: np.ndarray,
-                directions: np.ndarray, length: np.ndarray, inertia: np.ndarray,
-                added_mass: np.ndarray, out_drag: np.ndarray, out_inertia: np.ndarray,
-                out_centripetal: np.ndarray) -> None:
-    """Add the strips' drag, fluid-inertia and centripetal added-mass wrenches (frame axes,
-    about the reference point) to the outputs (their 6x6 added mass: ``add_wet_added_mass``).
+def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np.ndarray, a_fluid: np.ndarray,
+                v_band: np.ndarray, arm: np.ndarray, directions: np.ndarray, length: np.ndarray,
+                inertia: np.ndarray, added_mass: np.ndarray, band_drag: np.ndarray, constant_drag: np.ndarray,
+                filtered: np.ndarray, with_centripetal: bool, out: np.ndarray) -> None:
+    """The strips' drag, fluid-inertia and (``with_centripetal``) centripetal added-mass
+    wrenches (frame axes, about the reference point) into ``out`` rows 0-2, each strip's
+    loads times its wetted length (``wet`` x ``length``). Their 6x6 added mass:
+    ``add_wet_added_mass``; without the centripetal wrench, ``centripetal_from_moments``
+    gives it.
 
-    ``drag_per_length`` (n, 2) is the transverse drag per unit wetted length of the drag
-    model (drag_filters.drag_per_length).
-    """
+    Drag per wetted length (d1, d2): over the bands for filtered directions, 0.5 rho Cd_b D
+    |v_b| v_b (``band_drag`` (n, n_bands, 2) = 0.5 rho Cd_b D; ``v_band`` (n_bands, 2 n), its
+    columns ordered (strip, direction): drag_filters), otherwise 0.5 rho Cd D |v_rel| v_rel
+    (``constant_drag`` (n, 2)). No bands: the constant-Cd model. (Written out in the loop:
+    an array handed to a helper per strip costs reference counting that is most of the loop.)"""
     w_body = _to_body(frame, omega[0], omega[1], omega[2])
+    drag = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    fluid = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    spin = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     for i in range(arm.shape[0]):
         if wet[i] == 0.0:
             continue
-        c = arm[i]
+        c = (arm[i, 0], arm[i, 1], arm[i, 2])
+        d1 = (directions[i, 0, 0], directions[i, 0, 1], directions[i, 0, 2])
+        d2 = (directions[i, 1, 0], directions[i, 1, 1], directions[i, 1, 2])
         wet_length = wet[i] * length[i]
-        centripetal = cross3(w_body, cross3(w_body, (c[0], c[1], c[2])))
-        d1, d2 = directions[i, 0], directions[i, 1]
-        drag1, drag2 = drag_per_length[i, 0] * wet_length, drag_per_length[i, 1] * wet_length
+        v1, v2 = v_rel[i, 0], v_rel[i, 1]
+        filtered1, filtered2 = filtered[i, 0], filtered[i, 1]
+        drag1, drag2 = 0.0, 0.0
+        if not (filtered1 and filtered2):
+            speed = math.sqrt(v1 * v1 + v2 * v2)
+            drag1 = 0.0 if filtered1 else constant_drag[i, 0] * speed * v1
+            drag2 = 0.0 if filtered2 else constant_drag[i, 1] * speed * v2
+        for b in range(v_band.shape[0]):
+            b1, b2 = v_band[b, 2 * i], v_band[b, 2 * i + 1]
+            band_speed = math.sqrt(b1 * b1 + b2 * b2)
+            if filtered1:
+                drag1 += band_drag[i, b, 0] * band_speed * b1
+            if filtered2:
+                drag2 += band_drag[i, b, 1] * band_speed * b2
+        drag1, drag2 = drag1 * wet_length, drag2 * wet_length
         fluid1, fluid2 = inertia[i, 0] * a_fluid[i, 0] * wet_length, inertia[i, 1] * a_fluid[i, 1] * wet_length
-        spin1 = -added_mass[i, 0] * wet_length * (centripetal[0] * d1[0] + centripetal[1] * d1[1]
-                                                   + centripetal[2] * d1[2])
-        spin2 = -added_mass[i, 1] * wet_length * (centripetal[0] * d2[0] + centripetal[1] * d2[1]
-                                                   + centripetal[2] * d2[2])
         # both directions' forces first, then one moment per wrench
-        _add_wrench(out_drag, c, drag1 * d1[0] + drag2 * d2[0], drag1 * d1[1] + drag2 * d2[1],
-                    drag1 * d1[2] + drag2 * d2[2])
-        _add_wrench(out_inertia, c, fluid1 * d1[0] + fluid2 * d2[0], fluid1 * d1[1] + fluid2 * d2[1],
-                    fluid1 * d1[2] + fluid2 * d2[2])
-        _add_wrench(out_centripetal, c, spin1 * d1[0] + spin2 * d2[0], spin1 * d1[1] + spin2 * d2[1],
-                    spin1 * d1[2] + spin2 * d2[2])
+        drag = _plus_wrench(drag, c, drag1 * d1[0] + drag2 * d2[0], drag1 * d1[1] + drag2 * d2[1],
+                            drag1 * d1[2] + drag2 * d2[2])
+        fluid = _plus_wrench(fluid, c, fluid1 * d1[0] + fluid2 * d2[0], fluid1 * d1[1] + fluid2 * d2[1],
+                             fluid1 * d1[2] + fluid2 * d2[2])
+        if with_centripetal:
+            a_c = cross3(w_body, cross3(w_body, c))
+            spin1 = -added_mass[i, 0] * wet_length * (a_c[0] * d1[0] + a_c[1] * d1[1] + a_c[2] * d1[2])
+            spin2 = -added_mass[i, 1] * wet_length * (a_c[0] * d2[0] + a_c[1] * d2[1] + a_c[2] * d2[2])
+            spin = _plus_wrench(spin, c, spin1 * d1[0] + spin2 * d2[0], spin1 * d1[1] + spin2 * d2[1],
+                                spin1 * d1[2] + spin2 * d2[2])
+    for k in range(6):
+        out[0, k] = drag[k]
+        out[1, k] = fluid[k]
+        out[2, k] = spin[k]
 
 
 @njit(cache=True)
 def end_plate_loads(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, kinematics: np.ndarray,
                     arm: np.ndarray, normal: np.ndarray, submerged: np.ndarray, pressure_area: np.ndarray,
                     added_mass: np.ndarray, drag: np.ndarray, added_mass_6x6: np.ndarray,
-                    kinematics_point: np.ndarray, out_drag: np.ndarray, out_inertia: np.ndarray,
-                    out_centripetal: np.ndarray, out_added_mass: np.ndarray) -> None:
+                    added_mass_3x3: np.ndarray, about_arm: bool, kinematics_point: np.ndarray,
+                    out_drag: np.ndarray, out_inertia: np.ndarray, out_centripetal: np.ndarray,
+                    out_added_mass: np.ndarray) -> None:
     """Axial end-plate terms (frame axes): dynamic pressure on the end area, added mass and
-    scattering on a hemisphere, drag 0.25 rho Cd A |w| w; only for submerged ends."""
+    scattering on a hemisphere, drag 0.25 rho Cd A |w| w; only for submerged ends. Their
+    added mass is ``added_mass_6x6[i]`` (body axes) or, ``about_arm``, the 3x3 at the lever
+    arm (world axes), as in ``add_wet_added_mass``."""
     v_body = _to_body(frame, velocity[0], velocity[1], velocity[2])
     w_body = _to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
@@ -288,7 +370,10 @@ def end_plate_loads(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, 
         _add_wrench(out_drag, c, f_drag * n[0], f_drag * n[1], f_drag * n[2])
         _add_wrench(out_inertia, c, f_fluid * n[0], f_fluid * n[1], f_fluid * n[2])
         _add_wrench(out_centripetal, c, f_spin * n[0], f_spin * n[1], f_spin * n[2])
-        _add_scaled(out_added_mass, 1.0, added_mass_6x6[i])
+        if about_arm:
+            _add_mass_about(out_added_mass, 1.0, c, added_mass_3x3[i])
+        else:
+            _add_scaled(out_added_mass, 1.0, added_mass_6x6[i])
 
 
 def added_mass_tensors(geometry: Discretisation) -> tuple[np.ndarray, np.ndarray]:

@@ -27,14 +27,20 @@ def interpolate_series(series: np.ndarray, step_s: float, t: float, channel: int
 
 
 @njit(cache=True)
-def interpolate_table(table: np.ndarray, step_s: float, t: float) -> np.ndarray:
+def interpolate_into(table: np.ndarray, step_s: float, t: float, out: np.ndarray) -> None:
     """Cubic (4-point Lagrange) interpolation in a periodic table (n, points, channels) at
-    time t: (points, channels)."""
+    time t, into ``out`` (points, channels)."""
     n, n_points, n_channels = table.shape
     w, rows = _lagrange(step_s, t, n)
-    out = np.empty((n_points, n_channels))
     for p in range(n_points):
         for c in range(n_channels):
             out[p, c] = (w[0] * table[rows[0], p, c] + w[1] * table[rows[1], p, c]
                          + w[2] * table[rows[2], p, c] + w[3] * table[rows[3], p, c])
+
+
+@njit(cache=True)
+def interpolate_table(table: np.ndarray, step_s: float, t: float) -> np.ndarray:
+    """``interpolate_into`` a new array (points, channels)."""
+    out = np.empty(table.shape[1:])
+    interpolate_into(table, step_s, t, out)
     return out

@@ -8,7 +8,7 @@ from numba import njit
 
 from fowt_hydro_sim.frames import WRENCH_FRAMES
 from fowt_hydro_sim.physics.config import InputError
-from fowt_hydro_sim.physics.rigid_body import cross, matvec
+from fowt_hydro_sim.physics.rigid_body import cross3
 
 MAX_FORCE_N = 1e9  # 100,000 t: an absurd load on a 14,000 t platform
 MAX_MOMENT_NM = 1e11
@@ -47,6 +47,19 @@ def set_wrench(params: np.ndarray, wrench: np.ndarray, frame: str, hub_point_m) 
 @njit(cache=True)
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
-    force_body = matvec(rotation, params[6:9])
-    out[0:3] += params[0:3] + force_body
-    out[3:6] += params[3:6] + matvec(rotation, params[9:12]) + cross(matvec(rotation, params[12:15]), force_body)
+    """The world wrench plus the body wrench turned to world axes, its force acting at the
+    body point (written out: no temporaries in the step loop)."""
+    force, moment, point = _turned(rotation, params, 6), _turned(rotation, params, 9), _turned(rotation, params, 12)
+    lever = cross3(point, force)
+    for i in range(3):
+        out[i] += params[i] + force[i]
+        out[3 + i] += params[3 + i] + moment[i] + lever[i]
+
+
+@njit(cache=True, inline="always")
+def _turned(rotation: np.ndarray, params: np.ndarray, k: int) -> tuple[float, float, float]:
+    """R params[k:k + 3]: a body-axes vector in world axes."""
+    return (rotation[0, 0] * params[k] + rotation[0, 1] * params[k + 1] + rotation[0, 2] * params[k + 2],
+            rotation[1, 0] * params[k] + rotation[1, 1] * params[k + 1] + rotation[1, 2] * params[k + 2],
+            rotation[2, 0] * params[k] + rotation[2, 1] * params[k + 1] + rotation[2, 2] * params[k + 2])
+
