@@ -246,8 +246,8 @@ def relative_velocities(frame: np.ndarray, world_axes: bool, velocity: np.ndarra
     the drag and inertia terms. ``arm``: the strips' centres in the frame; ``world_axes``: the
     frame is the identity (fixed directions), the kinematics are taken as they are. Dry strips
     (``wet`` 0) get them too, so that drag filters see a continuous input, unless
-    ``skip_dry`` (strips wetted as at rest at every step: a dry strip never loads, and its
-    entries are left as they are: zero)."""
+    ``skip_dry`` (strips wetted as at rest at every step: a dry strip never loads, its entries
+    are left as they are and its filters are frozen: ``dynamics.applied_loads``)."""
     v_body = _to_body(frame, velocity[0], velocity[1], velocity[2])
     w_body = _to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
