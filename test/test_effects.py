@@ -254,6 +254,31 @@ def test_the_coherence_sentence_is_worded_from_its_value(deficit, words):
     assert words in sentence and f"{deficit:+.2f}" in sentence
 
 
+def test_a_gap_of_one_sign_in_every_run_significant_when_pooled_is_consistent():
+    """Three runs' cells (value, interval): heave in the wave band 16 %, 26 % and 15 % low, the
+    last run's interval spanning zero (flagged in two runs only) is consistent: one sign
+    throughout and significant pooled (mean -0.19 +- 0.07). Not consistent: a lag of
+    changing sign; a cell flagged in one run whose others agree in sign but whose pooled
+    interval spans zero; a cell of one sign whose pooled mean is within tolerance."""
+    from fowt_hydro_sim.studies.diagnosis.gap import Gap, consistent
+    settings = GapSettings()
+    cells = settings.cells()
+    rows = {("heave", "std.wave"): [(-0.163, -0.177, -0.149), (-0.265, -0.288, -0.241), (-0.146, -0.331, 0.091)],
+            ("heave", "lag"): [(-0.31, -0.33, -0.29), (0.20, 0.03, 0.36), (-8.78, -8.95, -8.61)],
+            ("pitch", "std.wave"): [(0.30, 0.25, 0.35), (0.01, -0.30, 0.32), (0.01, -0.30, 0.32)],
+            ("surge", "std.wave"): [(-0.06, -0.07, -0.05), (-0.01, -0.02, 0.0), (-0.01, -0.03, 0.01)]}
+    tolerance = np.array([settings.tolerance(metric) for _, metric in cells])
+    gaps = []
+    for run in range(3):
+        value, low, high = (np.zeros(len(cells)) for _ in range(3))
+        for cell, per_run in rows.items():
+            value[cells.index(cell)], low[cells.index(cell)], high[cells.index(cell)] = per_run[run]
+        gaps.append(Gap(f"run{run}", value, low, high, tolerance))
+    assert not gaps[2].flagged[cells.index(("heave", "std.wave"))]
+    assert [cells[i] for i in np.flatnonzero(consistent(gaps))] == [("heave", "std.wave")]
+    assert not consistent(gaps[:1]).any()  # one run: nothing to be consistent with
+
+
 # ---------------------------------------------------------------------- plausibility rules of the diagnosis
 def _gap(settings, run: str, values: dict[tuple[str, str], float]):
     """A gap with the given cells (tight intervals, flagged where beyond tolerance), others 0."""

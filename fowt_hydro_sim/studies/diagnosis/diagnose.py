@@ -41,7 +41,7 @@ import scipy.optimize
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
-from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, gap, spectra
+from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, consistent, gap, spectra
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun, Variant, replay
 
 log = logging.getLogger(__name__)
@@ -314,8 +314,9 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
 # ---------------------------------------------------------------------- the diagnosis
 @dataclass
 class Mismatch:
-    """A cell the plain model misses in the same direction in every tuning run: a baseline
-    mismatch (coefficients, conventions, a missing physics term) rather than noise; with
+    """A cell the plain model misses in the same direction in every tuning run (significant
+    pooled over the runs, ``gap.consistent``): a baseline mismatch (coefficients,
+    conventions, a missing physics term) rather than noise; with
     how it scales with the sea state (a least-squares slope of the value against Hs and Tp)."""
 
     dof: str
@@ -412,14 +413,10 @@ def peak_period_s(run: MeasuredRun) -> float:
 
 
 def baseline_mismatches(tuning: list[MeasuredRun], gaps: list[Gap], settings: GapSettings) -> list[Mismatch]:
-    """Cells flagged in every tuning run (at least two), all with the same sign."""
-    if len(gaps) < 2:
-        return []
-    flagged = np.all([g.flagged for g in gaps], axis=0)
-    same_sign = np.abs(np.sum([np.sign(g.value) for g in gaps], axis=0)) == len(gaps)
+    """Cells the plain model misses the same way in every tuning run (``gap.consistent``)."""
     hs, tp = [r.hs_m for r in tuning], [peak_period_s(r) for r in tuning]
     return [Mismatch(*settings.cells()[i], [float(g.value[i]) for g in gaps], hs, tp)
-            for i in np.flatnonzero(flagged & same_sign)]
+            for i in np.flatnonzero(consistent(gaps))]
 
 
 def coherence_deficit(measured: list[dict], model: list[dict], dof: str, band_hz: tuple[float, float]) -> float:

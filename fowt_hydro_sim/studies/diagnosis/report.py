@@ -186,7 +186,7 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
     if not d.flagged_cells(d.baseline):
         lines.append("| (none) | | | | | |")
     if d.mismatches:
-        lines += ["", "Baseline mismatches (flagged with one sign in every tuning run):", ""]
+        lines += ["", "Baseline mismatches (one sign in every tuning run, significant pooled over the runs):", ""]
         lines += [f"- {m.text()}" for m in d.mismatches]
     gross = gross_lines(d)
     if gross:
