@@ -421,3 +421,33 @@ def test_a_mismatch_an_effect_takes_most_of_the_way_is_explained_by_it():
     explained = {(m.dof, m.metric): m.explained_by for m in diagnosis.mismatches}
     assert explained == {surge: "slow_drift", offset: "slow_drift", heave: None}
     assert "heave std.wave: model below" in diagnosis.reason and "surge std.low_frequency" not in diagnosis.reason
+
+
+def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_the_rest_named():
+    """The model's low-frequency surge 1.8x the measured one in every run, which extra
+    damping closes, and a heave lag of changing sign (-0.3, +0.2, -8.8 s: the response of
+    another form in a long-period sea), which nothing moves and which carries most of the
+    squared gap. The lag is not a consistent mismatch, yet no effect explains it: it is set
+    aside as the baseline's and said, and damping, closing what remains, is named and
+    explains the surge mismatch."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(3, duration_s=1200.0)
+    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
+    spectra = [measured_spectra(r, settings) for r in runs]
+    surge, lag = ("surge", "std.low_frequency"), ("heave", "lag")
+
+    def evaluate(jobs, description=""):
+        out = []
+        for name, values, index, with_spectra in jobs:
+            damping = values.get("surge_damping_ratio", 0.0) / 0.05 if name == "linear_damping" else 0.0
+            cells = {surge: 0.8 * (1.0 - damping), lag: (-0.3, 0.2, -8.8)[index]}
+            out.append((_gap(settings, runs[index].name, cells), spectra[index] if with_spectra else None))
+        return out
+
+    effects = {n: CATALOGUE[n] for n in ("linear_damping", "added_mass_error")}
+    diagnosis = diagnose(runs, [], evaluate, settings, effects, max_evaluations=4)
+    assert diagnosis.chosen == "linear_damping" and diagnosis.verdict == "explained", diagnosis.reason
+    assert diagnosis.candidate("linear_damping").closure > 0.9
+    assert [(m.dof, m.metric, m.explained_by) for m in diagnosis.mismatches] == [(*surge, "linear_damping")]
+    assert diagnosis.differences == [lag] and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason

@@ -242,12 +242,9 @@ def at_edge(p: Parameter, value: float) -> bool:
             or (p.high - value <= EDGE * span and p.high != p.off))
 
 
-def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
-             mask: np.ndarray | None = None) -> list[str]:
-    """Why a fitted effect is implausible: a parameter outside the range a real platform's
-    lies in, or at the edge of the fit's bounds (it absorbs something else); or a gap it
-    cannot close, because its signature moves the model the wrong way in the cells that
-    carry most of the flagged gap."""
+def range_concerns(effect: Effect, values: dict[str, float]) -> list[str]:
+    """Why fitted values are implausible: a parameter outside the range a real platform's
+    lies in, or at the edge of the fit's bounds (it absorbs something else)."""
     out = []
     for p in effect.parameters:
         value, (low, high) = values[p.name], p.plausible_range
@@ -255,6 +252,15 @@ def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settin
             out.append(f"{p.name} = {value:.4g} lies outside its plausible {low:g} to {high:g} ({p.why})")
         elif at_edge(p, value):
             out.append(f"{p.name} = {value:.4g} sits at the edge of the fitted range {p.low:g} to {p.high:g}")
+    return out
+
+
+def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
+             mask: np.ndarray | None = None) -> list[str]:
+    """Why a fitted effect is implausible: its values (``range_concerns``); or a gap it
+    cannot close, because its signature moves the model the wrong way in the cells that
+    carry most of the flagged gap."""
+    out = range_concerns(effect, values)
     cells = [f"{dof}.{metric}" for dof, metric in settings.cells()]
     right = wrong = 0.0
     for g in before:
@@ -267,6 +273,22 @@ def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settin
         moved = ", ".join(f"{'raises' if s > 0 else 'lowers'} {cell}" for cell, s in effect.signature.items())
         out.append(f"it {moved}, the wrong way for most of the flagged gap")
     return out
+
+
+def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects: dict[str, Effect]) -> np.ndarray:
+    """Cells flagged in a tuning run that no candidate at plausible values (no
+    ``range_concerns``) explains (``explains``), fitted on every cell: the baseline's, set
+    aside before the effects are tested on what remains. They are the consistent mismatches
+    no effect explains and differences flagged in some runs only, e.g. of a sign that
+    changes with the sea state (a response of another form, such as strip theory against
+    a panel method's), which no effect of the catalogue moves: left in, they would dilute
+    every candidate's closure, and an effect that closes its own cells would not be named.
+    (Whether an effect moves a cell the right way is judged by the cell's closure; a
+    signature concern over all flagged cells would count the cells being set aside.)"""
+    flagged = np.any([g.flagged for g in before], axis=0)
+    plausible = [c for c in candidates if not range_concerns(effects[c.effect], c.values)]
+    return np.array([bool(flagged[i]) and not any(explains(before, c.gaps, i) for c in plausible)
+                     for i in range(flagged.size)])
 
 
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
@@ -375,6 +397,21 @@ class Diagnosis:
         return next(c for c in self.candidates if c.effect == name)
 
     @property
+    def differences(self) -> list[tuple[str, str]]:
+        """Cells set aside as the baseline's (``unexplained_cells``) that are not consistent
+        mismatches: flagged in some runs only, or of a sign that changes between runs."""
+        if self.fit_cells is None:
+            return []
+        mismatched = {(m.dof, m.metric) for m in self.mismatches}
+        return [cell for cell, kept in zip(self.settings.cells(), self.fit_cells) if not kept and cell not in mismatched]
+
+    def differences_text(self) -> str:
+        """The set-aside differences with their values per tuning run."""
+        cells = self.settings.cells()
+        return "; ".join(f"{dof} {metric} ({', '.join(f'{g.value[cells.index((dof, metric))]:+.2g}' for g in self.tuning_before)})"
+                         for dof, metric in self.differences)
+
+    @property
     def blind_closure(self) -> float:
         return closure(self.blind_before, self.blind_after, self.fit_cells) if self.blind_after else float("nan")
 
@@ -392,6 +429,7 @@ class Diagnosis:
                 "blind_closure": None if math.isnan(self.blind_closure) else self.blind_closure,
                 "baseline_score": self.baseline_score, "coherence_deficit": self.coherence_deficit,
                 "baseline_mismatches": [{**m.__dict__, "text": m.text()} for m in self.mismatches],
+                "differences": [list(cell) for cell in self.differences],
                 "flagged": [list(c) for c in self.flagged_cells(self.baseline)],
                 "baseline": [g.as_dict(self.settings) for g in self.baseline],
                 "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
@@ -538,13 +576,9 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         return sorted(fitted, key=rank)  # plausible fits rank first, screened ones last
 
     candidates = fit_all(None)
-    # mismatches in every run that no plausible candidate explains are the baseline's own: set
-    # them aside and test the effects on what remains
-    cells = settings.cells()
-    unexplained = np.zeros(len(cells), dtype=bool)
-    for m in diagnosis.mismatches:
-        i = cells.index((m.dof, m.metric))
-        unexplained[i] = not any(explains(diagnosis.tuning_before, c.gaps, i) for c in candidates if not c.concerns)
+    # flagged cells no plausible candidate explains are the baseline's: set them aside and
+    # test the effects on what remains
+    unexplained = unexplained_cells(diagnosis.tuning_before, candidates, effects)
     if unexplained.any():
         remaining = ~unexplained
         diagnosis.fit_cells, diagnosis.first_round = remaining, candidates
@@ -599,7 +633,8 @@ def rank(c: CandidateFit) -> tuple:
 
 def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagnosis:
     """Mark the baseline mismatches the named effect explains (``explains``); any left make
-    the verdict 'baseline mismatch', the effect (if any) coming 'additionally'."""
+    the verdict 'baseline mismatch', the effect (if any) coming 'additionally'. Differences
+    set aside that are not consistent (``Diagnosis.differences``) are said, not scored."""
     cells = diagnosis.settings.cells()
     for m in diagnosis.mismatches:
         i = cells.index((m.dof, m.metric))
@@ -611,6 +646,9 @@ def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagn
                   else f"; no effect explains the rest ({diagnosis.reason})")
         diagnosis.verdict = "baseline mismatch"
         diagnosis.reason = "baseline: " + "; ".join(m.text() for m in left) + effect
+    if diagnosis.differences:
+        diagnosis.reason += ("; set aside as the baseline's, flagged in some runs only or of changing sign, no "
+                             f"catalogue effect explaining them: {diagnosis.differences_text()}")
     return diagnosis
 
 
