@@ -451,3 +451,33 @@ def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_th
     assert diagnosis.candidate("linear_damping").closure > 0.9
     assert [(m.dof, m.metric, m.explained_by) for m in diagnosis.mismatches] == [(*surge, "linear_damping")]
     assert diagnosis.differences == [lag] and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason
+
+
+def test_a_response_the_waves_do_not_drive_is_told_from_a_transfer_function_of_another_form():
+    """Pitch measured with a 1P moment's response at 0.12 Hz on top of the wave response,
+    and heave measured 25 % above the model's (a transfer function of another form): both
+    set aside, both flagged. Only pitch's wave band holds a response the waves do not drive
+    (its coherent share well below the model's); heave's stays linear in the waves."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import undriven_cells
+    from fowt_hydro_sim.studies.diagnosis.gap import spectra
+    settings = GapSettings(transient_s=0.0)
+    rng = np.random.default_rng(3)
+    t = np.arange(0.0, 1200.0, 0.25)
+    eta = sum(np.cos(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi)) for f in np.arange(0.05, 0.2, 0.0013))
+    model = np.zeros((t.size, 6))
+    model[:, 0] = np.interp(t - 2.0, t, eta)
+    model[:, HEAVE] = np.interp(t - 0.5, t, eta)
+    model[:, 4] = 0.01 * np.interp(t - 1.0, t, eta)
+    measured = model.copy()
+    measured[:, HEAVE] *= 1.25
+    measured[:, 4] += 0.6 * model[:, 4].std() * np.sqrt(2) * np.sin(2 * np.pi * 0.12 * t)
+    before = [gap("run", (t, measured), (t, model), settings)]
+    cells = settings.cells()
+    heave, pitch = cells.index(("heave", "std.wave")), cells.index(("pitch", "std.wave"))
+    assert before[0].flagged[heave] and before[0].flagged[pitch]
+    aside = np.zeros(len(cells), dtype=bool)
+    aside[[heave, pitch]] = True
+    found = undriven_cells(aside, before, [spectra((t, eta), (t, measured), settings)],
+                           [spectra((t, eta), (t, model), settings)], settings)
+    assert [(dof, metric) for dof, metric, _, _ in found] == [("pitch", "std.wave")]
+    assert found[0][3] - found[0][2] > 0.15  # a quarter of the variance is the 1P moment's (less Welch's bias)

@@ -41,7 +41,8 @@ import scipy.optimize
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
-from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, consistent, gap, spectra
+from fowt_hydro_sim.studies.diagnosis.gap import (Gap, GapSettings, band_mean, coherent_share, consistent, gap,
+                                                   spectra)
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun, Variant, replay
 
 log = logging.getLogger(__name__)
@@ -52,6 +53,7 @@ MIN_EVIDENCE = 6.0  # BIC improvement over the plain model to name an effect ("s
 MIN_CLOSURE = 0.5  # share of the gap an effect must close to be named
 TIE = 2.0  # BIC difference below which two candidates both fit
 COHERENCE_DEFICIT = 0.1  # measured low-frequency coherence this far below the model's: incoherent load
+UNDRIVEN_SHARE = 0.1  # measured coherent share this far below the model's in a set-aside cell's band: a load the waves do not drive
 FD_STEP = 0.1  # forward-difference step, in units of each parameter's scale
 EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) sits at the edge
 BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
@@ -384,6 +386,7 @@ class Diagnosis:
     mismatches: list[Mismatch] = field(default_factory=list)  # the baseline's, found before any effect
     fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but mismatches)
     first_round: list[CandidateFit] = field(default_factory=list)  # the fits on every cell, if refitted without some
+    undriven: list[tuple[str, str, float, float]] = field(default_factory=list)  # (DOF, metric, coherent share measured, model)
 
     @property
     def tuning_before(self) -> list[Gap]:
@@ -430,6 +433,7 @@ class Diagnosis:
                 "baseline_score": self.baseline_score, "coherence_deficit": self.coherence_deficit,
                 "baseline_mismatches": [{**m.__dict__, "text": m.text()} for m in self.mismatches],
                 "differences": [list(cell) for cell in self.differences],
+                "undriven": [list(cell) for cell in self.undriven],
                 "flagged": [list(c) for c in self.flagged_cells(self.baseline)],
                 "baseline": [g.as_dict(self.settings) for g in self.baseline],
                 "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
@@ -463,6 +467,37 @@ def coherence_deficit(measured: list[dict], model: list[dict], dof: str, band_hz
     return float(np.mean([band_mean(s["frequency_hz"], s[f"coherence.{dof}"], band_hz)
                           - band_mean(m["frequency_hz"], m[f"coherence.{dof}"], band_hz)
                           for m, s in zip(measured, model)]))
+
+
+def cell_band(metric: str, settings: GapSettings) -> tuple[float, float] | None:
+    """The band a metric is measured in (``lag``: the wave band's; ``offset``: none)."""
+    if metric == "lag":
+        return settings.bands_hz.get("wave", max(settings.bands_hz.values()))
+    name = metric.partition(".")[2]
+    return settings.bands_hz.get(name)
+
+
+def undriven_cells(cells: np.ndarray, before: list[Gap], measured: list[dict], model: list[dict],
+                   settings: GapSettings) -> list[tuple[str, str, float, float]]:
+    """Of the ``cells`` (set aside: no catalogue effect explains them), those whose band in
+    the measured runs holds a response the waves do not drive, beyond the model's: the
+    coherent share (``gap.coherent_share``) lower than the model's by more than
+    UNDRIVEN_SHARE on average over the tuning runs, in a band judged in every run (where
+    neither side has energy, coherence is noise). A transfer function of another form (a
+    wrong coefficient, strip theory against a panel method) keeps the response linear in
+    the waves; a load the model lacks and the waves do not drive (a rotor's 1P moment, wind)
+    does not. (DOF, metric, measured share, model share)."""
+    out = []
+    for i in np.flatnonzero(cells):
+        dof, metric = settings.cells()[i]
+        band = cell_band(metric, settings)
+        if band is None or not all(g.judged[i] for g in before):
+            continue
+        share_measured = float(np.mean([coherent_share(m, dof, band) for m in measured]))
+        share_model = float(np.mean([coherent_share(s, dof, band) for s in model]))
+        if share_model - share_measured > UNDRIVEN_SHARE:
+            out.append((dof, metric, share_measured, share_model))
+    return out
 
 
 def measured_spectra(run: MeasuredRun, settings: GapSettings) -> dict:
@@ -582,6 +617,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     if unexplained.any():
         remaining = ~unexplained
         diagnosis.fit_cells, diagnosis.first_round = remaining, candidates
+        diagnosis.undriven = undriven_cells(unexplained, diagnosis.tuning_before, measured, model_spectra, settings)
         diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining)
         if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
             expect_fits()
@@ -649,6 +685,13 @@ def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagn
     if diagnosis.differences:
         diagnosis.reason += ("; set aside as the baseline's, flagged in some runs only or of changing sign, no "
                              f"catalogue effect explaining them: {diagnosis.differences_text()}")
+    if diagnosis.undriven:
+        undriven = ", ".join(f"{dof} {metric} (coherent share {measured:.2f} measured, {model:.2f} modelled)"
+                             for dof, metric, measured, model in diagnosis.undriven)
+        if chosen is None:
+            diagnosis.verdict = "unexplained"
+        diagnosis.reason = (f"a response the waves do not drive, which neither the model nor the catalogue has, in "
+                            f"{undriven}; " + diagnosis.reason)
     return diagnosis
 
 

@@ -238,6 +238,16 @@ def spectra(elevation: tuple[np.ndarray, np.ndarray], motion: tuple[np.ndarray, 
     return out
 
 
+def coherent_share(spectra_: dict[str, np.ndarray], dof: str, band_hz: tuple[float, float]) -> float:
+    """The share of a DOF's variance in the band that is linear in the waves (``spectra``'s
+    coherence weighted by the PSD): a narrow response the waves do not drive (a rotor's 1P
+    moment) lowers it however few frequency bins it takes."""
+    f = spectra_["frequency_hz"]
+    keep = (f >= band_hz[0]) & (f <= band_hz[1])
+    psd = spectra_[f"psd.{dof}"][keep]
+    return float(np.sum(spectra_[f"coherence.{dof}"][keep] * psd) / np.sum(psd)) if np.sum(psd) > 0 else math.nan
+
+
 def band_mean(frequency_hz: np.ndarray, values: np.ndarray, band_hz: tuple[float, float]) -> float:
     keep = (frequency_hz >= band_hz[0]) & (frequency_hz <= band_hz[1])
     return float(values[keep].mean())
