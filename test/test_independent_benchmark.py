@@ -82,6 +82,28 @@ def test_catenary_surge_curve_is_restoring_and_hardening():
     assert stiffness[x == 30.0][0] > 3 * stiffness[x == 0.0][0]  # chain lifting off the seabed
 
 
+def test_the_catenary_scenarios_stiffness_at_rest_is_within_the_catalogues_plausible_range():
+    """The benchmark's chain lines are stiff at zero offset as the spring lines are (strength
+    1) or 20 % more (strength 2), within mooring_stiffness's plausible scale, so that the
+    right answer is reachable at plausible values; they harden with offset."""
+    from fowt_hydro_sim.studies.diagnosis.benchmark import INDEPENDENT_INJECTIONS
+    from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
+    low, high = next(p for p in CATALOGUE["mooring_stiffness"].parameters
+                     if p.name == "line_stiffness_scale").plausible_range
+
+    def stiffness(force, x: float) -> float:
+        return -(force(x + 0.5) - force(x - 0.5))
+
+    spring = stiffness(lambda x: cummins.mooring_wrench(PLATFORM, np.array([x, 0, 0, 0, 0, 0]))[0], 0.0)
+    ratios = []
+    for values in INDEPENDENT_INJECTIONS["catenary_mooring"][2]:
+        lines = catenary.ChainLines(values["anchor_distance_m"], values["length_m"], values["weight_n_m"])
+        chain = lambda x: catenary.surge_force_n(PLATFORM, lines, x)  # noqa: E731
+        ratios.append(stiffness(chain, 0.0) / spring)
+        assert stiffness(chain, 5.0) > 1.2 * stiffness(chain, 0.0)
+    assert ratios == pytest.approx([1.0, 1.2], abs=0.02) and all(low <= r <= high for r in ratios)
+
+
 def test_basin_runs_are_cached_and_keyed_by_what_makes_them(tmp_path):
     values = {"amplitude_n_m": 6e7, "frequency_hz": 0.12}
     first = basin.basin_run("a", "rotor_1p", values, 3, "lc5.1", PLATFORM, 120.0, cache=tmp_path)
