@@ -481,3 +481,26 @@ def test_a_response_the_waves_do_not_drive_is_told_from_a_transfer_function_of_a
                            [spectra((t, eta), (t, model), settings)], settings)
     assert [(dof, metric) for dof, metric, _, _ in found] == [("pitch", "std.wave")]
     assert found[0][3] - found[0][2] > 0.15  # a quarter of the variance is the 1P moment's (less Welch's bias)
+
+
+def test_differences_no_effect_moves_alone_are_the_baselines_not_unexplained():
+    """Only a heave lag of changing sign (-0.3, +0.2, -8.8 s) and a pitch STD of changing
+    sign are flagged, linear in the waves, and no candidate moves them: the verdict is a
+    baseline mismatch listing them, not "unexplained" (which the scoring counts as a false
+    alarm on a null)."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(3, duration_s=1200.0)
+    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
+    spectra = [measured_spectra(r, settings) for r in runs]
+    cells = {("heave", "lag"): (-0.3, 0.2, -8.8), ("pitch", "std.wave"): (-0.15, -0.12, 0.3)}
+
+    def evaluate(jobs, description=""):
+        return [(_gap(settings, runs[index].name, {cell: v[index] for cell, v in cells.items()}),
+                 spectra[index] if with_spectra else None) for name, values, index, with_spectra in jobs]
+
+    effects = {n: CATALOGUE[n] for n in ("linear_damping", "added_mass_error")}
+    diagnosis = diagnose(runs, [], evaluate, settings, effects, max_evaluations=2)
+    assert diagnosis.chosen is None and diagnosis.mismatches == [] and diagnosis.undriven == []
+    assert diagnosis.verdict == "baseline mismatch", diagnosis.reason
+    assert sorted(diagnosis.differences) == sorted(cells) and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason

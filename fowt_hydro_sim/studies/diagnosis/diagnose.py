@@ -670,7 +670,10 @@ def rank(c: CandidateFit) -> tuple:
 def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagnosis:
     """Mark the baseline mismatches the named effect explains (``explains``); any left make
     the verdict 'baseline mismatch', the effect (if any) coming 'additionally'. Differences
-    set aside that are not consistent (``Diagnosis.differences``) are said, not scored."""
+    set aside that are not consistent (``Diagnosis.differences``) are said; when nothing is
+    named and they are all that is flagged, they too are the baseline's. A set-aside cell
+    whose measured response the waves do not drive (``undriven_cells``) makes the verdict
+    'unexplained' when nothing is named."""
     cells = diagnosis.settings.cells()
     for m in diagnosis.mismatches:
         i = cells.index((m.dof, m.metric))
@@ -682,6 +685,9 @@ def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagn
                   else f"; no effect explains the rest ({diagnosis.reason})")
         diagnosis.verdict = "baseline mismatch"
         diagnosis.reason = "baseline: " + "; ".join(m.text() for m in left) + effect
+    elif chosen is None and diagnosis.differences and not any(g.flagged[diagnosis.fit_cells].any()
+                                                              for g in diagnosis.tuning_before):
+        diagnosis.verdict = "baseline mismatch"  # every flagged cell is a difference no effect moves
     if diagnosis.differences:
         diagnosis.reason += ("; set aside as the baseline's, flagged in some runs only or of changing sign, no "
                              f"catalogue effect explaining them: {diagnosis.differences_text()}")
