@@ -8,11 +8,17 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    squares on the cells' residuals in tolerance units; one parameter set for every sea
    state, so how the gap scales with Hs is part of the fit). Its score is a BIC,
    n ln(mean r^2 + floor^2) + p ln n, which charges every extra parameter.
+   Baseline first: cells of one sign in every tuning run, significant pooled over the runs,
+   are baseline mismatches (``gap.consistent``); every flagged cell that no candidate at
+   plausible values explains is set aside as the baseline's (``unexplained_cells``) and the
+   candidates are fitted again on what remains.
 3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE``,
    closes at least ``MIN_CLOSURE`` of the gap and raises no concern (``concerns``: values
    outside their plausible range or at the edge of the fit's bounds, a signature that moves
    the model the wrong way, a blind closure below ``BLIND_SHARE`` of the tuning closure);
-   candidates with a concern rank after the others. Otherwise the gap is "unexplained".
+   candidates with a concern rank after the others. Otherwise the gap is the baseline's
+   ("baseline mismatch"), or "unexplained" where a set-aside cell's band holds a measured
+   response the waves do not drive (``undriven_cells``).
    Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
@@ -53,7 +59,7 @@ MIN_EVIDENCE = 6.0  # BIC improvement over the plain model to name an effect ("s
 MIN_CLOSURE = 0.5  # share of the gap an effect must close to be named
 TIE = 2.0  # BIC difference below which two candidates both fit
 COHERENCE_DEFICIT = 0.1  # measured low-frequency coherence this far below the model's: incoherent load
-UNDRIVEN_SHARE = 0.1  # measured coherent share this far below the model's in a set-aside cell's band: a load the waves do not drive
+UNDRIVEN_SHARE = 0.1  # measured wave-coherent share this far below the model's: a load the waves do not drive
 FD_STEP = 0.1  # forward-difference step, in units of each parameter's scale
 EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) sits at the edge
 BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
@@ -384,9 +390,9 @@ class Diagnosis:
     spectra: dict = field(default_factory=dict)  # run -> {"measured"|"model"|"model+effect": spectra}
     model_runs: int = 0
     mismatches: list[Mismatch] = field(default_factory=list)  # the baseline's, found before any effect
-    fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but mismatches)
+    fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but those set aside)
     first_round: list[CandidateFit] = field(default_factory=list)  # the fits on every cell, if refitted without some
-    undriven: list[tuple[str, str, float, float]] = field(default_factory=list)  # (DOF, metric, coherent share measured, model)
+    undriven: list[tuple[str, str, float, float]] = field(default_factory=list)  # (DOF, metric, shares: measured, model)
 
     @property
     def tuning_before(self) -> list[Gap]:
@@ -411,8 +417,10 @@ class Diagnosis:
     def differences_text(self) -> str:
         """The set-aside differences with their values per tuning run."""
         cells = self.settings.cells()
-        return "; ".join(f"{dof} {metric} ({', '.join(f'{g.value[cells.index((dof, metric))]:+.2g}' for g in self.tuning_before)})"
-                         for dof, metric in self.differences)
+
+        def values(cell: tuple[str, str]) -> str:
+            return ", ".join(f"{g.value[cells.index(cell)]:+.2g}" for g in self.tuning_before)
+        return "; ".join(f"{dof} {metric} ({values((dof, metric))})" for dof, metric in self.differences)
 
     @property
     def blind_closure(self) -> float:
