@@ -504,3 +504,18 @@ def test_differences_no_effect_moves_alone_are_the_baselines_not_unexplained():
     assert diagnosis.chosen is None and diagnosis.mismatches == [] and diagnosis.undriven == []
     assert diagnosis.verdict == "baseline mismatch", diagnosis.reason
     assert sorted(diagnosis.differences) == sorted(cells) and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason
+
+
+def test_an_out_of_catalogue_case_is_right_only_when_unexplained():
+    """Nothing named and a baseline mismatch is a null's right answer; for an effect outside
+    the catalogue it is not (the figure could not tell the two apart): only "unexplained" is."""
+    from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, score_scenario
+    from fowt_hydro_sim.studies.diagnosis.diagnose import Diagnosis
+    settings = GapSettings()
+    gaps = [_gap(settings, f"run{k}", {("heave", "std.wave"): -0.2}) for k in range(3)]
+    rotor = Scenario("rotor_1p", "out_of_catalogue", "rotor_1p", {}, 0)
+    null = Scenario("null#1", "null", None, {}, 0)
+    for verdict, rotor_right, null_right in (("baseline mismatch", False, True), ("unexplained", True, False)):
+        diagnosis = Diagnosis(settings, ["run0", "run1", "run2"], [], gaps, [], verdict, None, "")
+        assert score_scenario(rotor, diagnosis, [], 1.0).correct is rotor_right, verdict
+        assert score_scenario(null, diagnosis, [], 1.0).correct is null_right, verdict
