@@ -254,6 +254,31 @@ def test_the_coherence_sentence_is_worded_from_its_value(deficit, words):
     assert words in sentence and f"{deficit:+.2f}" in sentence
 
 
+def test_a_gap_of_one_sign_in_every_run_significant_when_pooled_is_consistent():
+    """Three runs' cells (value, interval): heave in the wave band 16 %, 26 % and 15 % low, the
+    last run's interval spanning zero (flagged in two runs only) is consistent: one sign
+    throughout and significant pooled (mean -0.19 +- 0.07). Not consistent: a lag of
+    changing sign; a cell flagged in one run whose others agree in sign but whose pooled
+    interval spans zero; a cell of one sign whose pooled mean is within tolerance."""
+    from fowt_hydro_sim.studies.diagnosis.gap import Gap, consistent
+    settings = GapSettings()
+    cells = settings.cells()
+    rows = {("heave", "std.wave"): [(-0.163, -0.177, -0.149), (-0.265, -0.288, -0.241), (-0.146, -0.331, 0.091)],
+            ("heave", "lag"): [(-0.31, -0.33, -0.29), (0.20, 0.03, 0.36), (-8.78, -8.95, -8.61)],
+            ("pitch", "std.wave"): [(0.30, 0.25, 0.35), (0.01, -0.30, 0.32), (0.01, -0.30, 0.32)],
+            ("surge", "std.wave"): [(-0.06, -0.07, -0.05), (-0.01, -0.02, 0.0), (-0.01, -0.03, 0.01)]}
+    tolerance = np.array([settings.tolerance(metric) for _, metric in cells])
+    gaps = []
+    for run in range(3):
+        value, low, high = (np.zeros(len(cells)) for _ in range(3))
+        for cell, per_run in rows.items():
+            value[cells.index(cell)], low[cells.index(cell)], high[cells.index(cell)] = per_run[run]
+        gaps.append(Gap(f"run{run}", value, low, high, tolerance))
+    assert not gaps[2].flagged[cells.index(("heave", "std.wave"))]
+    assert [cells[i] for i in np.flatnonzero(consistent(gaps))] == [("heave", "std.wave")]
+    assert not consistent(gaps[:1]).any()  # one run: nothing to be consistent with
+
+
 # ---------------------------------------------------------------------- plausibility rules of the diagnosis
 def _gap(settings, run: str, values: dict[tuple[str, str], float]):
     """A gap with the given cells (tight intervals, flagged where beyond tolerance), others 0."""
@@ -396,3 +421,101 @@ def test_a_mismatch_an_effect_takes_most_of_the_way_is_explained_by_it():
     explained = {(m.dof, m.metric): m.explained_by for m in diagnosis.mismatches}
     assert explained == {surge: "slow_drift", offset: "slow_drift", heave: None}
     assert "heave std.wave: model below" in diagnosis.reason and "surge std.low_frequency" not in diagnosis.reason
+
+
+def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_the_rest_named():
+    """The model's low-frequency surge 1.8x the measured one in every run, which extra
+    damping closes, and a heave lag of changing sign (-0.3, +0.2, -8.8 s: the response of
+    another form in a long-period sea), which nothing moves and which carries most of the
+    squared gap. The lag is not a consistent mismatch, yet no effect explains it: it is set
+    aside as the baseline's and said, and damping, closing what remains, is named and
+    explains the surge mismatch."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(3, duration_s=1200.0)
+    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
+    spectra = [measured_spectra(r, settings) for r in runs]
+    surge, lag = ("surge", "std.low_frequency"), ("heave", "lag")
+
+    def evaluate(jobs, description=""):
+        out = []
+        for name, values, index, with_spectra in jobs:
+            damping = values.get("surge_damping_ratio", 0.0) / 0.05 if name == "linear_damping" else 0.0
+            cells = {surge: 0.8 * (1.0 - damping), lag: (-0.3, 0.2, -8.8)[index]}
+            out.append((_gap(settings, runs[index].name, cells), spectra[index] if with_spectra else None))
+        return out
+
+    effects = {n: CATALOGUE[n] for n in ("linear_damping", "added_mass_error")}
+    diagnosis = diagnose(runs, [], evaluate, settings, effects, max_evaluations=4)
+    assert diagnosis.chosen == "linear_damping" and diagnosis.verdict == "explained", diagnosis.reason
+    assert diagnosis.candidate("linear_damping").closure > 0.9
+    assert [(m.dof, m.metric, m.explained_by) for m in diagnosis.mismatches] == [(*surge, "linear_damping")]
+    assert diagnosis.differences == [lag] and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason
+
+
+def test_a_response_the_waves_do_not_drive_is_told_from_a_transfer_function_of_another_form():
+    """Pitch measured with a 1P moment's response at 0.12 Hz on top of the wave response,
+    and heave measured 25 % above the model's (a transfer function of another form): both
+    set aside, both flagged. Only pitch's wave band holds a response the waves do not drive
+    (its coherent share well below the model's); heave's stays linear in the waves."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import undriven_cells
+    from fowt_hydro_sim.studies.diagnosis.gap import spectra
+    settings = GapSettings(transient_s=0.0)
+    rng = np.random.default_rng(3)
+    t = np.arange(0.0, 1200.0, 0.25)
+    eta = sum(np.cos(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi)) for f in np.arange(0.05, 0.2, 0.0013))
+    model = np.zeros((t.size, 6))
+    model[:, 0] = np.interp(t - 2.0, t, eta)
+    model[:, HEAVE] = np.interp(t - 0.5, t, eta)
+    model[:, 4] = 0.01 * np.interp(t - 1.0, t, eta)
+    measured = model.copy()
+    measured[:, HEAVE] *= 1.25
+    measured[:, 4] += 0.6 * model[:, 4].std() * np.sqrt(2) * np.sin(2 * np.pi * 0.12 * t)
+    before = [gap("run", (t, measured), (t, model), settings)]
+    cells = settings.cells()
+    heave, pitch = cells.index(("heave", "std.wave")), cells.index(("pitch", "std.wave"))
+    assert before[0].flagged[heave] and before[0].flagged[pitch]
+    aside = np.zeros(len(cells), dtype=bool)
+    aside[[heave, pitch]] = True
+    found = undriven_cells(aside, before, [spectra((t, eta), (t, measured), settings)],
+                           [spectra((t, eta), (t, model), settings)], settings)
+    assert [(dof, metric) for dof, metric, _, _ in found] == [("pitch", "std.wave")]
+    assert found[0][3] - found[0][2] > 0.15  # a quarter of the variance is the 1P moment's (less Welch's bias)
+
+
+def test_differences_no_effect_moves_alone_are_the_baselines_not_unexplained():
+    """Only a heave lag of changing sign (-0.3, +0.2, -8.8 s) and a pitch STD of changing
+    sign are flagged, linear in the waves, and no candidate moves them: the verdict is a
+    baseline mismatch listing them, not "unexplained" (which the scoring counts as a false
+    alarm on a null)."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    settings = GapSettings(transient_s=0.0)
+    t, x = record(3, duration_s=1200.0)
+    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
+    spectra = [measured_spectra(r, settings) for r in runs]
+    cells = {("heave", "lag"): (-0.3, 0.2, -8.8), ("pitch", "std.wave"): (-0.15, -0.12, 0.3)}
+
+    def evaluate(jobs, description=""):
+        return [(_gap(settings, runs[index].name, {cell: v[index] for cell, v in cells.items()}),
+                 spectra[index] if with_spectra else None) for name, values, index, with_spectra in jobs]
+
+    effects = {n: CATALOGUE[n] for n in ("linear_damping", "added_mass_error")}
+    diagnosis = diagnose(runs, [], evaluate, settings, effects, max_evaluations=2)
+    assert diagnosis.chosen is None and diagnosis.mismatches == [] and diagnosis.undriven == []
+    assert diagnosis.verdict == "baseline mismatch", diagnosis.reason
+    assert sorted(diagnosis.differences) == sorted(cells) and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason
+
+
+def test_an_out_of_catalogue_case_is_right_only_when_unexplained():
+    """Nothing named and a baseline mismatch is a null's right answer; for an effect outside
+    the catalogue it is not (the figure could not tell the two apart): only "unexplained" is."""
+    from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, score_scenario
+    from fowt_hydro_sim.studies.diagnosis.diagnose import Diagnosis
+    settings = GapSettings()
+    gaps = [_gap(settings, f"run{k}", {("heave", "std.wave"): -0.2}) for k in range(3)]
+    rotor = Scenario("rotor_1p", "out_of_catalogue", "rotor_1p", {}, 0)
+    null = Scenario("null#1", "null", None, {}, 0)
+    for verdict, rotor_right, null_right in (("baseline mismatch", False, True), ("unexplained", True, False)):
+        diagnosis = Diagnosis(settings, ["run0", "run1", "run2"], [], gaps, [], verdict, None, "")
+        assert score_scenario(rotor, diagnosis, [], 1.0).correct is rotor_right, verdict
+        assert score_scenario(null, diagnosis, [], 1.0).correct is null_right, verdict

@@ -8,11 +8,17 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    squares on the cells' residuals in tolerance units; one parameter set for every sea
    state, so how the gap scales with Hs is part of the fit). Its score is a BIC,
    n ln(mean r^2 + floor^2) + p ln n, which charges every extra parameter.
+   Baseline first: cells of one sign in every tuning run, significant pooled over the runs,
+   are baseline mismatches (``gap.consistent``); every flagged cell that no candidate at
+   plausible values explains is set aside as the baseline's (``unexplained_cells``) and the
+   candidates are fitted again on what remains.
 3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE``,
    closes at least ``MIN_CLOSURE`` of the gap and raises no concern (``concerns``: values
    outside their plausible range or at the edge of the fit's bounds, a signature that moves
    the model the wrong way, a blind closure below ``BLIND_SHARE`` of the tuning closure);
-   candidates with a concern rank after the others. Otherwise the gap is "unexplained".
+   candidates with a concern rank after the others. Otherwise the gap is the baseline's
+   ("baseline mismatch"), or "unexplained" where a set-aside cell's band holds a measured
+   response the waves do not drive (``undriven_cells``).
    Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
@@ -41,7 +47,8 @@ import scipy.optimize
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
-from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, gap, spectra
+from fowt_hydro_sim.studies.diagnosis.gap import (Gap, GapSettings, band_mean, coherent_share, consistent, gap,
+                                                   spectra)
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun, Variant, replay
 
 log = logging.getLogger(__name__)
@@ -52,6 +59,7 @@ MIN_EVIDENCE = 6.0  # BIC improvement over the plain model to name an effect ("s
 MIN_CLOSURE = 0.5  # share of the gap an effect must close to be named
 TIE = 2.0  # BIC difference below which two candidates both fit
 COHERENCE_DEFICIT = 0.1  # measured low-frequency coherence this far below the model's: incoherent load
+UNDRIVEN_SHARE = 0.1  # measured wave-coherent share this far below the model's: a load the waves do not drive
 FD_STEP = 0.1  # forward-difference step, in units of each parameter's scale
 EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) sits at the edge
 BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
@@ -242,12 +250,9 @@ def at_edge(p: Parameter, value: float) -> bool:
             or (p.high - value <= EDGE * span and p.high != p.off))
 
 
-def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
-             mask: np.ndarray | None = None) -> list[str]:
-    """Why a fitted effect is implausible: a parameter outside the range a real platform's
-    lies in, or at the edge of the fit's bounds (it absorbs something else); or a gap it
-    cannot close, because its signature moves the model the wrong way in the cells that
-    carry most of the flagged gap."""
+def range_concerns(effect: Effect, values: dict[str, float]) -> list[str]:
+    """Why fitted values are implausible: a parameter outside the range a real platform's
+    lies in, or at the edge of the fit's bounds (it absorbs something else)."""
     out = []
     for p in effect.parameters:
         value, (low, high) = values[p.name], p.plausible_range
@@ -255,6 +260,15 @@ def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settin
             out.append(f"{p.name} = {value:.4g} lies outside its plausible {low:g} to {high:g} ({p.why})")
         elif at_edge(p, value):
             out.append(f"{p.name} = {value:.4g} sits at the edge of the fitted range {p.low:g} to {p.high:g}")
+    return out
+
+
+def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
+             mask: np.ndarray | None = None) -> list[str]:
+    """Why a fitted effect is implausible: its values (``range_concerns``); or a gap it
+    cannot close, because its signature moves the model the wrong way in the cells that
+    carry most of the flagged gap."""
+    out = range_concerns(effect, values)
     cells = [f"{dof}.{metric}" for dof, metric in settings.cells()]
     right = wrong = 0.0
     for g in before:
@@ -267,6 +281,22 @@ def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settin
         moved = ", ".join(f"{'raises' if s > 0 else 'lowers'} {cell}" for cell, s in effect.signature.items())
         out.append(f"it {moved}, the wrong way for most of the flagged gap")
     return out
+
+
+def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects: dict[str, Effect]) -> np.ndarray:
+    """Cells flagged in a tuning run that no candidate at plausible values (no
+    ``range_concerns``) explains (``explains``), fitted on every cell: the baseline's, set
+    aside before the effects are tested on what remains. They are the consistent mismatches
+    no effect explains and differences flagged in some runs only, e.g. of a sign that
+    changes with the sea state (a response of another form, such as strip theory against
+    a panel method's), which no effect of the catalogue moves: left in, they would dilute
+    every candidate's closure, and an effect that closes its own cells would not be named.
+    (Whether an effect moves a cell the right way is judged by the cell's closure; a
+    signature concern over all flagged cells would count the cells being set aside.)"""
+    flagged = np.any([g.flagged for g in before], axis=0)
+    plausible = [c for c in candidates if not range_concerns(effects[c.effect], c.values)]
+    return np.array([bool(flagged[i]) and not any(explains(before, c.gaps, i) for c in plausible)
+                     for i in range(flagged.size)])
 
 
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
@@ -314,8 +344,9 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
 # ---------------------------------------------------------------------- the diagnosis
 @dataclass
 class Mismatch:
-    """A cell the plain model misses in the same direction in every tuning run: a baseline
-    mismatch (coefficients, conventions, a missing physics term) rather than noise; with
+    """A cell the plain model misses in the same direction in every tuning run (significant
+    pooled over the runs, ``gap.consistent``): a baseline mismatch (coefficients,
+    conventions, a missing physics term) rather than noise; with
     how it scales with the sea state (a least-squares slope of the value against Hs and Tp)."""
 
     dof: str
@@ -359,8 +390,9 @@ class Diagnosis:
     spectra: dict = field(default_factory=dict)  # run -> {"measured"|"model"|"model+effect": spectra}
     model_runs: int = 0
     mismatches: list[Mismatch] = field(default_factory=list)  # the baseline's, found before any effect
-    fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but mismatches)
+    fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but those set aside)
     first_round: list[CandidateFit] = field(default_factory=list)  # the fits on every cell, if refitted without some
+    undriven: list[tuple[str, str, float, float]] = field(default_factory=list)  # (DOF, metric, shares: measured, model)
 
     @property
     def tuning_before(self) -> list[Gap]:
@@ -372,6 +404,23 @@ class Diagnosis:
 
     def candidate(self, name: str) -> CandidateFit:
         return next(c for c in self.candidates if c.effect == name)
+
+    @property
+    def differences(self) -> list[tuple[str, str]]:
+        """Cells set aside as the baseline's (``unexplained_cells``) that are not consistent
+        mismatches: flagged in some runs only, or of a sign that changes between runs."""
+        if self.fit_cells is None:
+            return []
+        mismatched = {(m.dof, m.metric) for m in self.mismatches}
+        return [cell for cell, kept in zip(self.settings.cells(), self.fit_cells) if not kept and cell not in mismatched]
+
+    def differences_text(self) -> str:
+        """The set-aside differences with their values per tuning run."""
+        cells = self.settings.cells()
+
+        def values(cell: tuple[str, str]) -> str:
+            return ", ".join(f"{g.value[cells.index(cell)]:+.2g}" for g in self.tuning_before)
+        return "; ".join(f"{dof} {metric} ({values((dof, metric))})" for dof, metric in self.differences)
 
     @property
     def blind_closure(self) -> float:
@@ -391,6 +440,8 @@ class Diagnosis:
                 "blind_closure": None if math.isnan(self.blind_closure) else self.blind_closure,
                 "baseline_score": self.baseline_score, "coherence_deficit": self.coherence_deficit,
                 "baseline_mismatches": [{**m.__dict__, "text": m.text()} for m in self.mismatches],
+                "differences": [list(cell) for cell in self.differences],
+                "undriven": [list(cell) for cell in self.undriven],
                 "flagged": [list(c) for c in self.flagged_cells(self.baseline)],
                 "baseline": [g.as_dict(self.settings) for g in self.baseline],
                 "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
@@ -412,14 +463,10 @@ def peak_period_s(run: MeasuredRun) -> float:
 
 
 def baseline_mismatches(tuning: list[MeasuredRun], gaps: list[Gap], settings: GapSettings) -> list[Mismatch]:
-    """Cells flagged in every tuning run (at least two), all with the same sign."""
-    if len(gaps) < 2:
-        return []
-    flagged = np.all([g.flagged for g in gaps], axis=0)
-    same_sign = np.abs(np.sum([np.sign(g.value) for g in gaps], axis=0)) == len(gaps)
+    """Cells the plain model misses the same way in every tuning run (``gap.consistent``)."""
     hs, tp = [r.hs_m for r in tuning], [peak_period_s(r) for r in tuning]
     return [Mismatch(*settings.cells()[i], [float(g.value[i]) for g in gaps], hs, tp)
-            for i in np.flatnonzero(flagged & same_sign)]
+            for i in np.flatnonzero(consistent(gaps))]
 
 
 def coherence_deficit(measured: list[dict], model: list[dict], dof: str, band_hz: tuple[float, float]) -> float:
@@ -428,6 +475,37 @@ def coherence_deficit(measured: list[dict], model: list[dict], dof: str, band_hz
     return float(np.mean([band_mean(s["frequency_hz"], s[f"coherence.{dof}"], band_hz)
                           - band_mean(m["frequency_hz"], m[f"coherence.{dof}"], band_hz)
                           for m, s in zip(measured, model)]))
+
+
+def cell_band(metric: str, settings: GapSettings) -> tuple[float, float] | None:
+    """The band a metric is measured in (``lag``: the wave band's; ``offset``: none)."""
+    if metric == "lag":
+        return settings.bands_hz.get("wave", max(settings.bands_hz.values()))
+    name = metric.partition(".")[2]
+    return settings.bands_hz.get(name)
+
+
+def undriven_cells(cells: np.ndarray, before: list[Gap], measured: list[dict], model: list[dict],
+                   settings: GapSettings) -> list[tuple[str, str, float, float]]:
+    """Of the ``cells`` (set aside: no catalogue effect explains them), those whose band in
+    the measured runs holds a response the waves do not drive, beyond the model's: the
+    coherent share (``gap.coherent_share``) lower than the model's by more than
+    UNDRIVEN_SHARE on average over the tuning runs, in a band judged in every run (where
+    neither side has energy, coherence is noise). A transfer function of another form (a
+    wrong coefficient, strip theory against a panel method) keeps the response linear in
+    the waves; a load the model lacks and the waves do not drive (a rotor's 1P moment, wind)
+    does not. (DOF, metric, measured share, model share)."""
+    out = []
+    for i in np.flatnonzero(cells):
+        dof, metric = settings.cells()[i]
+        band = cell_band(metric, settings)
+        if band is None or not all(g.judged[i] for g in before):
+            continue
+        share_measured = float(np.mean([coherent_share(m, dof, band) for m in measured]))
+        share_model = float(np.mean([coherent_share(s, dof, band) for s in model]))
+        if share_model - share_measured > UNDRIVEN_SHARE:
+            out.append((dof, metric, share_measured, share_model))
+    return out
 
 
 def measured_spectra(run: MeasuredRun, settings: GapSettings) -> dict:
@@ -541,16 +619,13 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         return sorted(fitted, key=rank)  # plausible fits rank first, screened ones last
 
     candidates = fit_all(None)
-    # mismatches in every run that no plausible candidate explains are the baseline's own: set
-    # them aside and test the effects on what remains
-    cells = settings.cells()
-    unexplained = np.zeros(len(cells), dtype=bool)
-    for m in diagnosis.mismatches:
-        i = cells.index((m.dof, m.metric))
-        unexplained[i] = not any(explains(diagnosis.tuning_before, c.gaps, i) for c in candidates if not c.concerns)
+    # flagged cells no plausible candidate explains are the baseline's: set them aside and
+    # test the effects on what remains
+    unexplained = unexplained_cells(diagnosis.tuning_before, candidates, effects)
     if unexplained.any():
         remaining = ~unexplained
         diagnosis.fit_cells, diagnosis.first_round = remaining, candidates
+        diagnosis.undriven = undriven_cells(unexplained, diagnosis.tuning_before, measured, model_spectra, settings)
         diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining)
         if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
             expect_fits()
@@ -602,7 +677,11 @@ def rank(c: CandidateFit) -> tuple:
 
 def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagnosis:
     """Mark the baseline mismatches the named effect explains (``explains``); any left make
-    the verdict 'baseline mismatch', the effect (if any) coming 'additionally'."""
+    the verdict 'baseline mismatch', the effect (if any) coming 'additionally'. Differences
+    set aside that are not consistent (``Diagnosis.differences``) are said; when nothing is
+    named and they are all that is flagged, they too are the baseline's. A set-aside cell
+    whose measured response the waves do not drive (``undriven_cells``) makes the verdict
+    'unexplained' when nothing is named."""
     cells = diagnosis.settings.cells()
     for m in diagnosis.mismatches:
         i = cells.index((m.dof, m.metric))
@@ -614,6 +693,19 @@ def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagn
                   else f"; no effect explains the rest ({diagnosis.reason})")
         diagnosis.verdict = "baseline mismatch"
         diagnosis.reason = "baseline: " + "; ".join(m.text() for m in left) + effect
+    elif chosen is None and diagnosis.differences and not any(g.flagged[diagnosis.fit_cells].any()
+                                                              for g in diagnosis.tuning_before):
+        diagnosis.verdict = "baseline mismatch"  # every flagged cell is a difference no effect moves
+    if diagnosis.differences:
+        diagnosis.reason += ("; set aside as the baseline's, flagged in some runs only or of changing sign, no "
+                             f"catalogue effect explaining them: {diagnosis.differences_text()}")
+    if diagnosis.undriven:
+        undriven = ", ".join(f"{dof} {metric} (coherent share {measured:.2f} measured, {model:.2f} modelled)"
+                             for dof, metric, measured, model in diagnosis.undriven)
+        if chosen is None:
+            diagnosis.verdict = "unexplained"
+        diagnosis.reason = (f"a response the waves do not drive, which neither the model nor the catalogue has, in "
+                            f"{undriven}; " + diagnosis.reason)
     return diagnosis
 
 

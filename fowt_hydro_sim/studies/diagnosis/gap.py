@@ -94,12 +94,35 @@ class Gap:
     def residual(self) -> np.ndarray:
         return self.value / self.tolerance
 
+    @property
+    def judged(self) -> np.ndarray:
+        return np.isfinite(self.tolerance)
+
     def as_dict(self, settings: GapSettings) -> dict:
         return {"run": self.run, "cells": [
             {"dof": dof, "metric": metric, "value": float(v), "low": float(lo), "high": float(hi),
              "tolerance": float(tol) if np.isfinite(tol) else None, "significant": bool(s), "flagged": bool(f)}
             for (dof, metric), v, lo, hi, tol, s, f in zip(settings.cells(), self.value, self.low, self.high,
                                                         self.tolerance, self.significant, self.flagged)]}
+
+
+def consistent(gaps: list[Gap]) -> np.ndarray:
+    """Cells the model misses the same way in every run (at least two): judged in every run,
+    flagged in at least one, of one sign in every run, and, pooled over the runs (the mean
+    value, its interval's half-width sqrt(sum h_i^2) / n from the runs' independent
+    intervals), significant and beyond tolerance. A cell flagged in each run is consistent;
+    so is one flagged in some runs whose other runs agree in sign but are too short or too
+    noisy to be significant alone (a 1200 s record gives five blocks per interval)."""
+    if len(gaps) < 2:
+        return np.zeros(gaps[0].value.size if gaps else 0, dtype=bool)
+    value = np.array([g.value for g in gaps])
+    half = np.array([(g.high - g.low) / 2.0 for g in gaps])
+    judged = np.all([g.judged for g in gaps], axis=0)
+    flagged = np.any([g.flagged for g in gaps], axis=0)
+    one_sign = np.abs(np.sign(value).sum(axis=0)) == len(gaps)
+    mean = value.mean(axis=0)
+    pooled_half = np.sqrt((half ** 2).sum(axis=0)) / len(gaps)
+    return judged & flagged & one_sign & (np.abs(mean) > pooled_half) & (np.abs(mean) > gaps[0].tolerance)
 
 
 def common_grid(measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndarray, np.ndarray],
@@ -213,6 +236,16 @@ def spectra(elevation: tuple[np.ndarray, np.ndarray], motion: tuple[np.ndarray, 
         _, c = scipy.signal.coherence(eta, x, fs=1 / GRID_STEP_S, nperseg=n)
         out["frequency_hz"], out[f"psd.{dof}"], out[f"coherence.{dof}"] = f, p, c
     return out
+
+
+def coherent_share(spectra_: dict[str, np.ndarray], dof: str, band_hz: tuple[float, float]) -> float:
+    """The share of a DOF's variance in the band that is linear in the waves (``spectra``'s
+    coherence weighted by the PSD): a narrow response the waves do not drive (a rotor's 1P
+    moment) lowers it however few frequency bins it takes."""
+    f = spectra_["frequency_hz"]
+    keep = (f >= band_hz[0]) & (f <= band_hz[1])
+    psd = spectra_[f"psd.{dof}"][keep]
+    return float(np.sum(spectra_[f"coherence.{dof}"][keep] * psd) / np.sum(psd)) if np.sum(psd) > 0 else math.nan
 
 
 def band_mean(frequency_hz: np.ndarray, values: np.ndarray, band_hz: tuple[float, float]) -> float:

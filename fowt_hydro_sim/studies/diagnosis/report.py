@@ -186,8 +186,12 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
     if not d.flagged_cells(d.baseline):
         lines.append("| (none) | | | | | |")
     if d.mismatches:
-        lines += ["", "Baseline mismatches (flagged with one sign in every tuning run):", ""]
+        lines += ["", "Baseline mismatches (one sign in every tuning run, significant pooled over the runs):", ""]
         lines += [f"- {m.text()}" for m in d.mismatches]
+    if d.differences:
+        lines += ["", "Set aside as the baseline's too (flagged in some tuning runs only, or of a sign that changes "
+                      "between runs; no catalogue effect explains them; values per tuning run): "
+                      + d.differences_text() + "."]
     gross = gross_lines(d)
     if gross:
         lines += ["", f"Gross differences (a band STD ratio outside {GROSS_RATIO[0]:g}-{GROSS_RATIO[1]:g}x), "
