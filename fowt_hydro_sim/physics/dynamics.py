@@ -37,6 +37,7 @@ from fowt_hydro_sim.physics.rigid_body import (
     rotate_inertia,
     rotation_matrix,
     solve_spd,
+    to_body,
 )
 from fowt_hydro_sim.physics.tables import interpolate_into
 
@@ -193,7 +194,8 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
         added_mass_from_moments(moments[0], w.first, w.second, w.added_mass)
     else:  # body axes: w.arm and w.plate_arm hold the body-frame centres, the moments are at R = I
         frame = rotation
-        rotated_moments(np.eye(3), moments, w.first, w.half, w.second)
+        if constant_wetting:  # (the centripetal wrench's; otherwise it is summed strip by strip)
+            rotated_moments(np.eye(3), moments, w.first, w.half, w.second)
         w.added_mass[:] = s.rest_added_mass_6x6 if constant_wetting else s.deep_added_mass_6x6
     if d.options.undisplaced_wetting:
         submerged_points(np.eye(3), 0.0, plates.centre, surface[s.length.size:], w.submerged)
@@ -211,7 +213,7 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
     strip_loads(frame, omega, w.wet, w.v_rel, w.a_fluid, w.v_band, w.arm, s.directions, s.length, s.inertia,
                 s.added_mass, s.band_drag, s.drag, s.filtered, not constant_wetting, w.body)
     if constant_wetting:
-        centripetal_from_moments(w.first, w.second, _in_frame(frame, omega), w.spin)
+        centripetal_from_moments(w.first, w.second, to_body(frame, omega[0], omega[1], omega[2]), w.spin)
         w.body[2] = w.spin
     else:
         add_wet_added_mass(w.wet, s.length, s.deep, s.added_mass_6x6, w.arm, s.added_mass_3x3, fixed, w.added_mass)
@@ -241,14 +243,6 @@ def _freeze_dry_filters(rest_wet: np.ndarray, rates: np.ndarray) -> None:
             for r in range(rates.shape[0]):
                 rates[r, 2 * i] = 0.0
                 rates[r, 2 * i + 1] = 0.0
-
-
-@njit(cache=True, inline="always")
-def _in_frame(frame: np.ndarray, x: np.ndarray) -> tuple[float, float, float]:
-    """frame^T x: a world-axes vector in the frame's axes."""
-    return (frame[0, 0] * x[0] + frame[1, 0] * x[1] + frame[2, 0] * x[2],
-            frame[0, 1] * x[0] + frame[1, 1] * x[1] + frame[2, 1] * x[2],
-            frame[0, 2] * x[0] + frame[1, 2] * x[1] + frame[2, 2] * x[2])
 
 
 @njit(cache=True, inline="always")

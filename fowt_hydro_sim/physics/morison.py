@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.rigid_body import cross3
+from fowt_hydro_sim.physics.rigid_body import cross3, to_body
 from fowt_hydro_sim.physics.strips import Discretisation
 
 
@@ -28,14 +28,6 @@ def wetted_fraction(z_centre_m: float, axis_z: float, length_m: float) -> float:
     if half < 1e-9:
         return 1.0 if z_centre_m < 0.0 else 0.0
     return min(1.0, max(0.0, (half - z_centre_m) / (2.0 * half)))
-
-
-@njit(cache=True, inline="always")
-def _to_body(rotation: np.ndarray, x: float, y: float, z: float) -> tuple[float, float, float]:
-    """R^T [x, y, z]: world axes to body axes."""
-    return (rotation[0, 0] * x + rotation[1, 0] * y + rotation[2, 0] * z,
-            rotation[0, 1] * x + rotation[1, 1] * y + rotation[2, 1] * z,
-            rotation[0, 2] * x + rotation[1, 2] * y + rotation[2, 2] * z)
 
 
 @njit(cache=True, inline="always")
@@ -248,8 +240,8 @@ def relative_velocities(frame: np.ndarray, world_axes: bool, velocity: np.ndarra
     (``wet`` 0) get them too, so that drag filters see a continuous input, unless
     ``skip_dry`` (strips wetted as at rest at every step: a dry strip never loads, its entries
     are left as they are and its filters are frozen: ``dynamics.applied_loads``)."""
-    v_body = _to_body(frame, velocity[0], velocity[1], velocity[2])
-    w_body = _to_body(frame, omega[0], omega[1], omega[2])
+    v_body = to_body(frame, velocity[0], velocity[1], velocity[2])
+    w_body = to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
         if skip_dry and wet[i] == 0.0:
             continue
@@ -258,8 +250,8 @@ def relative_velocities(frame: np.ndarray, world_axes: bool, velocity: np.ndarra
             u = (kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
             a = (kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
         else:
-            u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
-            a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+            u = to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+            a = to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
         spin = cross3(w_body, (arm[i, 0], arm[i, 1], arm[i, 2]))
         vr0 = u[0] - v_body[0] - spin[0]
         vr1 = u[1] - v_body[1] - spin[1]
@@ -293,7 +285,7 @@ def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np
     columns ordered (strip, direction): drag_filters), otherwise 0.5 rho Cd D |v_rel| v_rel
     (``constant_drag`` (n, 2)). No bands: the constant-Cd model. (Written out in the loop:
     an array handed to a helper per strip costs reference counting that is most of the loop.)"""
-    w_body = _to_body(frame, omega[0], omega[1], omega[2])
+    w_body = to_body(frame, omega[0], omega[1], omega[2])
     drag = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     fluid = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     spin = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
@@ -348,15 +340,15 @@ def end_plate_loads(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, 
     scattering on a hemisphere, drag 0.25 rho Cd A |w| w; only for submerged ends. Their
     added mass is ``added_mass_6x6[i]`` (body axes) or, ``about_arm``, the 3x3 at the lever
     arm (world axes), as in ``add_wet_added_mass``."""
-    v_body = _to_body(frame, velocity[0], velocity[1], velocity[2])
-    w_body = _to_body(frame, omega[0], omega[1], omega[2])
+    v_body = to_body(frame, velocity[0], velocity[1], velocity[2])
+    w_body = to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
         c, n = arm[i], normal[i]
         if submerged[i] == 0.0:
             continue
         p = kinematics_point[i]
-        u = _to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
-        a = _to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
+        u = to_body(frame, kinematics[p, 0], kinematics[p, 1], kinematics[p, 2])
+        a = to_body(frame, kinematics[p, 3], kinematics[p, 4], kinematics[p, 5])
         point = (c[0], c[1], c[2])
         spin = cross3(w_body, point)
         centripetal = cross3(w_body, spin)

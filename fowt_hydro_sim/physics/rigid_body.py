@@ -27,6 +27,14 @@ def euler_rates(roll: float, pitch: float, yaw: float, omega: np.ndarray, out: n
 
 
 @njit(cache=True, inline="always")
+def to_body(rotation: np.ndarray, x: float, y: float, z: float) -> tuple[float, float, float]:
+    """R^T [x, y, z]: world axes to body axes (or to any frame's axes)."""
+    return (rotation[0, 0] * x + rotation[1, 0] * y + rotation[2, 0] * z,
+            rotation[0, 1] * x + rotation[1, 1] * y + rotation[2, 1] * z,
+            rotation[0, 2] * x + rotation[1, 2] * y + rotation[2, 2] * z)
+
+
+@njit(cache=True, inline="always")
 def cross3(a: tuple, b: tuple) -> tuple[float, float, float]:
     """a x b of two 3-tuples (no array made)."""
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
