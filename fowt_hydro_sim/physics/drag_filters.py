@@ -21,9 +21,9 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
 
 from fowt_hydro_sim.physics.config import DragBand
+from fowt_hydro_sim.physics.jit import step_loop
 
 
 class StateSpace(NamedTuple):
@@ -143,7 +143,7 @@ def nonzero_entries(matrix: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(np.argwhere(matrix != 0.0), dtype=np.int64)
 
 
-@njit(cache=True)
+@step_loop
 def band_velocities(states: np.ndarray, v_rel: np.ndarray, c: np.ndarray, c_nonzero: np.ndarray,
                     d: np.ndarray, out: np.ndarray) -> None:
     """Band velocities C x + D v_rel, ``out`` (n_bands, m), from the filter states
@@ -157,7 +157,7 @@ def band_velocities(states: np.ndarray, v_rel: np.ndarray, c: np.ndarray, c_nonz
             out[b, i] += c[b, j] * states[j, i]
 
 
-@njit(cache=True)
+@step_loop
 def filter_rates(states: np.ndarray, v_rel: np.ndarray, a: np.ndarray, a_nonzero: np.ndarray,
                  b: np.ndarray, out: np.ndarray) -> None:
     """d(states)/dt = A x + B v_rel, ``out`` (n_states, m) like ``states``."""

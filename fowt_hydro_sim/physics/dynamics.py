@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.physics.drag_filters import band_velocities, filter_rates
+from fowt_hydro_sim.physics.jit import copy_into, step_loop
 from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, N_LOADS, ROW, component_loads
 from fowt_hydro_sim.physics.morison import (
     add_wet_added_mass,
@@ -35,7 +36,7 @@ from fowt_hydro_sim.physics.rigid_body import (
     euler_rates,
     mass_matrix_and_bias,
     rotate_inertia,
-    rotation_matrix,
+    rotation_into,
     solve_spd,
     to_body,
 )
@@ -125,9 +126,11 @@ class KernelData(NamedTuple):
 
 class Workspace(NamedTuple):
     """The right-hand side's scratch and outputs, made once per model (``workspace``): the step
-    loop allocates nothing."""
+    loop allocates nothing (it is compiled without numba's runtime: ``physics.jit``)."""
 
     loads: np.ndarray  # (N_LOADS, 6) the loads at the last evaluation
+    identity: np.ndarray  # (3, 3)
+    rotation: np.ndarray  # (3, 3) R at the last evaluation's state
     masses: np.ndarray  # (N_MODULE_COMPONENTS, 6, 6) the module components' left-hand-side masses
     kinematics: np.ndarray  # (n_points, 7) the wave kinematics at the evaluation's time
     wet: np.ndarray  # (n_strips,)
@@ -143,51 +146,55 @@ class Workspace(NamedTuple):
     second: np.ndarray  # (3, 3, 3, 3) second moments
     spin: np.ndarray  # (6,) centripetal added-mass wrench from the moments
     added_mass: np.ndarray  # (6, 6) the strips' and plates' added mass, frame axes
-    world_added_mass: np.ndarray  # (6, 6) the same in world axes (rotating directions)
+    world_added_mass: np.ndarray  # (6, 6) the same in world axes: what multiplies the body acceleration
     system: np.ndarray  # (6, 6) the left-hand side
     factor: np.ndarray  # (6, 6) its Cholesky factor
     forces: np.ndarray  # (6,) the right-hand side
     bias: np.ndarray  # (6,) the rigid body's velocity terms
+    trial_state: np.ndarray  # (n_states,) ABM4's predicted state, RK4's stage state
+    trial_rates: np.ndarray  # (3, n_states) ABM4's predicted rates (row 0), RK4's k2, k3, k4
 
 
 @njit(cache=True)
 def workspace(d: KernelData) -> Workspace:
     """The scratch ``derivative`` and ``integrate`` work in, for kernel data ``d``."""
     n = d.strips.length.size
-    return Workspace(np.zeros((N_LOADS, 6)), np.zeros((N_MODULE_COMPONENTS, 6, 6)),
+    n_states = N_BODY_STATES + d.filters.b.size * 2 * n
+    return Workspace(np.zeros((N_LOADS, 6)), np.eye(3), np.eye(3), np.zeros((N_MODULE_COMPONENTS, 6, 6)),
                      np.zeros(d.waves.values.shape[1:]), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2)),
                      np.zeros((d.filters.d.size, 2 * n)),
                      d.strips.centre.copy(), d.plates.centre.copy(), np.zeros(d.plates.centre.shape[0]),
                      np.zeros((3, 6)), np.zeros((3, 3, 3)), np.zeros((3, 3, 3, 3)), np.zeros((3, 3, 3, 3)),
                      np.zeros(6), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)),
-                     np.zeros(6), np.zeros(6))
+                     np.zeros(6), np.zeros(6), np.zeros(n_states), np.zeros((3, n_states)))
 
 
-@njit(cache=True)
+@step_loop
 def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_rates_out: np.ndarray,
-                  surface: np.ndarray, constant_wetting: bool) -> np.ndarray:
+                  surface: np.ndarray, constant_wetting: bool) -> None:
     """Fill ``w.loads`` (N_LOADS, 6; world axes, about the reference point) at state y and
     time t from the kinematics in ``w.kinematics`` (at t), with only the centripetal part in
-    the added-mass row, ``w.masses`` with the module components' masses and the drag filter
-    states' rates; return the strips' and plates' 6x6 added mass (world axes) that multiplies
-    the body acceleration. ``surface`` (n_strips + n_plates) is the water surface height the
+    the added-mass row, ``w.masses`` with the module components' masses, ``w.rotation`` with R,
+    ``w.world_added_mass`` with the strips' and plates' 6x6 added mass (world axes) that
+    multiplies the body acceleration, and the drag filter states' rates. ``surface`` (n_strips + n_plates) is the water surface height the
     strips and plates are wetted up to; ``constant_wetting``: the strips stay wetted as at
     rest (undisplaced wetted length, still surface), so the dry ones are skipped and the
     added mass and its centripetal wrench are sums of precomputed moments."""
     position, angles = y[0:3], y[3:6]
     velocity, omega = y[6:9], y[9:12]
-    rotation = rotation_matrix(angles[0], angles[1], angles[2])
+    rotation_into(angles[0], angles[1], angles[2], w.rotation)
+    rotation, identity = w.rotation, w.identity
     s, plates, bank = d.strips, d.plates, d.filters
     fixed = d.options.fixed_directions
     if constant_wetting:
-        w.wet[:] = s.rest_wet
+        copy_into(s.rest_wet, w.wet)
     elif d.options.undisplaced_wetting:
-        wetted_fractions(np.eye(3), 0.0, s.centre, s.axis, s.length, surface[:s.length.size], w.wet)
+        wetted_fractions(identity, 0.0, s.centre, s.axis, s.length, surface[:s.length.size], w.wet)
     else:
         wetted_fractions(rotation, position[2], s.centre, s.axis, s.length, surface[:s.length.size], w.wet)
     moments = s.rest_moments if constant_wetting else s.deep_moments
     if fixed:  # world axes, lever arms R c
-        frame = np.eye(3)
+        frame = identity
         lever_arms(rotation, s.centre, w.arm)
         lever_arms(rotation, plates.centre, w.plate_arm)
         rotated_moments(rotation, moments, w.first, w.half, w.second)
@@ -195,10 +202,10 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
     else:  # body axes: w.arm and w.plate_arm hold the body-frame centres, the moments are at R = I
         frame = rotation
         if constant_wetting:  # (the centripetal wrench's; otherwise it is summed strip by strip)
-            rotated_moments(np.eye(3), moments, w.first, w.half, w.second)
-        w.added_mass[:] = s.rest_added_mass_6x6 if constant_wetting else s.deep_added_mass_6x6
+            rotated_moments(identity, moments, w.first, w.half, w.second)
+        copy_into(s.rest_added_mass_6x6 if constant_wetting else s.deep_added_mass_6x6, w.added_mass)
     if d.options.undisplaced_wetting:
-        submerged_points(np.eye(3), 0.0, plates.centre, surface[s.length.size:], w.submerged)
+        submerged_points(identity, 0.0, plates.centre, surface[s.length.size:], w.submerged)
     else:
         submerged_points(rotation, position[2], plates.centre, surface[s.length.size:], w.submerged)
     relative_velocities(frame, fixed, velocity, omega, w.kinematics, w.arm, s.directions, s.point, w.wet,
@@ -214,7 +221,7 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
                 s.added_mass, s.band_drag, s.drag, s.filtered, not constant_wetting, w.body)
     if constant_wetting:
         centripetal_from_moments(w.first, w.second, to_body(frame, omega[0], omega[1], omega[2]), w.spin)
-        w.body[2] = w.spin
+        copy_into(w.spin, w.body[2])
     else:
         add_wet_added_mass(w.wet, s.length, s.deep, s.added_mass_6x6, w.arm, s.added_mass_3x3, fixed, w.added_mass)
     end_plate_loads(frame, velocity, omega, w.kinematics, w.plate_arm, plates.normal, w.submerged,
@@ -223,17 +230,17 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
     component_loads(t, y, rotation, d.component_params, d.component_tables, w.loads, w.masses)
     if fixed:  # the frame is the world's
         for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
-            w.loads[row] = w.body[c]
-        return w.added_mass
+            copy_into(w.body[c], w.loads[row])
+        copy_into(w.added_mass, w.world_added_mass)
+        return
     for c, row in enumerate((DRAG, INERTIA, ADDED_MASS)):
         _rotate_wrench(frame, w.body[c], w.loads[row])
     for r in range(0, 6, 3):
         for c in range(0, 6, 3):
             rotate_inertia(frame, w.added_mass[r:r + 3, c:c + 3], w.world_added_mass[r:r + 3, c:c + 3])
-    return w.world_added_mass
 
 
-@njit(cache=True)
+@step_loop
 def _freeze_dry_filters(rest_wet: np.ndarray, rates: np.ndarray) -> None:
     """Zero rates for the filters of strips dry at rest: wetted as at rest, they never load,
     and their states left to decay at zero input would become subnormal numbers, which slow
@@ -253,7 +260,7 @@ def _rotate_wrench(rotation: np.ndarray, wrench: np.ndarray, out: np.ndarray) ->
         out[3 + i] = rotation[i, 0] * wrench[3] + rotation[i, 1] * wrench[4] + rotation[i, 2] * wrench[5]
 
 
-@njit(cache=True)
+@step_loop
 def react(loads: np.ndarray, added_mass: np.ndarray, masses: np.ndarray, acceleration: np.ndarray) -> None:
     """Each left-hand-side mass's reaction -M a into its row."""
     _subtract_product(loads[ADDED_MASS], added_mass, acceleration)
@@ -269,7 +276,7 @@ def _subtract_product(row: np.ndarray, matrix: np.ndarray, x: np.ndarray) -> Non
             row[i] -= matrix[i, j] * x[j]
 
 
-@njit(cache=True)
+@step_loop
 def derivative(t: float, y: np.ndarray, d: KernelData, w: Workspace, out: np.ndarray) -> None:
     """Write dy/dt at time t to ``out`` (entries 6-12 are the accelerations); fill ``w.loads``,
     whose rows then include the reactions -M a of the masses on the left-hand side."""
@@ -277,12 +284,12 @@ def derivative(t: float, y: np.ndarray, d: KernelData, w: Workspace, out: np.nda
     _derivative(t, y, d, w, out)
 
 
-@njit(cache=True)
+@step_loop
 def _derivative(t: float, y: np.ndarray, d: KernelData, w: Workspace, out: np.ndarray) -> None:
     """``derivative`` with the kinematics at t already in ``w.kinematics``."""
-    added_mass = applied_loads(t, y, d, w, out[N_BODY_STATES:], d.still_surface, d.options.undisplaced_wetting)
-    rotation = rotation_matrix(y[3], y[4], y[5])
-    mass_matrix_and_bias(d.body.mass, d.body.cog, d.body.inertia_cog, rotation, y[9:12], w.system, w.bias)
+    applied_loads(t, y, d, w, out[N_BODY_STATES:], d.still_surface, d.options.undisplaced_wetting)
+    added_mass = w.world_added_mass
+    mass_matrix_and_bias(d.body.mass, d.body.cog, d.body.inertia_cog, w.rotation, y[9:12], w.system, w.bias)
     for i in range(6):
         total = -w.bias[i]
         for c in range(N_LOADS):
@@ -297,7 +304,7 @@ def _derivative(t: float, y: np.ndarray, d: KernelData, w: Workspace, out: np.nd
     acceleration = out[6:12]
     solve_spd(w.system, w.forces, w.factor, acceleration)
     react(w.loads, added_mass, w.masses, acceleration)
-    out[0:3] = y[6:9]
+    copy_into(y[6:9], out[0:3])
     euler_rates(y[3], y[4], y[5], y[9:12], out[3:6])
 
 
@@ -311,21 +318,27 @@ def prescribed_motion_loads(times: np.ndarray, states: np.ndarray, accelerations
     w = workspace(d)
     for n in range(times.size):
         interpolate_into(d.waves.values, d.waves.step_s, times[n], w.kinematics)
-        added_mass = applied_loads(times[n], states[n], d, w, no_filter_states, surfaces[n], False)
+        applied_loads(times[n], states[n], d, w, no_filter_states, surfaces[n], False)
         out_loads[n] = w.loads
-        react(out_loads[n], added_mass, w.masses, accelerations[n])
+        react(out_loads[n], w.world_added_mass, w.masses, accelerations[n])
 
 
-@njit(cache=True)
+@step_loop
 def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, w: Workspace) -> None:
-    k2, k3, k4 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
-    derivative(t + 0.5 * dt, y + 0.5 * dt * k1, d, w, k2)
-    derivative(t + 0.5 * dt, y + 0.5 * dt * k2, d, w, k3)
-    derivative(t + dt, y + dt * k3, d, w, k4)
-    y += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+    """One RK4 step of y in place from its rate k1 at t (scratch: ``w.trial_state``, ``w.trial_rates``)."""
+    stage, k = w.trial_state, w.trial_rates
+    previous = k1
+    for s, fraction in enumerate((0.5, 0.5, 1.0)):  # k2, k3, k4 at t + fraction dt
+        for m in range(y.size):
+            stage[m] = y[m] + fraction * dt * previous[m]
+        derivative(t + fraction * dt, stage, d, w, k[s])
+        previous = k[s]
+    for m in range(y.size):
+        y[m] += (dt / 6.0) * (k1[m] + 2.0 * k[0, m] + 2.0 * k[1, m] + k[2, m])
 
 
-@njit(cache=True, nogil=True)  # a node publishes the last batch while the next one runs
+# step_loop's options (physics.jit) and nogil: a node publishes the last batch while the next one runs
+@njit(cache=True, nogil=True, _nrt=False)
 def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_every: int,
               d: KernelData, w: Workspace, history: np.ndarray, newest: np.ndarray, out_t: np.ndarray,
               out_y: np.ndarray, out_acceleration: np.ndarray, out_loads: np.ndarray) -> int:
@@ -340,7 +353,7 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
     outputs; returns the number written. Both evaluations of a step are at its end time: the
     kinematics are interpolated once for them.
     """
-    predicted, fp = np.empty_like(y), np.empty_like(y)
+    predicted, fp = w.trial_state, w.trial_rates[0]
     h = dt / 24.0
     written = 0
     for n in range(n_steps):
@@ -362,8 +375,8 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
         _derivative(t_next, y, d, w, history[newest[0]])
         if (n + 1) % record_every == 0:
             out_t[written] = t_next
-            out_y[written] = y[:N_BODY_STATES]
-            out_acceleration[written] = history[newest[0], 6:12]
-            out_loads[written] = w.loads
+            copy_into(y[:N_BODY_STATES], out_y[written])
+            copy_into(history[newest[0], 6:12], out_acceleration[written])
+            copy_into(w.loads, out_loads[written])
             written += 1
     return written

@@ -548,12 +548,12 @@ class PlatformModel:
         rest = np.zeros_like(self._state)
         self._hold_times(0.0, 0.0)
         interpolate_into(self._data.waves.values, self._data.waves.step_s, 0.0, work.kinematics)
-        added = dynamics.applied_loads(0.0, rest, self._data, work, np.empty(rest.size - N_BODY_STATES),
-                                       self._data.still_surface, False)
+        dynamics.applied_loads(0.0, rest, self._data, work, np.empty(rest.size - N_BODY_STATES),
+                               self._data.still_surface, False)
         body = self._data.body
         rigid, bias = np.empty((6, 6)), np.empty(6)
         dynamics.mass_matrix_and_bias(body.mass, body.cog, body.inertia_cog, np.eye(3), np.zeros(3), rigid, bias)
-        return rigid + added + work.masses.sum(axis=0)
+        return rigid + work.world_added_mass + work.masses.sum(axis=0)
 
     def restoring_matrix(self, step: float = 1e-4) -> np.ndarray:
         """Linear restoring matrix (hydrostatics, gravity, mooring) at rest, by central

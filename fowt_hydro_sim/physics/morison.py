@@ -18,11 +18,12 @@ import math
 import numpy as np
 from numba import njit
 
+from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.rigid_body import cross3, to_body
 from fowt_hydro_sim.physics.strips import Discretisation
 
 
-@njit(cache=True)
+@step_loop
 def wetted_fraction(z_centre_m: float, axis_z: float, length_m: float) -> float:
     half = 0.5 * length_m * abs(axis_z)
     if half < 1e-9:
@@ -47,7 +48,7 @@ def _add_scaled(out: np.ndarray, scale: float, matrix: np.ndarray) -> None:
             out[r, c] += scale * matrix[r, c]
 
 
-@njit(cache=True)
+@step_loop
 def wetted_fractions(rotation: np.ndarray, position_z_m: float, centre: np.ndarray, axis: np.ndarray,
                      length: np.ndarray, surface_m: np.ndarray, wet: np.ndarray) -> None:
     """Each strip's wetted fraction at the pose (rotation, heave) below the water surface at
@@ -60,7 +61,7 @@ def wetted_fractions(rotation: np.ndarray, position_z_m: float, centre: np.ndarr
         wet[i] = wetted_fraction(z, axis_z, length[i])
 
 
-@njit(cache=True)
+@step_loop
 def submerged_points(rotation: np.ndarray, position_z_m: float, centre: np.ndarray, surface_m: np.ndarray,
                      out: np.ndarray) -> None:
     """1 where a point (end plate centre) is below the water surface (``surface_m``, per point)
@@ -71,7 +72,7 @@ def submerged_points(rotation: np.ndarray, position_z_m: float, centre: np.ndarr
         out[i] = 1.0 if z < 0.0 else 0.0
 
 
-@njit(cache=True)
+@step_loop
 def lever_arms(rotation: np.ndarray, points: np.ndarray, out: np.ndarray) -> None:
     """R r of each body-frame point (n, 3) into ``out`` (n, 3): its world-axes offset from the
     reference point."""
@@ -128,7 +129,7 @@ def _levi(i: int, j: int, k: int) -> float:
     return 0.5 * (i - j) * (j - k) * (k - i)
 
 
-@njit(cache=True)
+@step_loop
 def rotated_moments(rotation: np.ndarray, moments: np.ndarray, first: np.ndarray, half: np.ndarray,
                     second: np.ndarray) -> None:
     """From ``added_mass_moments``, at lever arms r = R c: P_m = sum L r_m A = sum_n R_mn (sum L
@@ -154,7 +155,7 @@ def rotated_moments(rotation: np.ndarray, moments: np.ndarray, first: np.ndarray
                         second[m, p, j, k] += rpq * half[m, q, j, k]
 
 
-@njit(cache=True)
+@step_loop
 def added_mass_from_moments(total: np.ndarray, first: np.ndarray, second: np.ndarray, out: np.ndarray) -> None:
     """The strips' sum of L J^T A J = [[A, -A S], [S A, -S A S]] (S = skew(r), linear in r)
     into ``out`` (6, 6), from sum L A (``total``) and ``rotated_moments``' P and Q:
@@ -177,7 +178,7 @@ def added_mass_from_moments(total: np.ndarray, first: np.ndarray, second: np.nda
             out[3 + j, 3 + k] = -sas
 
 
-@njit(cache=True)
+@step_loop
 def centripetal_from_moments(first: np.ndarray, second: np.ndarray, omega: tuple, out: np.ndarray) -> None:
     """The strips' centripetal added-mass wrench -sum L A w x (w x r) (moment about the
     reference point) into ``out`` (6,), from ``rotated_moments``' P and Q: with w x (w x r)
@@ -209,7 +210,7 @@ def deep_added_mass_about(rotation: np.ndarray, moments: np.ndarray) -> np.ndarr
     return out
 
 
-@njit(cache=True)
+@step_loop
 def add_wet_added_mass(wet: np.ndarray, length: np.ndarray, deep: np.ndarray, added_mass_6x6: np.ndarray,
                        arm: np.ndarray, added_mass_3x3: np.ndarray, about_arm: bool, out: np.ndarray) -> None:
     """Add each strip's 6x6 added mass times its wetted length to ``out``, which comes holding
@@ -228,7 +229,7 @@ def add_wet_added_mass(wet: np.ndarray, length: np.ndarray, deep: np.ndarray, ad
             _add_scaled(out, scale, added_mass_6x6[i])
 
 
-@njit(cache=True)
+@step_loop
 def relative_velocities(frame: np.ndarray, world_axes: bool, velocity: np.ndarray, omega: np.ndarray,
                         kinematics: np.ndarray, arm: np.ndarray, directions: np.ndarray,
                         kinematics_point: np.ndarray, wet: np.ndarray, skip_dry: bool, v_rel: np.ndarray,
@@ -269,7 +270,7 @@ def _plus_wrench(wrench: tuple, point: tuple, f0: float, f1: float, f2: float) -
             wrench[4] + (point[2] * f0 - point[0] * f2), wrench[5] + (point[0] * f1 - point[1] * f0))
 
 
-@njit(cache=True)
+@step_loop
 def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np.ndarray, a_fluid: np.ndarray,
                 v_band: np.ndarray, arm: np.ndarray, directions: np.ndarray, length: np.ndarray,
                 inertia: np.ndarray, added_mass: np.ndarray, band_drag: np.ndarray, constant_drag: np.ndarray,
@@ -329,7 +330,7 @@ def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np
         out[2, k] = spin[k]
 
 
-@njit(cache=True)
+@step_loop
 def end_plate_loads(frame: np.ndarray, velocity: np.ndarray, omega: np.ndarray, kinematics: np.ndarray,
                     arm: np.ndarray, normal: np.ndarray, submerged: np.ndarray, pressure_area: np.ndarray,
                     added_mass: np.ndarray, drag: np.ndarray, added_mass_6x6: np.ndarray,

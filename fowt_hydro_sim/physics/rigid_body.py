@@ -11,11 +11,23 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim import frames
+from fowt_hydro_sim.physics.jit import copy_into, step_loop
 
 rotation_matrix = njit(cache=True)(frames.rotation_matrix)
 
 
-@njit(cache=True)
+@step_loop
+def rotation_into(roll: float, pitch: float, yaw: float, out: np.ndarray) -> None:
+    """``rotation_matrix`` into ``out`` (3, 3)."""
+    cr, sr = np.cos(roll), np.sin(roll)
+    cp, sp = np.cos(pitch), np.sin(pitch)
+    cy, sy = np.cos(yaw), np.sin(yaw)
+    out[0, 0], out[0, 1], out[0, 2] = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
+    out[1, 0], out[1, 1], out[1, 2] = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
+    out[2, 0], out[2, 1], out[2, 2] = -sp, cp * sr, cp * cr
+
+
+@step_loop
 def euler_rates(roll: float, pitch: float, yaw: float, omega: np.ndarray, out: np.ndarray) -> None:
     """Roll, pitch, yaw rates for a world-axes angular velocity, into ``out`` (3,)."""
     cy, sy = np.cos(yaw), np.sin(yaw)
@@ -52,7 +64,7 @@ def rotate_inertia(rotation: np.ndarray, inertia: np.ndarray, out: np.ndarray) -
             out[i, j] = ri[0] * rotation[j, 0] + ri[1] * rotation[j, 1] + ri[2] * rotation[j, 2]
 
 
-@njit(cache=True)
+@step_loop
 def mass_matrix_and_bias(mass: float, cog_body: np.ndarray, inertia_cog_body: np.ndarray,
                          rotation: np.ndarray, omega: np.ndarray, out: np.ndarray, bias: np.ndarray) -> None:
     """Into ``out`` (6, 6): the mass matrix about the reference point (world axes); into
@@ -81,7 +93,7 @@ def mass_matrix_and_bias(mass: float, cog_body: np.ndarray, inertia_cog_body: np
         bias[3 + i] = gyroscopic[i] + mass * offset[i]
 
 
-@njit(cache=True)
+@step_loop
 def solve_spd(matrix: np.ndarray, rhs: np.ndarray, low: np.ndarray, x: np.ndarray) -> None:
     """Solve a small symmetric positive-definite system by Cholesky into ``x`` (no LAPACK
     call); ``low`` (n, n) is scratch for the factor."""
@@ -92,7 +104,7 @@ def solve_spd(matrix: np.ndarray, rhs: np.ndarray, low: np.ndarray, x: np.ndarra
             for k in range(j):
                 acc -= low[i, k] * low[j, k]
             low[i, j] = np.sqrt(acc) if i == j else acc / low[j, j]
-    x[:] = rhs
+    copy_into(rhs, x)
     for i in range(n):
         for k in range(i):
             x[i] -= low[i, k] * x[k]

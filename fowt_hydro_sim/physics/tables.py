@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from fowt_hydro_sim.physics.jit import step_loop
+
 
 @njit(cache=True, inline="always")
 def _lagrange(step_s: float, t: float, n: int) -> tuple[tuple[float, float, float, float], tuple[int, int, int, int]]:
@@ -17,7 +19,7 @@ def _lagrange(step_s: float, t: float, n: int) -> tuple[tuple[float, float, floa
     return w, ((i - 1) % n, i % n, (i + 1) % n, (i + 2) % n)
 
 
-@njit(cache=True)
+@step_loop
 def interpolate_series(series: np.ndarray, step_s: float, t: float, channel: int) -> float:
     """``interpolate_table`` of one channel of a periodic series (n, channels): a number, no
     array made (for the load components)."""
@@ -26,7 +28,7 @@ def interpolate_series(series: np.ndarray, step_s: float, t: float, channel: int
             + w[2] * series[rows[2], channel] + w[3] * series[rows[3], channel])
 
 
-@njit(cache=True)
+@step_loop
 def interpolate_into(table: np.ndarray, step_s: float, t: float, out: np.ndarray) -> None:
     """Cubic (4-point Lagrange) interpolation in a periodic table (n, points, channels) at
     time t, into ``out`` (points, channels)."""

@@ -24,10 +24,11 @@ from types import ModuleType
 from typing import NamedTuple
 
 import numpy as np
-from numba import literal_unroll, njit
+from numba import literal_unroll
 from numba.core.errors import NumbaExperimentalFeatureWarning
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
+from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.loads import drift, extension, external, gravity, hydrostatic, mooring
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics
@@ -97,7 +98,7 @@ def params_of(name: str, params: tuple[np.ndarray, ...]) -> np.ndarray:
     return params[ROW[name] - FIRST_MODULE_ROW]
 
 
-@njit(cache=True)
+@step_loop
 def component_loads(t: float, y: np.ndarray, rotation: np.ndarray, params: tuple, tables: tuple,
                     loads: np.ndarray, masses: np.ndarray) -> None:
     """Each module component's wrench into its row of ``loads`` (set, not added) and its

@@ -18,8 +18,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.tables import interpolate_series
 
 STEP_S = 0.5  # force samples; the slow drift lies below 0.05 Hz, the envelope below ~0.5 Hz
@@ -53,7 +53,7 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     return np.array([step]), samples
 
 
-@njit(cache=True)
+@step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """The slow-drift force F(t) (world x, y) at the reference point."""

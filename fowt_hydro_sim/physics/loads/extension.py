@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
-from numba import njit
 
+from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.tables import interpolate_series
 
 
@@ -81,7 +81,7 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
                            x.cubic_stiffness, np.ravel(x.mass)]), x.force_n
 
 
-@njit(cache=True)
+@step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """f(t) - B1 v - B2 |v| v - K q - K3 q^3, and M_x on the left-hand side."""

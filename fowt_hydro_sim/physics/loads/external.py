@@ -8,6 +8,7 @@ from numba import njit
 
 from fowt_hydro_sim.frames import WRENCH_FRAMES
 from fowt_hydro_sim.physics.config import InputError
+from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.rigid_body import cross3
 
 MAX_FORCE_N = 1e9  # 100,000 t: an absurd load on a 14,000 t platform
@@ -44,7 +45,7 @@ def set_wrench(params: np.ndarray, wrench: np.ndarray, frame: str, hub_point_m) 
     params[12:15] = hub_point_m if frame == "hub" else 0.0
 
 
-@njit(cache=True)
+@step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """The world wrench plus the body wrench turned to world axes, its force acting at the

@@ -2,8 +2,8 @@
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from fowt_hydro_sim.physics.jit import step_loop
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
@@ -12,7 +12,7 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     return np.array([p.mass.mass_kg * p.environment.gravity_m_s2, *p.mass.cog_m]), np.zeros((1, 1))
 
 
-@njit(cache=True)
+@step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     # the weight (0, 0, -m g) at the centre of gravity R c (world axes)

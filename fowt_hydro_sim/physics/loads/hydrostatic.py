@@ -47,6 +47,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.physics.config import ConfigError, Member, Platform
+from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.strips import Strips, member_directions
 
 N_RADIAL, N_ANGULAR, N_SIDE = 6, 24, 8  # section quadrature (circle: radial x angular; rectangle: side^2)
@@ -216,8 +217,8 @@ def _weight_integrals(c: float, f: float) -> tuple[float, float]:
 def submerged_volume(rotation: np.ndarray, position_z_m: float, lines: np.ndarray) -> tuple[float, np.ndarray]:
     """Volume below z = 0 of the quadrature lines' members at the pose, and its first moment
     (body frame)."""
-    moment = np.zeros(3)
-    return _add_lines(rotation, position_z_m, lines, 0, lines.shape[0], moment), moment
+    volume, m0, m1, m2 = _add_lines(rotation, position_z_m, lines, 0, lines.shape[0], (0.0, 0.0, 0.0, 0.0))
+    return volume, np.array([m0, m1, m2])
 
 
 @njit(cache=True)
@@ -226,30 +227,37 @@ def members_submerged_volume(rotation: np.ndarray, position_z_m: float, records:
     """``submerged_volume`` member by member (``member_records``): a member whose end faces are
     all below the water plane adds its whole volume, one all above nothing, one cut through
     its side wall only its coarse lines, any other its fine lines."""
-    volume, moment = 0.0, np.zeros(3)
+    volume, moment = _members_volume(rotation, position_z_m, records, lines)
+    return volume, np.array(moment)
+
+
+@step_loop
+def _members_volume(rotation: np.ndarray, position_z_m: float, records: np.ndarray,
+                    lines: np.ndarray) -> tuple[float, tuple[float, float, float]]:
+    """``members_submerged_volume`` with the moment as a tuple (no array made)."""
+    total = (0.0, 0.0, 0.0, 0.0)  # volume and first moment
     for k in range(records.size // RECORD):
         r = records[k * RECORD:(k + 1) * RECORD]
         z_a = position_z_m + rotation[2, 0] * r[END_A] + rotation[2, 1] * r[END_A + 1] + rotation[2, 2] * r[END_A + 2]
         z_b = position_z_m + rotation[2, 0] * r[END_B] + rotation[2, 1] * r[END_B + 1] + rotation[2, 2] * r[END_B + 2]
         reach = r[REACH]
         if max(z_a, z_b) + reach < 0.0:
-            volume += r[VOLUME]
-            for i in range(3):
-                moment[i] += r[MOMENT + i]
+            total = (total[0] + r[VOLUME], total[1] + r[MOMENT], total[2] + r[MOMENT + 1], total[3] + r[MOMENT + 2])
         elif min(z_a, z_b) - reach > 0.0:
             continue
         elif min(z_a, z_b) + reach < 0.0 and max(z_a, z_b) - reach > 0.0:
-            volume += _add_lines(rotation, position_z_m, lines, int(r[FIRST_COARSE]), int(r[N_COARSE]), moment)
+            total = _add_lines(rotation, position_z_m, lines, int(r[FIRST_COARSE]), int(r[N_COARSE]), total)
         else:
-            volume += _add_lines(rotation, position_z_m, lines, int(r[FIRST_FINE]), int(r[N_FINE]), moment)
-    return volume, moment
+            total = _add_lines(rotation, position_z_m, lines, int(r[FIRST_FINE]), int(r[N_FINE]), total)
+    return total[0], (total[1], total[2], total[3])
 
 
-@njit(cache=True)
+@step_loop
 def _add_lines(rotation: np.ndarray, position_z_m: float, lines: np.ndarray, first: int, count: int,
-               moment: np.ndarray) -> float:
-    """The submerged volume of lines[first:first + count]; their first moment added to ``moment``."""
-    volume = 0.0
+               total: tuple[float, float, float, float]) -> tuple[float, float, float, float]:
+    """``total`` (volume, first moment) plus the submerged volume of lines[first:first + count]
+    and its first moment (the lines' volume summed on its own first)."""
+    volume, (m0, m1, m2) = 0.0, total[1:]
     for q in range(first, first + count):
         line = lines[q]
         z0 = position_z_m + rotation[2, 0] * line[0] + rotation[2, 1] * line[1] + rotation[2, 2] * line[2]
@@ -266,11 +274,12 @@ def _add_lines(rotation: np.ndarray, position_z_m: float, lines: np.ndarray, fir
         v_high, m_high = _weight_integrals(c, high)
         v_low, m_low = _weight_integrals(c, low)
         scale = line[6] * line[7]
-        wet, first = scale * (v_high - v_low), scale * (m_high - m_low)
+        wet, first_moment = scale * (v_high - v_low), scale * (m_high - m_low)
         volume += wet
-        for k in range(3):
-            moment[k] += wet * line[k] + first * line[3 + k]
-    return volume
+        m0 += wet * line[0] + first_moment * line[3]
+        m1 += wet * line[1] + first_moment * line[4]
+        m2 += wet * line[2] + first_moment * line[5]
+    return total[0] + volume, m0, m1, m2
 
 
 # --------------------------------------------------------------------------- load component
@@ -293,7 +302,7 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate([params, records]), lines
 
 
-@njit(cache=True)
+@step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """Linear: W0 - C q about the undisplaced position. Nonlinear: rho g V_sub through the
@@ -305,7 +314,7 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
                 acc -= params[8 + 6 * i + j] * y[j]
             out[i] += acc
         return
-    volume, moment = members_submerged_volume(rotation, y[2], params[44:], table)
+    volume, moment = _members_volume(rotation, y[2], params[44:], table)
     if volume <= 0.0:
         return
     force = params[1] * volume

@@ -7,8 +7,8 @@ body's motion.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from fowt_hydro_sim.physics.jit import step_loop
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
@@ -19,7 +19,7 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
                            np.ravel([line.anchor_m for line in mooring.lines])]), np.zeros((1, 1))
 
 
-@njit(cache=True)
+@step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """Force and moment (world axes, about the reference point) of all lines."""

@@ -1,0 +1,24 @@
+"""How the step loop is compiled: numba's nopython mode without its runtime (NRT).
+
+Without the runtime a function cannot allocate (an allocation is a compile error, so the
+step loop provably allocates nothing) and numba emits no reference counting of the arrays it
+reads: with the runtime, every array taken from the kernel data and workspace tuples was
+counted up and down at every call, a third of a right-hand side. A ``step_loop`` function
+therefore takes arrays and returns numbers, tuples of numbers or nothing; its scratch
+arrays come from ``dynamics.Workspace``. Small helpers stay ``inline="always"`` njit
+functions, compiled into their callers. Array-to-array assignment (``a[:] = b``) may make a
+temporary copy in numba, so a ``step_loop`` function copies with ``copy_into``.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+step_loop = njit(cache=True, _nrt=False)
+
+
+@njit(cache=True, inline="always")
+def copy_into(source, out) -> None:
+    """out[...] = source, element by element (arrays of one shape)."""
+    for index in np.ndindex(out.shape):
+        out[index] = source[index]
