@@ -31,13 +31,14 @@ def interpolate_series(series: np.ndarray, step_s: float, t: float, channel: int
 @step_loop
 def interpolate_into(table: np.ndarray, step_s: float, t: float, out: np.ndarray) -> None:
     """Cubic (4-point Lagrange) interpolation in a periodic table (n, points, channels) at
-    time t, into ``out`` (points, channels)."""
+    time t, into ``out`` (points, channels); both C-contiguous (one flat loop, vectorised)."""
     n, n_points, n_channels = table.shape
     w, rows = _lagrange(step_s, t, n)
-    for p in range(n_points):
-        for c in range(n_channels):
-            out[p, c] = (w[0] * table[rows[0], p, c] + w[1] * table[rows[1], p, c]
-                         + w[2] * table[rows[2], p, c] + w[3] * table[rows[3], p, c])
+    flat = table.reshape((n, n_points * n_channels))
+    r0, r1, r2, r3 = flat[rows[0]], flat[rows[1]], flat[rows[2]], flat[rows[3]]
+    into = out.reshape(n_points * n_channels)
+    for j in range(into.size):
+        into[j] = w[0] * r0[j] + w[1] * r1[j] + w[2] * r2[j] + w[3] * r3[j]
 
 
 @njit(cache=True)
