@@ -232,7 +232,8 @@ class PlatformModel:
     def _steps_held(self, first_step: int, n_steps: int) -> int:
         """How many of the next n steps from ``first_step`` the ring can hold at once (two
         blocks from the one the current time needs), after synthesising them; all of them
-        for a whole-period table."""
+        for a whole-period table. When the run goes on past them, the block after is made
+        ahead meanwhile (in the worker: a batch run's next part then finds it made)."""
         if self._blocks is None:
             return n_steps
         m = self._blocks.block_rows
@@ -242,6 +243,8 @@ class PlatformModel:
         while n > 0 and self._table_row((first_step + n) * self.dt_s) + 2 > last_row:
             n -= 1
         self._hold_rows(first_row, self._table_row((first_step + n) * self.dt_s) + 2)
+        if n < n_steps:
+            self._blocks.prepare(last_row // m + 1)
         return n
 
     def reset(self, motion: np.ndarray | None = None, velocity: np.ndarray | None = None) -> None:
