@@ -338,7 +338,7 @@ def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, w: W
 
 
 # step_loop's options (physics.jit) and nogil: a node publishes the last batch while the next one runs
-@njit(cache=True, nogil=True, _nrt=False)
+@njit(cache=True, nogil=True, _nrt=False, fastmath={"contract"})
 def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_every: int,
               d: KernelData, w: Workspace, history: np.ndarray, newest: np.ndarray, out_t: np.ndarray,
               out_y: np.ndarray, out_acceleration: np.ndarray, out_loads: np.ndarray) -> int:

@@ -5,16 +5,20 @@ step loop provably allocates nothing) and numba emits no reference counting of t
 reads: with the runtime, every array taken from the kernel data and workspace tuples was
 counted up and down at every call, a third of a right-hand side. A ``step_loop`` function
 therefore takes arrays and returns numbers, tuples of numbers or nothing; its scratch
-arrays come from ``dynamics.Workspace``. Small helpers stay ``inline="always"`` njit
-functions, compiled into their callers. Array-to-array assignment (``a[:] = b``) may make a
-temporary copy in numba, so a ``step_loop`` function copies with ``copy_into``.
+arrays come from ``dynamics.Workspace``. Array-to-array assignment (``a[:] = b``) may make a
+temporary copy in numba, so it copies with ``copy_into``. Small helpers stay
+``inline="always"`` njit functions, compiled into their callers.
+
+A product and a sum may fuse into one multiply-add (LLVM's ``contract``, the only fast-math
+flag: one rounding instead of two, so results differ from unfused arithmetic at round-off;
+no reassociation, no assumptions about NaN or infinities).
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
-step_loop = njit(cache=True, _nrt=False)
+step_loop = njit(cache=True, _nrt=False, fastmath={"contract"})
 
 
 @njit(cache=True, inline="always")
