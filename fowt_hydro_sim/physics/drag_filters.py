@@ -144,10 +144,19 @@ def nonzero_entries(matrix: np.ndarray) -> np.ndarray:
 
 
 @step_loop
+def filter_inputs(filter_strip: np.ndarray, v_rel: np.ndarray, out: np.ndarray) -> None:
+    """The filtered strips' relative velocities (``v_rel`` (n_strips, 2) at rows ``filter_strip``)
+    into ``out`` (2 m,), ordered (strip, direction): the filters' input."""
+    for c in range(filter_strip.size):
+        out[2 * c] = v_rel[filter_strip[c], 0]
+        out[2 * c + 1] = v_rel[filter_strip[c], 1]
+
+
+@step_loop
 def band_velocities(states: np.ndarray, v_rel: np.ndarray, c: np.ndarray, c_nonzero: np.ndarray,
                     d: np.ndarray, out: np.ndarray) -> None:
     """Band velocities C x + D v_rel, ``out`` (n_bands, m), from the filter states
-    (n_states, m) and the relative velocities (m,), m = 2 n_strips ordered (strip, direction)."""
+    (n_states, m) and the relative velocities (m,), ordered (strip, direction): ``filter_inputs``."""
     for b in range(d.size):
         for i in range(v_rel.size):
             out[b, i] = d[b] * v_rel[i]

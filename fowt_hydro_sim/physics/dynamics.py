@@ -1,8 +1,9 @@
 """6-DOF equations of motion and the fixed-step ABM4 integrator, compiled with numba.
 
 State y = [x, y, z, roll, pitch, yaw, v_x, v_y, v_z, w_x, w_y, w_z] (world axes, reference
-point), followed by the drag filter states, ordered (filter state, strip, direction); none
-for the constant-Cd model. The right-hand side fills one row of loads per registered load
+point), followed by the drag filter states, ordered (filter state, filtered strip, direction):
+every strip's, or with strips wetted as at rest (the default) only those wet at rest (a strip
+dry at rest never loads); none for the constant-Cd model. The right-hand side fills one row of loads per registered load
 component (``physics.loads``): the Morison strip model's rows, then each module
 component's. It solves (M + A(q) + sum M_c) [a; alpha] = F, with the strip added mass A and
 any component's mass M_c on the left-hand side.
@@ -17,7 +18,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from fowt_hydro_sim.physics.drag_filters import band_velocities, filter_rates
+from fowt_hydro_sim.physics.drag_filters import band_velocities, filter_inputs, filter_rates
 from fowt_hydro_sim.physics.jit import copy_into, step_loop
 from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, N_LOADS, ROW, component_loads
 from fowt_hydro_sim.physics.morison import (
@@ -67,6 +68,8 @@ class StripData(NamedTuple):
     band_drag: np.ndarray  # (n, n_bands, 2): 0.5 rho Cd_b b per drag band; no bands: constant Cd
     filtered: np.ndarray  # (n, 2) bool: the direction's drag is summed over the bands
     point: np.ndarray  # (n,) index of the kinematics point
+    filter_strip: np.ndarray  # (m,) int64: the strips with drag filter states (dynamics' docstring)
+    filter_column: np.ndarray  # (n,) int64: the strip's filter inputs are columns 2 c, 2 c + 1; -1: none
     deep: np.ndarray  # (n,) bool: fully wet at rest (morison.strip_loads)
     deep_added_mass_6x6: np.ndarray  # (6, 6) their added mass fully wet, body axes, about the reference point
     deep_moments: np.ndarray  # (13, 3, 3) moments of their 3x3 added mass (morison.added_mass_moments)
@@ -136,7 +139,8 @@ class Workspace(NamedTuple):
     wet: np.ndarray  # (n_strips,)
     v_rel: np.ndarray  # (n_strips, 2)
     a_fluid: np.ndarray  # (n_strips, 2)
-    v_band: np.ndarray  # (n_bands, 2 n_strips)
+    v_filtered: np.ndarray  # (2 m,) the filtered strips' relative velocities, the filters' input
+    v_band: np.ndarray  # (n_bands, 2 m) their band velocities
     arm: np.ndarray  # (n_strips, 3) lever arms in the frame
     plate_arm: np.ndarray  # (n_plates, 3)
     submerged: np.ndarray  # (n_plates,)
@@ -158,11 +162,11 @@ class Workspace(NamedTuple):
 @njit(cache=True)
 def workspace(d: KernelData) -> Workspace:
     """The scratch ``derivative`` and ``integrate`` work in, for kernel data ``d``."""
-    n = d.strips.length.size
-    n_states = N_BODY_STATES + d.filters.b.size * 2 * n
+    n, m = d.strips.length.size, d.strips.filter_strip.size
+    n_states = N_BODY_STATES + d.filters.b.size * 2 * m
     return Workspace(np.zeros((N_LOADS, 6)), np.eye(3), np.eye(3), np.zeros((N_MODULE_COMPONENTS, 6, 6)),
                      np.zeros(d.waves.values.shape[1:]), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2)),
-                     np.zeros((d.filters.d.size, 2 * n)),
+                     np.zeros(2 * m), np.zeros((d.filters.d.size, 2 * m)),
                      d.strips.centre.copy(), d.plates.centre.copy(), np.zeros(d.plates.centre.shape[0]),
                      np.zeros((3, 6)), np.zeros((3, 3, 3)), np.zeros((3, 3, 3, 3)), np.zeros((3, 3, 3, 3)),
                      np.zeros(6), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)),
@@ -174,12 +178,13 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
                   surface: np.ndarray, constant_wetting: bool) -> None:
     """Fill ``w.loads`` (N_LOADS, 6; world axes, about the reference point) at state y and
     time t from the kinematics in ``w.kinematics`` (at t), with only the centripetal part in
-    the added-mass row, ``w.masses`` with the module components' masses, ``w.rotation`` with R,
-    ``w.world_added_mass`` with the strips' and plates' 6x6 added mass (world axes) that
-    multiplies the body acceleration, and the drag filter states' rates. ``surface`` (n_strips + n_plates) is the water surface height the
-    strips and plates are wetted up to; ``constant_wetting``: the strips stay wetted as at
-    rest (undisplaced wetted length, still surface), so the dry ones are skipped and the
-    added mass and its centripetal wrench are sums of precomputed moments."""
+    the added-mass row, ``w.masses`` with the module components' masses, ``w.rotation`` with
+    R, ``w.world_added_mass`` with the strips' and plates' 6x6 added mass (world axes) that
+    multiplies the body acceleration, and the drag filter states' rates. ``surface``
+    (n_strips + n_plates) is the water surface height the strips and plates are wetted up
+    to; ``constant_wetting``: the strips stay wetted as at rest (undisplaced wetted length,
+    still surface), so the dry ones are skipped and the added mass and its centripetal
+    wrench are sums of precomputed moments."""
     position, angles = y[0:3], y[3:6]
     velocity, omega = y[6:9], y[9:12]
     rotation_into(angles[0], angles[1], angles[2], w.rotation)
@@ -210,15 +215,13 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
         submerged_points(rotation, position[2], plates.centre, surface[s.length.size:], w.submerged)
     relative_velocities(frame, fixed, velocity, omega, w.kinematics, w.arm, s.directions, s.point, w.wet,
                         constant_wetting, w.v_rel, w.a_fluid)
-    filter_states = y[N_BODY_STATES:].reshape((bank.b.size, 2 * s.length.size))
-    v_flat = w.v_rel.reshape(2 * s.length.size)
-    band_velocities(filter_states, v_flat, bank.c, bank.c_nonzero, bank.d, w.v_band)
-    rates = filter_rates_out.reshape(filter_states.shape)
-    filter_rates(filter_states, v_flat, bank.a, bank.a_nonzero, bank.b, rates)
-    if constant_wetting:
-        _freeze_dry_filters(s.rest_wet, rates)
-    strip_loads(frame, omega, w.wet, w.v_rel, w.a_fluid, w.v_band, w.arm, s.directions, s.length, s.inertia,
-                s.added_mass, s.band_drag, s.drag, s.filtered, not constant_wetting, w.body)
+    filter_states = y[N_BODY_STATES:].reshape((bank.b.size, w.v_filtered.size))
+    filter_inputs(s.filter_strip, w.v_rel, w.v_filtered)
+    band_velocities(filter_states, w.v_filtered, bank.c, bank.c_nonzero, bank.d, w.v_band)
+    filter_rates(filter_states, w.v_filtered, bank.a, bank.a_nonzero, bank.b,
+                 filter_rates_out.reshape(filter_states.shape))
+    strip_loads(frame, omega, w.wet, w.v_rel, w.a_fluid, w.v_band, s.filter_column, w.arm, s.directions, s.length,
+                s.inertia, s.added_mass, s.band_drag, s.drag, s.filtered, not constant_wetting, w.body)
     if constant_wetting:
         centripetal_from_moments(w.first, w.second, to_body(frame, omega[0], omega[1], omega[2]), w.spin)
         copy_into(w.spin, w.body[2])
@@ -238,18 +241,6 @@ def applied_loads(t: float, y: np.ndarray, d: KernelData, w: Workspace, filter_r
     for r in range(0, 6, 3):
         for c in range(0, 6, 3):
             rotate_inertia(frame, w.added_mass[r:r + 3, c:c + 3], w.world_added_mass[r:r + 3, c:c + 3])
-
-
-@step_loop
-def _freeze_dry_filters(rest_wet: np.ndarray, rates: np.ndarray) -> None:
-    """Zero rates for the filters of strips dry at rest: wetted as at rest, they never load,
-    and their states left to decay at zero input would become subnormal numbers, which slow
-    every later product with them (the ABM4 loops, the filter rates) many times over."""
-    for i in range(rest_wet.size):
-        if rest_wet[i] == 0.0:
-            for r in range(rates.shape[0]):
-                rates[r, 2 * i] = 0.0
-                rates[r, 2 * i + 1] = 0.0
 
 
 @njit(cache=True, inline="always")

@@ -171,6 +171,10 @@ class PlatformModel:
         wet = np.empty(len(s.length_m))
         wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(len(s.length_m)), wet)
         deep = wet == 1.0
+        # strips with drag filter states: wetted as at rest, those wet at rest (the others never load)
+        filter_strip = np.flatnonzero(wet > 0.0 if self.options.wetted_length == "undisplaced" else wet >= 0.0)
+        filter_column = np.full(len(s.length_m), -1, dtype=np.int64)
+        filter_column[filter_strip] = np.arange(filter_strip.size)
         moments = added_mass_moments(s.centre_m, strip_3x3, s.length_m * deep)
         rest_moments = added_mass_moments(s.centre_m, strip_3x3, s.length_m * wet)
         return KernelData(
@@ -178,7 +182,8 @@ class PlatformModel:
             strips=StripData(s.centre_m, s.axis, s.directions, s.length_m, s.inertia_kg_m, s.added_mass_kg_m,
                              strip_3x3, strip_6x6, s.drag_kg_m2,
                              s.band_drag_kg_m2 if filtered else np.zeros((len(s.length_m), 0, 2)),
-                             s.filtered & filtered, s.kinematics_point.astype(np.int64), deep,
+                             s.filtered & filtered, s.kinematics_point.astype(np.int64), filter_strip,
+                             filter_column, deep,
                              deep_added_mass_about(np.eye(3), moments), moments, wet,
                              deep_added_mass_about(np.eye(3), rest_moments), rest_moments),
             plates=PlateData(plates.centre_m, plates.normal, plates.pressure_area_m2, plates.added_mass_kg,
@@ -250,12 +255,12 @@ class PlatformModel:
     def reset(self, motion: np.ndarray | None = None, velocity: np.ndarray | None = None) -> None:
         """Restart at t = 0 from a 6-DOF offset and velocity (default: at rest), with the drag
         filters in steady state."""
-        self._state = np.zeros(N_BODY_STATES + self.n_strips * 2 * self.filter_bank.n_states)
+        self._state = np.zeros(N_BODY_STATES + self._data.strips.filter_strip.size * 2 * self.filter_bank.n_states)
         if motion is not None:
             self._state[0:6] = motion
         if velocity is not None:
             self._state[6:12] = velocity
-        self._state[N_BODY_STATES:] = self._steady_filter_states().ravel()
+        self._state[N_BODY_STATES:] = self._steady_filter_states()[:, self._data.strips.filter_strip].ravel()
         self._step_index = 0
         self._work = dynamics.workspace(self._data)
         self._restart_history()
@@ -363,14 +368,17 @@ class PlatformModel:
 
     def strip_velocities(self) -> tuple[np.ndarray, np.ndarray]:
         """Transverse relative velocity of each strip (n_strips, 2: d1, d2, member frame) and
-        its band velocities (n_strips, n_bands, 2) at the current time."""
-        waves, bank = self._data.waves, self._data.filters
+        its band velocities (n_strips, n_bands, 2) at the current time; NaN for a strip
+        without drag filter states (dry at rest, wetted as at rest: it never loads)."""
+        waves, bank, filtered = self._data.waves, self._data.filters, self._data.strips.filter_strip
         self._hold_times(self.time_s, self.time_s)
         v_rel = self._relative_velocities(interpolate_table(waves.values, waves.step_s, self.time_s))
-        v_band = np.empty((bank.d.size, 2 * self.n_strips))
-        states = self._state[N_BODY_STATES:].reshape(self.filter_bank.n_states, 2 * self.n_strips)
-        band_velocities(states, v_rel.ravel(), bank.c, bank.c_nonzero, bank.d, v_band)
-        return v_rel, v_band.reshape(-1, self.n_strips, 2).transpose(1, 0, 2)
+        v_band = np.empty((bank.d.size, 2 * filtered.size))
+        states = self._state[N_BODY_STATES:].reshape(self.filter_bank.n_states, 2 * filtered.size)
+        band_velocities(states, v_rel[filtered].ravel(), bank.c, bank.c_nonzero, bank.d, v_band)
+        out = np.full((self.n_strips, bank.d.size, 2), np.nan)
+        out[filtered] = v_band.reshape(-1, filtered.size, 2).transpose(1, 0, 2)
+        return v_rel, out
 
     @property
     def loads(self) -> np.ndarray:

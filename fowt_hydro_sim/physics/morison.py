@@ -240,7 +240,7 @@ def relative_velocities(frame: np.ndarray, world_axes: bool, velocity: np.ndarra
     frame is the identity (fixed directions), the kinematics are taken as they are. Dry strips
     (``wet`` 0) get them too, so that drag filters see a continuous input, unless
     ``skip_dry`` (strips wetted as at rest at every step: a dry strip never loads, its entries
-    are left as they are and its filters are frozen: ``dynamics.applied_loads``)."""
+    are left as they are and it has no filters: ``dynamics``)."""
     v_body = to_body(frame, velocity[0], velocity[1], velocity[2])
     w_body = to_body(frame, omega[0], omega[1], omega[2])
     for i in range(arm.shape[0]):
@@ -272,9 +272,9 @@ def _plus_wrench(wrench: tuple, point: tuple, f0: float, f1: float, f2: float) -
 
 @step_loop
 def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np.ndarray, a_fluid: np.ndarray,
-                v_band: np.ndarray, arm: np.ndarray, directions: np.ndarray, length: np.ndarray,
-                inertia: np.ndarray, added_mass: np.ndarray, band_drag: np.ndarray, constant_drag: np.ndarray,
-                filtered: np.ndarray, with_centripetal: bool, out: np.ndarray) -> None:
+                v_band: np.ndarray, filter_column: np.ndarray, arm: np.ndarray, directions: np.ndarray,
+                length: np.ndarray, inertia: np.ndarray, added_mass: np.ndarray, band_drag: np.ndarray,
+                constant_drag: np.ndarray, filtered: np.ndarray, with_centripetal: bool, out: np.ndarray) -> None:
     """The strips' drag, fluid-inertia and (``with_centripetal``) centripetal added-mass
     wrenches (frame axes, about the reference point) into ``out`` rows 0-2, each strip's
     loads times its wetted length (``wet`` x ``length``). Their 6x6 added mass:
@@ -282,8 +282,8 @@ def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np
     gives it.
 
     Drag per wetted length (d1, d2): over the bands for filtered directions, 0.5 rho Cd_b D
-    |v_b| v_b (``band_drag`` (n, n_bands, 2) = 0.5 rho Cd_b D; ``v_band`` (n_bands, 2 n), its
-    columns ordered (strip, direction): drag_filters), otherwise 0.5 rho Cd D |v_rel| v_rel
+    |v_b| v_b (``band_drag`` (n, n_bands, 2) = 0.5 rho Cd_b D; ``v_band`` (n_bands, 2 m), strip
+    i's in columns 2 c, 2 c + 1 with c = ``filter_column[i]``: drag_filters), otherwise 0.5 rho Cd D |v_rel| v_rel
     (``constant_drag`` (n, 2)). No bands: the constant-Cd model. (Written out in the loop:
     an array handed to a helper per strip costs reference counting that is most of the loop.)"""
     w_body = to_body(frame, omega[0], omega[1], omega[2])
@@ -304,8 +304,9 @@ def strip_loads(frame: np.ndarray, omega: np.ndarray, wet: np.ndarray, v_rel: np
             speed = math.sqrt(v1 * v1 + v2 * v2)
             drag1 = 0.0 if filtered1 else constant_drag[i, 0] * speed * v1
             drag2 = 0.0 if filtered2 else constant_drag[i, 1] * speed * v2
+        column = 2 * filter_column[i]
         for b in range(v_band.shape[0]):
-            b1, b2 = v_band[b, 2 * i], v_band[b, 2 * i + 1]
+            b1, b2 = v_band[b, column], v_band[b, column + 1]
             band_speed = math.sqrt(b1 * b1 + b2 * b2)
             if filtered1:
                 drag1 += band_drag[i, b, 0] * band_speed * b1
