@@ -1,12 +1,12 @@
 """6-DOF equations of motion and the fixed-step ABM4 integrator, compiled with numba.
 
 State y = [x, y, z, roll, pitch, yaw, v_x, v_y, v_z, w_x, w_y, w_z] (world axes, reference
-point), followed by the drag filter states, ordered (filter state, filtered strip, direction):
-every strip's, or with strips wetted as at rest (the default) only those wet at rest (a strip
-dry at rest never loads); none for the constant-Cd model. The right-hand side fills one row of loads per registered load
-component (``physics.loads``): the Morison strip model's rows, then each module
-component's. It solves (M + A(q) + sum M_c) [a; alpha] = F, with the strip added mass A and
-any component's mass M_c on the left-hand side.
+point), followed by the drag filter states, ordered (filter state, filtered strip,
+direction): every strip's, or with strips wetted as at rest (the default) only those wet at
+rest (a strip dry at rest never loads); none for the constant-Cd model. The right-hand side
+fills one row of loads per registered load component (``physics.loads``): the Morison strip
+model's rows, then each module component's. It solves (M + A(q) + sum M_c) [a; alpha] = F,
+with the strip added mass A and any component's mass M_c on the left-hand side.
 
 ``integrate`` advances any number of steps in compiled code; a node stepping one dt at a
 time and a batch run call the same function, so both give the same numbers, bit for bit.
