@@ -252,6 +252,29 @@ def test_stepping_one_dt_at_a_time_equals_a_batch_run_bit_for_bit():
     assert np.array_equal(np.array(rows), np.hstack([batch.motion, batch.velocity, batch.acceleration])[1:])
 
 
+@pytest.mark.parametrize("drag_model", ["constant", "filtered"])
+def test_the_time_loop_allocates_nothing(drag_model: str):
+    """The compiled time loop (RK4 start and ABM4 steps, every right-hand side) makes no array:
+    numba's allocation counters do not move over 200 steps (the step loop is compiled
+    without numba's runtime, physics.jit; before, every right-hand side made a few arrays)."""
+    from numba.core.runtime import _nrt_python, rtsys
+
+    from fowt_hydro_sim.physics import dynamics
+    from fowt_hydro_sim.physics.loads import N_LOADS
+
+    model = PlatformModel(load_platform("windmoor12"), synthesize(load_case("lc5.3").sea_state, 600.0),
+                          drag_model=drag_model)
+    n = 200
+    outputs = np.empty(n), np.empty((n, 12)), np.empty((n, 6)), np.empty((n, N_LOADS, 6))
+    _nrt_python.memsys_enable_stats()
+    before = rtsys.get_allocation_stats()
+    written = dynamics.integrate(model._state, 0, model.dt_s, n, 1, model._data, model._work,  # noqa: SLF001
+                                 model._history, model._newest, *outputs)  # noqa: SLF001 (the kernel's own call)
+    after = rtsys.get_allocation_stats()
+    assert written == n and np.all(np.isfinite(outputs[1]))
+    assert (after.alloc, after.mi_alloc) == (before.alloc, before.mi_alloc)
+
+
 def test_prescribed_motion_replays_a_simulated_run():
     """The loads of a simulated run, recomputed from its own motion in prescribed-motion mode,
     are the same loads (the path the diagnosis uses to replay measured motion), to round-off
