@@ -43,7 +43,10 @@ log = logging.getLogger("fowt_hydro_sim.player")
 DEPTH = 1000
 CLOCK_TOPIC = "/clock"
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
-ACK_TIMEOUT_S = 2.0  # at the end: wall seconds to wait for reliable subscribers to acknowledge
+# at the end: wall seconds to wait for reliable subscribers to acknowledge (it returns as soon
+# as they have; a busy subscriber, e.g. a node stepping as fast as it can on a loaded machine,
+# may take seconds, and what it has not acknowledged when the player exits is lost to it)
+ACK_TIMEOUT_S = 30.0
 _RELIABILITY = {"reliable": "reliable", "best_effort": "best_effort", 1: "reliable", 2: "best_effort"}
 _DURABILITY = {"volatile": "volatile", "transient_local": "transient_local", 1: "transient_local", 2: "volatile"}
 
@@ -233,7 +236,9 @@ class Player:
         for publisher in [*self.publishers.values(), self.clock_publisher]:
             if publisher is not None:
                 remaining = max(0.0, deadline - time.monotonic())
-                publisher.wait_for_all_acked(Duration(nanoseconds=int(remaining * 1e9)))
+                if not publisher.wait_for_all_acked(Duration(nanoseconds=int(remaining * 1e9))):
+                    log.warning("%s: a reliable subscriber had not acknowledged every message after %.0f s; "
+                                "it may miss the last ones", publisher.topic_name, ACK_TIMEOUT_S)
         self.node.destroy_node()
 
 
