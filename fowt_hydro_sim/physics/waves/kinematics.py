@@ -234,6 +234,7 @@ class BlockSynthesis:
         self._first_harmonic = int(waves.harmonic.min())
         self._offsets = waves.harmonic - self._first_harmonic  # j of each component
         self._unique = np.unique(self._offsets).size == self._offsets.size
+        self._dense = np.array_equal(self._offsets, np.arange(self._offsets.size))  # every harmonic once, in order
         heading = waves.direction_rad[0]
         self._heading = (np.cos(heading), np.sin(heading)) if np.all(waves.direction_rad == heading) else None
         n_harmonics = int(self._offsets.max()) + 1
@@ -261,26 +262,40 @@ class BlockSynthesis:
         if out is None:
             out = np.empty((self.block_rows, self.points_m.shape[0], N_CHANNELS))
         n_transforms = N_CHANNELS if self._heading is None else N_CHANNELS - 2
-        spectrum = np.zeros((n_transforms, self._fft_rows), dtype=complex)
+        n_harmonics = self._offsets.size
+        spectrum = np.zeros((n_transforms, self._fft_rows), dtype=complex)  # the rest stays zero when dense
+        if self._heading is not None:  # u_x, u_y = cos, sin u_h (a_x, a_y likewise)
+            split, scale = [0, 0, 1, 2, 2, 3, 4], np.array([*self._heading, 1.0, *self._heading, 1.0, 1.0])
         for i, point in enumerate(self.points_m):  # one point at a time bounds the temporaries
-            amp = _channel_amplitudes(self._components, point[None], *self._depth)[0] * into
-            if self._heading is not None:  # u_x, u_y = cos, sin u_h (a_x, a_y likewise)
-                cos_b, sin_b = self._heading
-                amp = np.stack([cos_b * amp[0] + sin_b * amp[1], amp[2], cos_b * amp[3] + sin_b * amp[4],
-                                amp[5], amp[6]])
-            spectrum[:] = 0.0
-            if self._unique:
-                spectrum[:, self._offsets] = amp
+            amp = self._spectra(point, into)
+            if self._dense:
+                spectrum[:, :n_harmonics] = amp
             else:
-                np.add.at(spectrum, (slice(None), self._offsets), amp)
+                spectrum[:] = 0.0
+                if self._unique:
+                    spectrum[:, self._offsets] = amp
+                else:
+                    np.add.at(spectrum, (slice(None), self._offsets), amp)
             convolved = scipy.fft.ifft(scipy.fft.fft(spectrum, axis=1) * self._chirp_spectrum, axis=1,
                                        overwrite_x=True)
             values = (convolved[:, :self.block_rows] * out_phase).real.T
-            if self._heading is None:
-                out[:, i, :] = values
-            else:
-                out[:, i, :] = values[:, [0, 0, 1, 2, 2, 3, 4]] * np.array([cos_b, sin_b, 1.0, cos_b, sin_b, 1.0, 1.0])
+            out[:, i, :] = values if self._heading is None else values[:, split] * scale
         return out
+
+    def _spectra(self, point: np.ndarray, into: np.ndarray) -> np.ndarray:
+        """The point's transforms' spectra times ``into`` (n_transforms, n_components): the
+        seven channels', or for a long-crested sea five: the velocity and acceleration along
+        the heading (split into x and y after the transform), vertical, and the pressure."""
+        if self._heading is None:
+            return _channel_amplitudes(self._components, point[None], *self._depth)[0] * into
+        comp = self._components
+        depth_m, gravity_m_s2, density_kg_m3 = self._depth
+        s = point[0] * comp.cos_b + point[1] * comp.sin_b
+        base = comp.amplitude_m * np.exp(1j * (comp.phase_rad - comp.k * s)) * into
+        c, sh, p = depth_factors(comp.k, np.array([point[2]]), depth_m)
+        u_h, u_z = base * (comp.omega * c), base * (1j * comp.omega * sh)  # as _channel_amplitudes
+        return np.stack([u_h, u_z, u_h * (1j * comp.omega), u_z * (1j * comp.omega),
+                         base * (density_kg_m3 * gravity_m_s2 * p)])
 
 
 class BlocksAhead:
