@@ -224,11 +224,14 @@ def main() -> None:
             blocked_results[drag] = model.run(args.duration, output_interval_s=0.25)
             if time.perf_counter() - begin < whole[drag]:
                 whole[drag], waited[drag] = time.perf_counter() - begin, model.wave_block_wait_s - before
-    synthesis = probe._blocks.synthesis  # noqa: SLF001 (one block made on this thread)
+    synthesis = probe._blocks.synthesis  # noqa: SLF001 (blocks made on this thread, best of 3)
     block = np.empty((synthesis.block_rows, len(probe.geometry.points_m), 7))
-    start = time.perf_counter()
-    synthesis.rows(0, block)
-    block_ms_per_s = 1e3 * (time.perf_counter() - start) / (synthesis.block_rows * probe.wave_table_step_s)
+    block_wall = float("inf")
+    for k in range(3):
+        start = time.perf_counter()
+        synthesis.rows(k * synthesis.block_rows, block)
+        block_wall = min(block_wall, time.perf_counter() - start)
+    block_ms_per_s = 1e3 * block_wall / (synthesis.block_rows * probe.wave_table_step_s)
     model = models["constant"]
     print(f"windmoor12 {args.load_case}, dt {args.dt:g} s, {args.duration:g} s simulated, "
           f"best of {args.repeats} runs, load average {os.getloadavg()[0]:.1f}")
@@ -246,7 +249,7 @@ def main() -> None:
           f"{loop['filtered'] / loop['constant']:.2f} (target <= 1.30)")
     block_s = synthesis.block_rows * probe.wave_table_step_s
     print(f"  kinematics: the whole period's table {table_s:.1f} s ({table.values.nbytes / 2**20:.0f} MB); one block "
-          f"of {block_s:.0f} s made on one thread in {block_ms_per_s * block_s / 1e3:.2f} s = {block_ms_per_s:.3f} "
+          f"of {block_s:.0f} s made on one thread in {block_wall:.2f} s = {block_ms_per_s:.3f} "
           f"ms per simulated second (on one core, the whole run would be the time loop plus this)")
     print(f"  peak memory (max RSS, with the whole table) "
           f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
