@@ -179,6 +179,7 @@ def test_every_effect_module_is_registered_and_off_means_off(platform):
         extension = varied.extension
         assert not extension.has_force and not np.any(extension.linear_damping) and not np.any(extension.mass)
         assert not np.any(extension.quadratic_damping) and not np.any(extension.cubic_stiffness)
+        assert not np.any(extension.quadratic_stiffness)
         assert varied.elevation_shift_s == 0.0
         if effect.name != "frequency_dependent_drag":
             assert varied.drag_model == "constant"
@@ -293,8 +294,8 @@ def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
     settings = GapSettings()
     before = [_gap(settings, "r", {("surge", "frequency.low_frequency"): -0.2})]
     mooring = CATALOGUE["mooring_stiffness"]
-    assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3}, before, settings) == []
-    stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3}, before, settings)
+    assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3, "asymmetry": 0.1}, before, settings) == []
+    stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3, "asymmetry": 0.1}, before, settings)
     assert len(stiff) == 1 and "line_stiffness_scale = 1.52 lies outside its plausible 0.7 to 1.3" in stiff[0]
     moment = base.Effect("pitch_moment", "a constant pitch moment", (base.Parameter("moment_n_m", "N m", 1e6, -1e8, 1e8),),
                          lambda variant, run, values: variant)  # no plausible range: the fit's bounds
