@@ -1,7 +1,8 @@
 """The model's extension terms and the diagnosis's effects against closed forms: static
 offsets K^-1 F, the log decrement of added damping, the period with added mass, a cubic
-spring's equilibrium, Newman's slow drift of a bichromatic sea, Borgman's equivalent
-damping; and the gap metrics against known scalings, shifts and noise."""
+and an asymmetric (quadratic) spring's equilibrium, the mooring candidate's force at
++-5 m, Newman's slow drift of a bichromatic sea, Borgman's equivalent damping; and the gap
+metrics against known scalings, shifts and noise."""
 from __future__ import annotations
 
 import math
@@ -17,7 +18,8 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_added_mass
-from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, base, kc_drag, quadratic_damping, slow_drift
+from fowt_hydro_sim.studies.diagnosis.effects import (CATALOGUE, base, kc_drag, mooring_stiffness, quadratic_damping,
+                                                     slow_drift)
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, block_lag_s, gap
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
@@ -101,6 +103,54 @@ def test_cubic_stiffness_equilibrium(platform):
                            extension=Extension(force_n=force, cubic_stiffness=k3, linear_damping=damping)).run(300.0, 1.0)
     x = scipy.optimize.brentq(lambda x: k * x + k3[HEAVE] * x ** 3 - 1.5 * k, 0, 2)
     assert result.motion[-1, HEAVE] == pytest.approx(x, rel=0.01)
+
+
+def test_quadratic_stiffness_is_stiffer_on_one_side(platform):
+    """Under a constant heave force +-F, k x + k2 x^2 = +-F: an asymmetric spring gives way
+    less on the side of positive offset."""
+    model = PlatformModel(platform)
+    k = model.restoring_matrix()[HEAVE, HEAVE]
+    k2 = np.zeros(6)
+    k2[HEAVE] = 0.3 * k  # N/m^2: 30 % stiffer at +1 m, 30 % softer at -1 m
+    damping = np.zeros((6, 6))
+    damping[HEAVE, HEAVE] = 2 * 0.7 * math.sqrt(k * model.mass_matrix()[HEAVE, HEAVE])
+    for sign in (1.0, -1.0):
+        force = np.zeros((4, 6))
+        force[:, HEAVE] = sign * 0.5 * k
+        result = PlatformModel(platform, None, dt_s=0.1, extension=Extension(
+            force_n=force, quadratic_stiffness=k2, linear_damping=damping)).run(300.0, 1.0)
+        x = scipy.optimize.brentq(lambda x: k * x + k2[HEAVE] * x ** 2 - sign * 0.5 * k, -1.5, 1.5)
+        assert result.motion[-1, HEAVE] == pytest.approx(x, rel=0.01)
+    assert abs(x) > 0.5  # the soft side gives way more than the linear spring (0.5 m)
+
+
+def test_the_mooring_candidates_surge_restoring_at_plus_and_minus_5_m(platform):
+    """The mooring candidate's restoring force at x = +-5 m is K_11 x (1 +- asymmetry +
+    hardening): its static surge offset under +-F equals the root of K q + K2 x^2 + K3 x^3 = F
+    with the model's restoring matrix K at rest (surge and pitch coupled by the fairleads)."""
+    mooring = CATALOGUE["mooring_stiffness"]
+    values = {"line_stiffness_scale": 1.0, "hardening": 0.05, "asymmetry": 0.15}
+    k2, k3 = mooring_stiffness.nonlinear_terms(base.linear_modes(platform)[1], values["asymmetry"],
+                                               values["hardening"])
+    k11 = base.linear_modes(platform)[1][0]
+    for x in (5.0, -5.0):
+        restoring = k11 * x + k2[0] * x ** 2 + k3[0] * x ** 3
+        assert restoring == pytest.approx(k11 * x * (1 + math.copysign(0.15, x) + 0.05))
+    t = np.arange(0.0, 100.0, 0.1)
+    run = MeasuredRun("r", t, np.zeros(t.size), (0.0, 0.0), t, np.zeros((t.size, 6)))
+    variant = mooring.apply(Variant(platform), run, values)
+    model = PlatformModel(platform)
+    k, mass = model.restoring_matrix(), model.mass_matrix()
+    damping = np.diag(2 * 0.7 * np.sqrt(np.abs(np.diag(k)) * np.diag(mass)))
+    for sign in (1.0, -1.0):
+        force = np.zeros(6)
+        force[0] = sign * 5.0 * k11
+        extension = variant.extension.plus(Extension(force_n=np.tile(force, (4, 1)), linear_damping=damping))
+        settled = PlatformModel(variant.platform, None, dt_s=0.1, extension=extension).run(1500.0, 1.0).motion[-1]
+        dofs = [0, 2, 4]
+        q = scipy.optimize.fsolve(lambda q: k[np.ix_(dofs, dofs)] @ q + np.array([k2[0] * q[0] ** 2 + k3[0] * q[0] ** 3,
+                                                                                 0, 0]) - force[dofs], np.zeros(3))
+        assert settled[0] == pytest.approx(q[0], rel=0.02)
 
 
 def test_slow_drift_of_a_bichromatic_sea():
