@@ -504,6 +504,26 @@ def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_th
     assert diagnosis.differences == [lag] and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason
 
 
+def test_a_candidate_screened_in_the_fit_window_is_compared_with_the_plain_model_in_that_window():
+    """Pitch's low-frequency STD 30 % low over the whole records but 15 % low in their first
+    1800 s (a long-period response's STD varies along a record). A candidate screened out in
+    that window keeps the window's gaps: at its off value, moving nothing, it closes none of
+    the cell against the window's plain model, and the cell is set aside as the baseline's;
+    against the whole records it would seem to close 75 % of it and keep the cell in."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import CandidateFit, cell_closure, unexplained_cells
+    settings = GapSettings()
+    cell = ("pitch", "std.low_frequency")
+    i = settings.cells().index(cell)
+    before = [_gap(settings, run, {cell: -0.3}) for run in "abc"]
+    window = [_gap(settings, run, {cell: -0.15}) for run in "abc"]
+    screened = CandidateFit("added_mass_error", {"added_mass_scale": 1.0}, window, 0.0, 0.0, 6, window_s=1800.0)
+    assert cell_closure(before, screened.gaps, i) == pytest.approx(0.75)
+    assert unexplained_cells(before, [screened], CATALOGUE, window)[i]
+    closing = CandidateFit("added_mass_error", {"added_mass_scale": 0.9}, [_gap(settings, run, {}) for run in "abc"],
+                           0.0, 1.0, 6)
+    assert not unexplained_cells(before, [closing], CATALOGUE, window)[i]
+
+
 def test_a_response_the_waves_do_not_drive_is_told_from_a_transfer_function_of_another_form():
     """Pitch measured with a 1P moment's response at 0.12 Hz on top of the wave response,
     and heave measured 25 % above the model's (a transfer function of another form): both
