@@ -1,7 +1,8 @@
 """The model's extension terms and the diagnosis's effects against closed forms: static
 offsets K^-1 F, the log decrement of added damping, the period with added mass, a cubic
-spring's equilibrium, Newman's slow drift of a bichromatic sea, Borgman's equivalent
-damping; and the gap metrics against known scalings, shifts and noise."""
+and an asymmetric (quadratic) spring's equilibrium, the mooring candidate's force at
++-5 m, Newman's slow drift of a bichromatic sea, Borgman's equivalent damping; and the gap
+metrics against known scalings, shifts and noise."""
 from __future__ import annotations
 
 import math
@@ -17,7 +18,8 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_added_mass
-from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, base, kc_drag, quadratic_damping, slow_drift
+from fowt_hydro_sim.studies.diagnosis.effects import (CATALOGUE, base, kc_drag, mooring_stiffness, quadratic_damping,
+                                                     slow_drift)
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, block_lag_s, gap
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
@@ -103,6 +105,54 @@ def test_cubic_stiffness_equilibrium(platform):
     assert result.motion[-1, HEAVE] == pytest.approx(x, rel=0.01)
 
 
+def test_quadratic_stiffness_is_stiffer_on_one_side(platform):
+    """Under a constant heave force +-F, k x + k2 x^2 = +-F: an asymmetric spring gives way
+    less on the side of positive offset."""
+    model = PlatformModel(platform)
+    k = model.restoring_matrix()[HEAVE, HEAVE]
+    k2 = np.zeros(6)
+    k2[HEAVE] = 0.3 * k  # N/m^2: 30 % stiffer at +1 m, 30 % softer at -1 m
+    damping = np.zeros((6, 6))
+    damping[HEAVE, HEAVE] = 2 * 0.7 * math.sqrt(k * model.mass_matrix()[HEAVE, HEAVE])
+    for sign in (1.0, -1.0):
+        force = np.zeros((4, 6))
+        force[:, HEAVE] = sign * 0.5 * k
+        result = PlatformModel(platform, None, dt_s=0.1, extension=Extension(
+            force_n=force, quadratic_stiffness=k2, linear_damping=damping)).run(300.0, 1.0)
+        x = scipy.optimize.brentq(lambda x: k * x + k2[HEAVE] * x ** 2 - sign * 0.5 * k, -1.5, 1.5)
+        assert result.motion[-1, HEAVE] == pytest.approx(x, rel=0.01)
+    assert abs(x) > 0.5  # the soft side gives way more than the linear spring (0.5 m)
+
+
+def test_the_mooring_candidates_surge_restoring_at_plus_and_minus_5_m(platform):
+    """The mooring candidate's restoring force at x = +-5 m is K_11 x (1 +- asymmetry +
+    hardening): its static surge offset under +-F equals the root of K q + K2 x^2 + K3 x^3 = F
+    with the model's restoring matrix K at rest (surge and pitch coupled by the fairleads)."""
+    mooring = CATALOGUE["mooring_stiffness"]
+    values = {"line_stiffness_scale": 1.0, "hardening": 0.05, "asymmetry": 0.15}
+    k2, k3 = mooring_stiffness.nonlinear_terms(base.linear_modes(platform)[1], values["asymmetry"],
+                                               values["hardening"])
+    k11 = base.linear_modes(platform)[1][0]
+    for x in (5.0, -5.0):
+        restoring = k11 * x + k2[0] * x ** 2 + k3[0] * x ** 3
+        assert restoring == pytest.approx(k11 * x * (1 + math.copysign(0.15, x) + 0.05))
+    t = np.arange(0.0, 100.0, 0.1)
+    run = MeasuredRun("r", t, np.zeros(t.size), (0.0, 0.0), t, np.zeros((t.size, 6)))
+    variant = mooring.apply(Variant(platform), run, values)
+    model = PlatformModel(platform)
+    k, mass = model.restoring_matrix(), model.mass_matrix()
+    damping = np.diag(2 * 0.7 * np.sqrt(np.abs(np.diag(k)) * np.diag(mass)))
+    for sign in (1.0, -1.0):
+        force = np.zeros(6)
+        force[0] = sign * 5.0 * k11
+        extension = variant.extension.plus(Extension(force_n=np.tile(force, (4, 1)), linear_damping=damping))
+        settled = PlatformModel(variant.platform, None, dt_s=0.1, extension=extension).run(1500.0, 1.0).motion[-1]
+        dofs = [0, 2, 4]
+        q = scipy.optimize.fsolve(lambda q: k[np.ix_(dofs, dofs)] @ q + np.array([k2[0] * q[0] ** 2 + k3[0] * q[0] ** 3,
+                                                                                 0, 0]) - force[dofs], np.zeros(3))
+        assert settled[0] == pytest.approx(q[0], rel=0.02)
+
+
 def test_slow_drift_of_a_bichromatic_sea():
     """Newman with a constant coefficient C: eta = a1 cos w1 t + a2 cos w2 t gives
     F = C ((a1^2 + a2^2) / 2 + a1 a2 cos((w1 - w2) t)), the sum frequencies filtered out."""
@@ -179,6 +229,7 @@ def test_every_effect_module_is_registered_and_off_means_off(platform):
         extension = varied.extension
         assert not extension.has_force and not np.any(extension.linear_damping) and not np.any(extension.mass)
         assert not np.any(extension.quadratic_damping) and not np.any(extension.cubic_stiffness)
+        assert not np.any(extension.quadratic_stiffness)
         assert varied.elevation_shift_s == 0.0
         if effect.name != "frequency_dependent_drag":
             assert varied.drag_model == "constant"
@@ -293,8 +344,8 @@ def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
     settings = GapSettings()
     before = [_gap(settings, "r", {("surge", "frequency.low_frequency"): -0.2})]
     mooring = CATALOGUE["mooring_stiffness"]
-    assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3}, before, settings) == []
-    stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3}, before, settings)
+    assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3, "asymmetry": 0.1}, before, settings) == []
+    stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3, "asymmetry": 0.1}, before, settings)
     assert len(stiff) == 1 and "line_stiffness_scale = 1.52 lies outside its plausible 0.7 to 1.3" in stiff[0]
     moment = base.Effect("pitch_moment", "a constant pitch moment", (base.Parameter("moment_n_m", "N m", 1e6, -1e8, 1e8),),
                          lambda variant, run, values: variant)  # no plausible range: the fit's bounds
@@ -451,6 +502,26 @@ def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_th
     assert diagnosis.candidate("linear_damping").closure > 0.9
     assert [(m.dof, m.metric, m.explained_by) for m in diagnosis.mismatches] == [(*surge, "linear_damping")]
     assert diagnosis.differences == [lag] and "heave lag (-0.3, +0.2, -8.8)" in diagnosis.reason
+
+
+def test_a_candidate_screened_in_the_fit_window_is_compared_with_the_plain_model_in_that_window():
+    """Pitch's low-frequency STD 30 % low over the whole records but 15 % low in their first
+    1800 s (a long-period response's STD varies along a record). A candidate screened out in
+    that window keeps the window's gaps: at its off value, moving nothing, it closes none of
+    the cell against the window's plain model, and the cell is set aside as the baseline's;
+    against the whole records it would seem to close 75 % of it and keep the cell in."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import CandidateFit, cell_closure, unexplained_cells
+    settings = GapSettings()
+    cell = ("pitch", "std.low_frequency")
+    i = settings.cells().index(cell)
+    before = [_gap(settings, run, {cell: -0.3}) for run in "abc"]
+    window = [_gap(settings, run, {cell: -0.15}) for run in "abc"]
+    screened = CandidateFit("added_mass_error", {"added_mass_scale": 1.0}, window, 0.0, 0.0, 6, window_s=1800.0)
+    assert cell_closure(before, screened.gaps, i) == pytest.approx(0.75)
+    assert unexplained_cells(before, [screened], CATALOGUE, window)[i]
+    closing = CandidateFit("added_mass_error", {"added_mass_scale": 0.9}, [_gap(settings, run, {}) for run in "abc"],
+                           0.0, 1.0, 6)
+    assert not unexplained_cells(before, [closing], CATALOGUE, window)[i]
 
 
 def test_a_response_the_waves_do_not_drive_is_told_from_a_transfer_function_of_another_form():

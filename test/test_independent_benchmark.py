@@ -1,6 +1,6 @@
 """The independent benchmark: the simulator's FFT synthesis against the direct sum, its
 pre-roll against a run started earlier, the catenary mooring against the inextensible
-catenary's closed form, the run cache, and a small ``diagnose-benchmark --source
+catenary's closed form and the mooring candidate's form, the run cache, and a small ``diagnose-benchmark --source
 independent`` with its verdicts asserted."""
 from __future__ import annotations
 
@@ -102,6 +102,33 @@ def test_the_catenary_scenarios_stiffness_at_rest_is_within_the_catalogues_plaus
         ratios.append(stiffness(chain, 0.0) / spring)
         assert stiffness(chain, 5.0) > 1.2 * stiffness(chain, 0.0)
     assert ratios == pytest.approx([1.0, 1.2], abs=0.02) and all(low <= r <= high for r in ratios)
+
+
+def test_the_catenary_scenarios_curves_have_the_mooring_candidates_form_at_plausible_values():
+    """Over +-10 m the chain lines' surge restoring is K_11 x (1 + a x / d + h x^2 / d^2)
+    (mooring_stiffness's form, d = 5 m) to 1 % of its force at 10 m, with the scale,
+    asymmetry a and hardening h within their plausible ranges; without the asymmetric term
+    the best symmetric curve misses it by over 10 %: the catenary is stiffer moving away
+    from its single line's anchor (-x) than from the pair's."""
+    from fowt_hydro_sim.studies.diagnosis.benchmark import INDEPENDENT_INJECTIONS
+    from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, base, mooring_stiffness
+    plausible = {p.name: p.plausible_range for p in CATALOGUE["mooring_stiffness"].parameters}
+    d = mooring_stiffness.REFERENCE_OFFSET_M
+    k11 = base.linear_modes(PLATFORM)[1][0]
+    x = np.linspace(-10.0, 10.0, 21)
+    for values in INDEPENDENT_INJECTIONS["catenary_mooring"][2]:
+        lines = catenary.ChainLines(values["anchor_distance_m"], values["length_m"], values["weight_n_m"])
+        restoring = -np.array([catenary.surge_force_n(PLATFORM, lines, v) for v in x])
+        restoring -= -catenary.surge_force_n(PLATFORM, lines, 0.0)
+        form = np.column_stack([x, x ** 2 / d, x ** 3 / d ** 2])
+        (k, k2, k3), *_ = np.linalg.lstsq(form, restoring, rcond=None)
+        fitted = {"line_stiffness_scale": k / k11, "asymmetry": k2 / k, "hardening": k3 / k}
+        for name, value in fitted.items():
+            assert plausible[name][0] <= value <= plausible[name][1], (name, value)
+        assert np.abs(form @ (k, k2, k3) - restoring).max() < 0.01 * restoring[-1]
+        symmetric = form[:, [0, 2]] @ np.linalg.lstsq(form[:, [0, 2]], restoring, rcond=None)[0]
+        assert np.abs(symmetric - restoring).max() > 0.1 * restoring[-1]
+        assert fitted["asymmetry"] > 0.05
 
 
 def test_basin_runs_are_cached_and_keyed_by_what_makes_them(tmp_path):

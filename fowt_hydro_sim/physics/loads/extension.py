@@ -3,7 +3,8 @@ and linear, quadratic and cubic terms in the platform's velocity and offset, plu
 mass term. The gap diagnosis's effects (effects/) build these; a plain model has none.
 
 All terms act at the reference point in world axes, per DOF (surge, sway, heave, roll,
-pitch, yaw): F = f(t) - B1 v - B2 |v| v - K q - K3 q^3 - M_x a.
+pitch, yaw): F = f(t) - B1 v - B2 |v| v - K q - K2 q^2 - K3 q^3 - M_x a. K2 is an
+asymmetric restoring: stiffer on the side of positive offset, softer on the other.
 """
 from __future__ import annotations
 
@@ -30,10 +31,11 @@ class Extension:
     stiffness: np.ndarray = _zeros(6, 6)  # K [N/m, N m/rad]
     cubic_stiffness: np.ndarray = _zeros(6)  # K3 [N/m^3, N m/rad^3]
     mass: np.ndarray = _zeros(6, 6)  # M_x [kg, kg m^2]
+    quadratic_stiffness: np.ndarray = _zeros(6)  # K2 [N/m^2, N m/rad^2]
 
     def __post_init__(self) -> None:
         shapes = {"linear_damping": (6, 6), "quadratic_damping": (6,), "stiffness": (6, 6),
-                  "cubic_stiffness": (6,), "mass": (6, 6)}
+                  "cubic_stiffness": (6,), "mass": (6, 6), "quadratic_stiffness": (6,)}
         for name, shape in shapes.items():
             value = np.asarray(getattr(self, name), dtype=float)
             if value.shape != shape or not np.all(np.isfinite(value)):
@@ -75,19 +77,20 @@ class Extension:
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
-    """[force step, B1 (36), B2 (6), K (36), K3 (6), M_x (36)] and the force samples (n, 6)."""
+    """[force step, B1 (36), B2 (6), K (36), K3 (6), M_x (36), K2 (6)] and the force samples (n, 6)."""
     x = inputs.extension
     return np.concatenate([[x.force_step_s], np.ravel(x.linear_damping), x.quadratic_damping, np.ravel(x.stiffness),
-                           x.cubic_stiffness, np.ravel(x.mass)]), x.force_n
+                           x.cubic_stiffness, np.ravel(x.mass), x.quadratic_stiffness]), x.force_n
 
 
 @step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
-    """f(t) - B1 v - B2 |v| v - K q - K3 q^3, and M_x on the left-hand side."""
+    """f(t) - B1 v - B2 |v| v - K q - K2 q^2 - K3 q^3, and M_x on the left-hand side."""
     for i in range(6):  # written out: no temporaries in the step loop
         q, v = y[i], y[6 + i]
-        acc = interpolate_series(table, params[0], t, i) - params[37 + i] * abs(v) * v - params[79 + i] * q * q * q
+        acc = (interpolate_series(table, params[0], t, i) - params[37 + i] * abs(v) * v
+               - (params[121 + i] + params[79 + i] * q) * q * q)
         for j in range(6):
             acc -= params[1 + 6 * i + j] * y[6 + j] + params[43 + 6 * i + j] * y[j]
             mass[i, j] += params[85 + 6 * i + j]

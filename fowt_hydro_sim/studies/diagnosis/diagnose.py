@@ -283,7 +283,15 @@ def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settin
     return out
 
 
-def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects: dict[str, Effect]) -> np.ndarray:
+def plain_gaps(candidate: CandidateFit, before: list[Gap], window_before: list[Gap]) -> list[Gap]:
+    """The plain model's tuning gaps over the span the candidate's gaps cover: the fit
+    window's (``window_before``) for a candidate screened out in the window, whose gaps are
+    the window's; else the whole records' (``before``)."""
+    return window_before if candidate.window_s is not None else before
+
+
+def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects: dict[str, Effect],
+                      window_before: list[Gap]) -> np.ndarray:
     """Cells flagged in a tuning run that no candidate at plausible values (no
     ``range_concerns``) explains (``explains``), fitted on every cell: the baseline's, set
     aside before the effects are tested on what remains. They are the consistent mismatches
@@ -292,10 +300,14 @@ def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects
     a panel method's), which no effect of the catalogue moves: left in, they would dilute
     every candidate's closure, and an effect that closes its own cells would not be named.
     (Whether an effect moves a cell the right way is judged by the cell's closure; a
-    signature concern over all flagged cells would count the cells being set aside.)"""
+    signature concern over all flagged cells would count the cells being set aside.)
+    A candidate screened out in the fit window is compared with the plain model in the same
+    window (``plain_gaps``): against the whole records, a cell's gap differing between the
+    window and the record would read as closed by a candidate that moves nothing."""
     flagged = np.any([g.flagged for g in before], axis=0)
     plausible = [c for c in candidates if not range_concerns(effects[c.effect], c.values)]
-    return np.array([bool(flagged[i]) and not any(explains(before, c.gaps, i) for c in plausible)
+    return np.array([bool(flagged[i]) and not any(explains(plain_gaps(c, before, window_before), c.gaps, i)
+                                                  for c in plausible)
                      for i in range(flagged.size)])
 
 
@@ -393,6 +405,7 @@ class Diagnosis:
     fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but those set aside)
     first_round: list[CandidateFit] = field(default_factory=list)  # the fits on every cell, if refitted without some
     undriven: list[tuple[str, str, float, float]] = field(default_factory=list)  # (DOF, metric, shares: measured, model)
+    window_before: list[Gap] = field(default_factory=list)  # tuning runs, plain model, in the fit window (if one)
 
     @property
     def tuning_before(self) -> list[Gap]:
@@ -447,7 +460,8 @@ class Diagnosis:
                 "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
                 "candidates": [c.as_dict(self.settings) for c in self.candidates],
                 "first_round": [{key: value for key, value in c.as_dict(self.settings).items() if key != "gaps"}
-                                | {"cell_closure": {f"{dof}.{metric}": cell_closure(self.tuning_before, c.gaps, i)
+                                | {"cell_closure": {f"{dof}.{metric}": cell_closure(
+                                    plain_gaps(c, self.tuning_before, self.window_before), c.gaps, i)
                                                     for i, (dof, metric) in enumerate(self.settings.cells())
                                                     if any(g.flagged[i] for g in self.tuning_before)}}
                                 for c in self.first_round],
@@ -588,6 +602,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     window_before = ([g for g, _ in evaluate([(None, {}, i, False, window) for i in range(n_tuning)],
                                              "plain model, fit window")] if window else [])
     diagnosis.model_runs += len(window_before)
+    diagnosis.window_before = window_before
 
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         def fit(effect: Effect) -> CandidateFit:
@@ -621,7 +636,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     candidates = fit_all(None)
     # flagged cells no plausible candidate explains are the baseline's: set them aside and
     # test the effects on what remains
-    unexplained = unexplained_cells(diagnosis.tuning_before, candidates, effects)
+    unexplained = unexplained_cells(diagnosis.tuning_before, candidates, effects, window_before)
     if unexplained.any():
         remaining = ~unexplained
         diagnosis.fit_cells, diagnosis.first_round = remaining, candidates
