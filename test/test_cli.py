@@ -159,7 +159,6 @@ def test_an_interrupted_load_case_study_keeps_the_table_of_the_cases_done(tmp_pa
         deadline = time.monotonic() + 240
         while not (study / "psd_lc5.0.png").exists() and process.poll() is None and time.monotonic() < deadline:
             time.sleep(0.05)
-        time.sleep(0.3)  # the table is written just after the figure
         process.send_signal(signal.SIGINT)
         _, stderr = process.communicate(timeout=120)
     finally:

@@ -10,7 +10,9 @@ frequency-dependent drag is and in which band it acts.
 from __future__ import annotations
 
 import csv
+import io
 import logging
+import os
 import sys
 import time
 from dataclasses import dataclass
@@ -79,10 +81,12 @@ def table_rows(runs: list[CaseRun]) -> list[dict]:
 
 
 def write_tables(rows: list[dict], folder: Path, header: str) -> None:
-    with open(folder / "band_stds.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    """band_stds.csv and .md, each replaced whole: an interrupt never leaves half a table."""
+    table = io.StringIO(newline="")
+    writer = csv.DictWriter(table, fieldnames=list(rows[0]))
+    writer.writeheader()
+    writer.writerows(rows)
+    _replace(folder / "band_stds.csv", table.getvalue())
     bands = list(BANDS_HZ)
     lines = [header, "",
              "| load case | DOF | " + " | ".join(f"{b} STD case 1 | case 2 | change" for b in bands) + " |",
@@ -90,7 +94,13 @@ def write_tables(rows: list[dict], folder: Path, header: str) -> None:
     for r in rows:
         cells = [f"{r[f'{b}_case1']:.3f} | {r[f'{b}_case2']:.3f} | {r[f'{b}_change_percent']:+.1f} %" for b in bands]
         lines.append(f"| {r['load_case']} | {r['dof']} [{r['unit']}] | " + " | ".join(cells) + " |")
-    (folder / "band_stds.md").write_text("\n".join(lines) + "\n")
+    _replace(folder / "band_stds.md", "\n".join(lines) + "\n")
+
+
+def _replace(path: Path, text: str) -> None:
+    staged = path.with_name(path.name + ".part")
+    staged.write_text(text, newline="")
+    os.replace(staged, path)
 
 
 def case_labels(platform_name: str, case: str, runs: list[CaseRun], duration_s: float,
@@ -155,11 +165,11 @@ def run_study(platform: Platform, cases: tuple[str, ...], duration_s: float, tra
                 bar.set_postfix_str(f"{case} {drag}")
                 pair.append(run_case(platform, case, drag, duration_s, transient_s, seed))
                 bar.update()
-            plot_case(case, pair, folder / f"psd_{case}.png", case_labels(platform.name, case, pair, duration_s,
-                                                                          natural))
             runs += pair
             rows = table_rows(runs)
             write_tables(rows, folder, header + ("" if len(runs) == len(cases) * len(DRAG_MODELS) else
                                                  f" (partial: {len(runs) // len(DRAG_MODELS)} of {len(cases)} "
                                                  f"load cases)"))
+            plot_case(case, pair, folder / f"psd_{case}.png", case_labels(platform.name, case, pair, duration_s,
+                                                                          natural))
     return rows
