@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from fowt_hydro_sim.physics.config import load_platform
+from fowt_hydro_sim.studies.diagnosis import benchmark
 from fowt_hydro_sim.studies.diagnosis.independent import basin, bem, catenary, cummins
 from fowt_hydro_sim.testing import REPO
 
@@ -139,6 +140,21 @@ def test_basin_runs_are_cached_and_keyed_by_what_makes_them(tmp_path):
     assert np.array_equal(first.motion, again.motion) and np.array_equal(first.elevation_m, again.elevation_m)
     basin.basin_run("a", "rotor_1p", {**values, "frequency_hz": 0.1}, 3, "lc5.1", PLATFORM, 120.0, cache=tmp_path)
     assert len(list(tmp_path.glob("*.npz"))) == 2
+
+
+def test_a_first_seed_gives_other_realisations_of_the_same_scenarios(tmp_path):
+    """--seed moves every scenario to other sea realisations (to pool more nulls than one
+    list holds) and leaves names and injections as they are; a negative seed is one line."""
+    default, other = benchmark.independent_scenarios(nulls=3), benchmark.independent_scenarios(nulls=3, first_seed=5000)
+    assert [(s.name, s.effect, s.values) for s in default] == [(s.name, s.effect, s.values) for s in other]
+    assert [s.seed for s in default] == [2000 + 17 * i for i in range(len(default))]
+    assert [s.seed for s in other] == [5000 + 17 * i for i in range(len(other))]
+    runs = [basin.basin_run("null#1/lc5.1", None, {}, s.seed, "lc5.1", PLATFORM, 120.0) for s in (default[0], other[0])]
+    assert np.std(runs[0].elevation_m) == pytest.approx(np.std(runs[1].elevation_m), rel=0.5)
+    assert abs(np.corrcoef(runs[0].elevation_m, runs[1].elevation_m)[0, 1]) < 0.3  # another realisation
+    result = fowt_sim("diagnose-benchmark", "--seed", "-1", "-o", str(tmp_path), timeout=120)
+    assert result.returncode == 2 and result.stderr.strip().splitlines() == [
+        "fowt-sim diagnose-benchmark: error: --seed: must be zero or more, got -1"], result.stderr
 
 
 def fowt_sim(*args: str, timeout: float = 600) -> subprocess.CompletedProcess:

@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
-from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
+from fowt_hydro_sim.physics.config import ConfigError, RunConfig, SeaState, load_platform
 from fowt_hydro_sim.studies.diagnosis.diagnose import FIT_WINDOW_S, REPLAY_DT_S
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
 
@@ -45,7 +45,7 @@ def benchmark_command(args: argparse.Namespace) -> int:
     platform, settings, effects, dt_s = _common(args)
     lines = benchmark(platform, settings, effects, Path(args.output), args.inject, args.strengths, args.nulls,
                       args.out_of_catalogue, args.duration, args.max_evaluations, dt_s, args.scheduler, args.workers,
-                      args.source)
+                      args.source, options.values(args, SeaState, ("seed",))["seed"])
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
 
@@ -101,6 +101,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                         "1P moment only) (default %(default)s)")
     b.add_argument("--duration", type=float, default=10800.0,
                    help="seconds per measured run (default %(default)s, 3 hours)")
+    options.add(b, SeaState, ("seed",), defaults={"seed": None},
+                notes={"seed": " of the first scenario's runs; scenario i's from seed + 17 i (default 1000 twin, "
+                               "2000 independent)"})
     _add_common(b)
     b.add_argument("-o", "--output", default="out/diagnosis_benchmark", help="output folder (default %(default)s)")
     b.set_defaults(func=benchmark_command)

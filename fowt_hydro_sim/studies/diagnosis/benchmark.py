@@ -129,7 +129,8 @@ class Scenario:
 
 
 def scenarios(effects: list[str] | None = None, strengths: int = 2, nulls: int = 10,
-              out_of_catalogue: int = 2) -> list[Scenario]:
+              out_of_catalogue: int = 2, first_seed: int = 1000) -> list[Scenario]:
+    """The twin's scenarios; scenario i's runs have seeds ``first_seed + 17 i`` onwards."""
     out = []
     for name in effects or list(INJECTIONS):
         for k, values in enumerate(INJECTIONS[name][:strengths]):
@@ -137,12 +138,13 @@ def scenarios(effects: list[str] | None = None, strengths: int = 2, nulls: int =
     out += [Scenario(f"null#{k + 1}", "null", None, {}, 0) for k in range(nulls)]
     out += [Scenario(effect.name, "out_of_catalogue", effect.name, values, 0)
             for effect, values in OUT_OF_CATALOGUE[:out_of_catalogue]]
-    return [replace(s, seed=1000 + 17 * i) for i, s in enumerate(out)]
+    return [replace(s, seed=first_seed + 17 * i) for i, s in enumerate(out)]
 
 
 def independent_scenarios(effects: list[str] | None = None, strengths: int = 1, nulls: int = 3,
-                          out_of_catalogue: int = 1) -> list[Scenario]:
-    """The independent benchmark's scenarios; ``effect`` is the injected form."""
+                          out_of_catalogue: int = 1, first_seed: int = 2000) -> list[Scenario]:
+    """The independent benchmark's scenarios; ``effect`` is the injected form; scenario i's
+    runs have seeds ``first_seed + 17 i`` onwards."""
     out = []
     for name in effects or list(INDEPENDENT_INJECTIONS):
         form, accepted, strengths_values = INDEPENDENT_INJECTIONS[name]
@@ -151,7 +153,7 @@ def independent_scenarios(effects: list[str] | None = None, strengths: int = 1, 
     out += [Scenario(f"null#{k + 1}", "null", None, {}, 0) for k in range(nulls)]
     out += [Scenario(name, "out_of_catalogue", name, values, 0)
             for name, values in INDEPENDENT_OUT_OF_CATALOGUE[:out_of_catalogue]]
-    return [replace(s, seed=2000 + 17 * i) for i, s in enumerate(out)]
+    return [replace(s, seed=first_seed + 17 * i) for i, s in enumerate(out)]
 
 
 def perturbed(platform: Platform, rng: np.random.Generator) -> Platform:
@@ -312,11 +314,13 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
 def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effect], output: Path,
               inject: list[str] | None = None, strengths: int = 2, nulls: int = 10, out_of_catalogue: int = 2,
               duration_s: float = DURATION_S, max_evaluations: int = 4, dt_s: float = REPLAY_DT_S,
-              scheduler: str | None = None, workers: int | None = None, source: str = "twin") -> list[str]:
+              scheduler: str | None = None, workers: int | None = None, source: str = "twin",
+              first_seed: int | None = None) -> list[str]:
     """``fowt-sim diagnose-benchmark``: every scenario on a Dask cluster; ``benchmark.json``
     in ``output`` (as each scenario ends, its score appended to ``scenarios.jsonl`` and its
     diagnosis written to ``reports/SCENARIO``; the independent source's runs cached in
-    ``output/runs``); returns the report's lines (one per scenario, then the summary)."""
+    ``output/runs``); ``first_seed`` (default 1000 twin, 2000 independent) sets the scenarios'
+    realisations; returns the report's lines (one per scenario, then the summary)."""
     import json
     import logging
 
@@ -330,13 +334,14 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     if duration_s < settings.transient_s + 600:
         raise ValueError(f"--duration: need at least the transient plus 600 s, got {duration_s:g} s")
     if source == "independent":
-        chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue)
+        chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, 2000 if first_seed is None
+                                       else first_seed)
         import importlib.util
         if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
             raise ValueError("--source independent: the catenary_mooring scenario needs moorpy "
                              "(pip install '.[benchmark]'), or leave it out with --inject")
     else:
-        chosen = scenarios(inject, strengths, nulls, out_of_catalogue)
+        chosen = scenarios(inject, strengths, nulls, out_of_catalogue, 1000 if first_seed is None else first_seed)
     output.mkdir(parents=True, exist_ok=True)
     (output / "scenarios.jsonl").unlink(missing_ok=True)
     lines = []
