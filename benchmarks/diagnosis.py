@@ -7,7 +7,8 @@ blind LC6.1 and LC6.2, made once and kept in ``out/bench_diagnosis/`` (not timed
 Prints: the wall time of one diagnosis of the seven runs (every catalogue effect), its
 verdict, the model runs made (full-length and fit-window replays) and the cost per replay;
 then the scaling of a fixed batch of replays on 1, 2 and 4 workers of a LocalCluster (one
-thread each) with speed-up and efficiency, and what a 16-worker cluster would take for the
+thread each) with speed-up and efficiency, beside the same batch on as many plain processes
+(no Dask: the ceiling the cores set), and what a 16-worker cluster would take for the
 diagnosis (its work spread over 16 workers, but no shorter than its chain of dependent
 replays). The machine's cores and load average are printed beside each figure.
 
@@ -27,7 +28,7 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.studies.cluster import dask_client, map_with_progress
 from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
 from fowt_hydro_sim.studies.diagnosis.diagnose import (FIT_WINDOW_S, REPLAY_DT_S, cluster_evaluate, diagnose,
-                                                       job_duration_s, job_s)
+                                                       job_duration_s, job_s, replay_job)
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
 from fowt_hydro_sim.studies.replay import PREROLL_S, Variant, replay
 
@@ -113,16 +114,35 @@ def table_cost(run, platform) -> float:
     return time.perf_counter() - start
 
 
+def _plain_processes_wall(jobs: list, tuning: list, platform, settings: GapSettings, n: int) -> float:
+    """Wall seconds of the jobs on ``n`` plain worker processes (no Dask): the batch run
+    twice, the second timed (the first compiles and builds the tables in every process)."""
+    from concurrent.futures import ProcessPoolExecutor
+    from functools import partial
+    from multiprocessing import get_context
+    task = partial(replay_job, runs=tuning, platform=platform, settings=settings)
+    with ProcessPoolExecutor(n, mp_context=get_context("spawn")) as pool:
+        list(pool.map(task, jobs))
+        start = time.perf_counter()
+        list(pool.map(task, jobs))
+        return time.perf_counter() - start
+
+
 def scaling(runs: list, platform, workers: list[int], window_s: float, variants: int) -> None:
     """The same batch of fit-window replays (slow drift at ``variants`` values on every
-    tuning run) on each worker count, tables built and kernels compiled beforehand."""
+    tuning run) on each worker count, tables built and kernels compiled beforehand: on a
+    LocalCluster, and on as many plain processes (what the cores give this work without
+    Dask, the ceiling of the cluster's speed-up on this machine)."""
     settings = GapSettings()
     tuning = runs[:len(TUNING)]
+    os.environ.update({k: "1" for k in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")})  # the
+    # plain processes start with one BLAS thread each, as Dask's nanny starts its workers
     jobs = [("slow_drift", {"drift_coefficient_n_m2": 5e4 * (k + 1)}, i, False, window_s)
             for k in range(variants) for i in range(len(tuning))]
     print(f"\nscaling: {len(jobs)} replays of {window_s:g} s (+{PREROLL_S:g} s pre-roll), {os.cpu_count()} cores")
-    print(f"{'workers':>8s}{'wall [s]':>10s}{'replays/min':>13s}{'speed-up':>10s}{'efficiency':>12s}{'load':>7s}")
-    base = None
+    print(f"{'workers':>8s}{'Dask wall [s]':>15s}{'replays/min':>13s}{'speed-up':>10s}{'efficiency':>12s}"
+          f"{'plain wall [s]':>16s}{'speed-up':>10s}{'Dask/plain':>12s}{'load':>7s}")
+    base = plain_base = None
     for n in workers:
         with dask_client(None, n) as client:
             client.run(_warm, tuning, platform)
@@ -130,9 +150,10 @@ def scaling(runs: list, platform, workers: list[int], window_s: float, variants:
             start = time.perf_counter()
             evaluate(jobs)
             wall = time.perf_counter() - start
-        base = base or wall * workers[0]
-        print(f"{n:8d}{wall:10.1f}{60 * len(jobs) / wall:13.1f}{base / wall:10.2f}{base / wall / n:12.2f}"
-              f"{os.getloadavg()[0]:7.1f}", flush=True)
+        plain = _plain_processes_wall(jobs, tuning, platform, settings, n)
+        base, plain_base = base or wall * workers[0], plain_base or plain * workers[0]
+        print(f"{n:8d}{wall:15.1f}{60 * len(jobs) / wall:13.1f}{base / wall:10.2f}{base / wall / n:12.2f}"
+              f"{plain:16.1f}{plain_base / plain:10.2f}{plain / wall:12.2f}{os.getloadavg()[0]:7.1f}", flush=True)
 
 
 def diagnosis(runs: list, platform, workers: int, window_s: float) -> Recorder:
