@@ -114,17 +114,29 @@ def table_cost(run, platform) -> float:
     return time.perf_counter() - start
 
 
+_SHARED: dict = {}
+
+
+def _share(runs: list, platform, settings: GapSettings) -> None:
+    """A plain worker process's start: keep the runs, platform and settings, sent once."""
+    _SHARED.update(runs=runs, platform=platform, settings=settings)
+
+
+def _plain_replay(job: tuple):
+    return replay_job(job, **_SHARED)
+
+
 def _plain_processes_wall(jobs: list, tuning: list, platform, settings: GapSettings, n: int) -> float:
-    """Wall seconds of the jobs on ``n`` plain worker processes (no Dask): the batch run
-    twice, the second timed (the first compiles and builds the tables in every process)."""
+    """Wall seconds of the jobs on ``n`` plain worker processes (no Dask; the runs sent once
+    to each, as the cluster scatters them): the batch run twice, the second timed (the
+    first compiles and builds the tables in every process)."""
     from concurrent.futures import ProcessPoolExecutor
-    from functools import partial
     from multiprocessing import get_context
-    task = partial(replay_job, runs=tuning, platform=platform, settings=settings)
-    with ProcessPoolExecutor(n, mp_context=get_context("spawn")) as pool:
-        list(pool.map(task, jobs))
+    with ProcessPoolExecutor(n, mp_context=get_context("spawn"), initializer=_share,
+                             initargs=(tuning, platform, settings)) as pool:
+        list(pool.map(_plain_replay, jobs))
         start = time.perf_counter()
-        list(pool.map(task, jobs))
+        list(pool.map(_plain_replay, jobs))
         return time.perf_counter() - start
 
 
