@@ -333,15 +333,15 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
         raise ValueError(f"--inject: unknown {', '.join(unknown)} (for {source}: {', '.join(known)})")
     if duration_s < settings.transient_s + 600:
         raise ValueError(f"--duration: need at least the transient plus 600 s, got {duration_s:g} s")
+    seed = {} if first_seed is None else {"first_seed": first_seed}  # else each source's own default
     if source == "independent":
-        chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, 2000 if first_seed is None
-                                       else first_seed)
+        chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
         import importlib.util
         if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
             raise ValueError("--source independent: the catenary_mooring scenario needs moorpy "
                              "(pip install '.[benchmark]'), or leave it out with --inject")
     else:
-        chosen = scenarios(inject, strengths, nulls, out_of_catalogue, 1000 if first_seed is None else first_seed)
+        chosen = scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
     output.mkdir(parents=True, exist_ok=True)
     (output / "scenarios.jsonl").unlink(missing_ok=True)
     lines = []
