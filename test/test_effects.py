@@ -516,12 +516,32 @@ def test_a_candidate_screened_in_the_fit_window_is_compared_with_the_plain_model
     i = settings.cells().index(cell)
     before = [_gap(settings, run, {cell: -0.3}) for run in "abc"]
     window = [_gap(settings, run, {cell: -0.15}) for run in "abc"]
-    screened = CandidateFit("added_mass_error", {"added_mass_scale": 1.0}, window, 0.0, 0.0, 6, window_s=1800.0)
+    screened = CandidateFit("added_mass_error", {"added_mass_scale": 1.0}, window, 0.0, 0.1, 6, window_s=1800.0)
     assert cell_closure(before, screened.gaps, i) == pytest.approx(0.75)
     assert unexplained_cells(before, [screened], CATALOGUE, window)[i]
     closing = CandidateFit("added_mass_error", {"added_mass_scale": 0.9}, [_gap(settings, run, {}) for run in "abc"],
                            0.0, 1.0, 6)
     assert not unexplained_cells(before, [closing], CATALOGUE, window)[i]
+
+
+def test_a_cell_closed_by_a_fit_worse_than_the_plain_model_is_not_explained():
+    """Pitch's low-frequency STD 30 % low in every run and surge's 5 % low (both flagged).
+    Slow drift fitted to every cell halves the pitch gap but takes surge's to 3x: over the
+    flagged cells it is worse than the plain model, so it explains neither and both are the
+    baseline's. The same pitch closure from a fit that leaves surge alone explains pitch."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import CandidateFit, closure, unexplained_cells
+    settings = GapSettings()
+    pitch, surge = ("pitch", "std.low_frequency"), ("surge", "std.low_frequency")
+    i = settings.cells().index(pitch)
+    before = [_gap(settings, run, {pitch: -0.3, surge: -0.05 - 0.01 * k}) for k, run in enumerate("abc")]
+    drift = {"drift_coefficient_n_m2": 3e4, "frequency_exponent": 0.6}
+    harmful = [_gap(settings, run, {pitch: -0.1, surge: 2.0}) for run in "abc"]
+    fit = CandidateFit("slow_drift", drift, harmful, 0.0, closure(before, harmful), 9)
+    assert fit.closure < 0 and unexplained_cells(before, [fit], CATALOGUE, []).tolist() == [
+        cell in (pitch, surge) for cell in settings.cells()]
+    harmless = [_gap(settings, run, {pitch: -0.1, surge: -0.05 - 0.01 * k}) for k, run in enumerate("abc")]
+    fit = CandidateFit("slow_drift", drift, harmless, 0.0, closure(before, harmless), 9)
+    assert fit.closure > 0 and not unexplained_cells(before, [fit], CATALOGUE, [])[i]
 
 
 def test_a_response_the_waves_do_not_drive_is_told_from_a_transfer_function_of_another_form():

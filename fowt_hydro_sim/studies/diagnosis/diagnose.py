@@ -293,7 +293,8 @@ def plain_gaps(candidate: CandidateFit, before: list[Gap], window_before: list[G
 def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects: dict[str, Effect],
                       window_before: list[Gap]) -> np.ndarray:
     """Cells flagged in a tuning run that no candidate at plausible values (no
-    ``range_concerns``) explains (``explains``), fitted on every cell: the baseline's, set
+    ``range_concerns``) and better than the plain model (a positive closure) explains
+    (``explains``), fitted on every cell: the baseline's, set
     aside before the effects are tested on what remains. They are the consistent mismatches
     no effect explains and differences flagged in some runs only, e.g. of a sign that
     changes with the sea state (a response of another form, such as strip theory against
@@ -301,11 +302,15 @@ def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects
     every candidate's closure, and an effect that closes its own cells would not be named.
     (Whether an effect moves a cell the right way is judged by the cell's closure; a
     signature concern over all flagged cells would count the cells being set aside.)
+    A fit that leaves the flagged gap larger than the plain model's did not find its effect
+    in the data, and the cells it happens to close are by-products: slow drift at a
+    coefficient that halves a pitch gap while it multiplies the surge one eighty-fold
+    explains neither.
     A candidate screened out in the fit window is compared with the plain model in the same
     window (``plain_gaps``): against the whole records, a cell's gap differing between the
     window and the record would read as closed by a candidate that moves nothing."""
     flagged = np.any([g.flagged for g in before], axis=0)
-    plausible = [c for c in candidates if not range_concerns(effects[c.effect], c.values)]
+    plausible = [c for c in candidates if not range_concerns(effects[c.effect], c.values) and c.closure > 0]
     return np.array([bool(flagged[i]) and not any(explains(plain_gaps(c, before, window_before), c.gaps, i)
                                                   for c in plausible)
                      for i in range(flagged.size)])
