@@ -30,6 +30,7 @@ FORBIDDEN = {
     "fowt_hydro_sim/ros": ("fowt_hydro_sim.studies", "fowt_hydro_sim.cli"),
     "fowt_hydro_sim/frames.py": ("fowt_hydro_sim.", "msg_adapters", "numba", *ROS_PACKAGES),
     "fowt_hydro_sim/settings.py": ("fowt_hydro_sim.", "msg_adapters", "numba", *ROS_PACKAGES),
+    "fowt_hydro_sim/files.py": ("fowt_hydro_sim.", "msg_adapters", "numba", *ROS_PACKAGES),
 }
 
 

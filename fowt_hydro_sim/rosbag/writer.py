@@ -51,6 +51,7 @@ from mcap.records import (
 from mcap.writer import MCAP0_MAGIC
 
 from fowt_hydro_sim import __version__
+from fowt_hydro_sim.files import replace_text
 from fowt_hydro_sim.rosbag.schemas import schema
 
 log = logging.getLogger(__name__)
@@ -339,7 +340,7 @@ class BagWriter:
         try:
             self._write_metadata_yaml()
         except OSError:
-            (self.path / (METADATA_FILE + ".tmp")).unlink(missing_ok=True)
+            pass  # the failure below is what the user is told; the last metadata.yaml stays whole
         self.failure = (f"bag {self.path}: recording stopped at a failed write ({exc.strerror or exc}); "
                         f"closed with the {self.message_count} messages written before")
         if raise_:
@@ -391,9 +392,7 @@ class BagWriter:
                            "duration": {"nanoseconds": duration}, "message_count": count}],
                 "custom_data": {RUN_CONFIG_KEY: self._config_yaml} if self._config_yaml is not None else {},
                 "ros_distro": "jazzy"}
-        temporary = self.path / (METADATA_FILE + ".tmp")
-        temporary.write_text(yaml.safe_dump({"rosbag2_bagfile_information": info}, sort_keys=False))
-        temporary.replace(self.path / METADATA_FILE)
+        replace_text(self.path / METADATA_FILE, yaml.safe_dump({"rosbag2_bagfile_information": info}, sort_keys=False))
 
     def __enter__(self) -> BagWriter:
         return self

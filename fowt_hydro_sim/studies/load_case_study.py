@@ -12,7 +12,6 @@ from __future__ import annotations
 import csv
 import io
 import logging
-import os
 import sys
 import time
 from dataclasses import dataclass
@@ -20,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fowt_hydro_sim.files import replace_text
 from fowt_hydro_sim.physics.config import DRAG_MODELS, Platform, SeaState, load_case
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
@@ -86,7 +86,7 @@ def write_tables(rows: list[dict], folder: Path, header: str) -> None:
     writer = csv.DictWriter(table, fieldnames=list(rows[0]))
     writer.writeheader()
     writer.writerows(rows)
-    _replace(folder / "band_stds.csv", table.getvalue())
+    replace_text(folder / "band_stds.csv", table.getvalue())
     bands = list(BANDS_HZ)
     lines = [header, "",
              "| load case | DOF | " + " | ".join(f"{b} STD case 1 | case 2 | change" for b in bands) + " |",
@@ -94,13 +94,7 @@ def write_tables(rows: list[dict], folder: Path, header: str) -> None:
     for r in rows:
         cells = [f"{r[f'{b}_case1']:.3f} | {r[f'{b}_case2']:.3f} | {r[f'{b}_change_percent']:+.1f} %" for b in bands]
         lines.append(f"| {r['load_case']} | {r['dof']} [{r['unit']}] | " + " | ".join(cells) + " |")
-    _replace(folder / "band_stds.md", "\n".join(lines) + "\n")
-
-
-def _replace(path: Path, text: str) -> None:
-    staged = path.with_name(path.name + ".part")
-    staged.write_text(text, newline="")
-    os.replace(staged, path)
+    replace_text(folder / "band_stds.md", "\n".join(lines) + "\n")
 
 
 def case_labels(platform_name: str, case: str, runs: list[CaseRun], duration_s: float,
