@@ -339,6 +339,15 @@ def _gap(settings, run: str, values: dict[tuple[str, str], float]):
     return Gap(run, value, value - 1e-3, value + 1e-3, tolerance)
 
 
+def _tuning_runs(settings) -> tuple[list[MeasuredRun], list[dict]]:
+    """Three 1200 s tuning runs (one motion record, elevations of growing amplitude) and
+    their measured spectra, for diagnoses whose model runs are given gaps."""
+    from fowt_hydro_sim.studies.diagnosis.diagnose import measured_spectra
+    t, x = record(3, duration_s=1200.0)
+    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
+    return runs, [measured_spectra(r, settings) for r in runs]
+
+
 def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
     from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
     settings = GapSettings()
@@ -414,11 +423,9 @@ def test_a_mismatch_in_every_run_is_reported_as_the_baselines_before_any_effect(
     """The model's low-frequency surge 11 times the measured one in every tuning run, which
     no candidate closes, and a pitch frequency gap that added mass closes: the verdict is a
     baseline mismatch naming the surge cell, with added mass 'additionally'."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
     settings = GapSettings(transient_s=0.0)
-    t, x = record(3, duration_s=1200.0)
-    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
-    spectra = [measured_spectra(r, settings) for r in runs]
+    runs, spectra = _tuning_runs(settings)
     surge, pitch = ("surge", "std.low_frequency"), ("pitch", "frequency.low_frequency")
 
     def evaluate(jobs, description=""):
@@ -448,11 +455,9 @@ def test_a_mismatch_an_effect_takes_most_of_the_way_is_explained_by_it():
     the mean offset with it; heave in the wave band 15 % low, which nothing closes. Slow
     drift explains the surge mismatch and is named; only the heave mismatch is left as the
     baseline's."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
     settings = GapSettings(transient_s=0.0)
-    t, x = record(3, duration_s=1200.0)
-    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
-    spectra = [measured_spectra(r, settings) for r in runs]
+    runs, spectra = _tuning_runs(settings)
     surge, offset, heave = ("surge", "std.low_frequency"), ("surge", "offset"), ("heave", "std.wave")
 
     def evaluate(jobs, description=""):
@@ -481,11 +486,9 @@ def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_th
     squared gap. The lag is not a consistent mismatch, yet no effect explains it: it is set
     aside as the baseline's and said, and damping, closing what remains, is named and
     explains the surge mismatch."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
     settings = GapSettings(transient_s=0.0)
-    t, x = record(3, duration_s=1200.0)
-    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
-    spectra = [measured_spectra(r, settings) for r in runs]
+    runs, spectra = _tuning_runs(settings)
     surge, lag = ("surge", "std.low_frequency"), ("heave", "lag")
 
     def evaluate(jobs, description=""):
@@ -511,11 +514,9 @@ def test_an_effect_is_charged_for_moving_the_cells_set_aside_as_the_baselines():
     stiffness at 1.2 closes it and leaves heave alone. With one parameter against three,
     added mass would score better on the surge cell alone: it is charged for moving the
     set-aside cell, and the mooring is named."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
     settings = GapSettings(transient_s=0.0)
-    t, x = record(3, duration_s=1200.0)
-    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
-    spectra = [measured_spectra(r, settings) for r in runs]
+    runs, spectra = _tuning_runs(settings)
     surge, heave = ("surge", "frequency.low_frequency"), ("heave", "frequency.wave")
 
     def evaluate(jobs, description=""):
@@ -609,11 +610,9 @@ def test_differences_no_effect_moves_alone_are_the_baselines_not_unexplained():
     sign are flagged, linear in the waves, and no candidate moves them: the verdict is a
     baseline mismatch listing them, not "unexplained" (which the scoring counts as a false
     alarm on a null)."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
     settings = GapSettings(transient_s=0.0)
-    t, x = record(3, duration_s=1200.0)
-    runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
-    spectra = [measured_spectra(r, settings) for r in runs]
+    runs, spectra = _tuning_runs(settings)
     cells = {("heave", "lag"): (-0.3, 0.2, -8.8), ("pitch", "std.wave"): (-0.15, -0.12, 0.3)}
 
     def evaluate(jobs, description=""):
