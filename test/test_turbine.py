@@ -11,8 +11,9 @@ from scipy.optimize import brentq, root
 from fowt_hydro_sim.physics.config import ConfigError, HydroOptions, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.testing import rosco_oracle
-from fowt_hydro_sim.turbine.controller import ControllerError, Rosco
+from fowt_hydro_sim.turbine.controller import Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
+from fowt_hydro_sim.turbine.discon import ControllerError
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads
 from fowt_hydro_sim.turbine.wind import Wind, read_series
@@ -218,6 +219,55 @@ def test_rosco_refusing_its_input_file_is_one_clear_error(tmp_path):
     bad.write_text(turbine.discon_path.read_text().replace("! PC_MaxPit", "! PC_MaxPitX", 1))
     with pytest.raises(ControllerError, match="ROSCO failed starting"):
         Rosco(bad, 0.05, 0.95)
+
+
+_CALLS = """
+import json, sys, tempfile
+from pathlib import Path
+import numpy as np
+from rosco import discon_lib_path
+from fowt_hydro_sim.turbine.controller import discon_copy
+from fowt_hydro_sim.turbine.description import load_turbine
+folder = Path(tempfile.mkdtemp())
+param = discon_copy(load_turbine().discon_path, folder)
+t = np.arange(1, 2001) * 0.05
+wind = 10.0 + 4.0 * np.sin(t / 7.0)
+speed = 0.75 + 0.1 * np.sin(t / 5.0)
+outputs = []
+if sys.argv[1] == "toolbox":
+    from rosco.toolbox.control_interface import ControllerInterface
+    c = ControllerInterface(discon_lib_path, param_filename=str(param), sim_name=str(folder / "x"), DT=0.05)
+    step = lambda k: c.call_controller({"iStatus": 1, "t": t[k], "dt": 0.05, "ws": wind[k], "bld_pitch": 0.02,
+        "gen_torque": 1.5e7, "gen_speed": speed[k], "gen_eff": 0.95, "rot_speed": speed[k], "Yaw_fromNorth": 0.0,
+        "Y_MeasErr": 0.0, "NacIMU_FA_RAcc": 0.01})
+else:
+    from fowt_hydro_sim.turbine.discon import Discon
+    c = Discon(discon_lib_path, param, str(folder / "x"), 0.05)
+    step = lambda k: c.call(t[k], wind[k], speed[k], speed[k], 0.02, 1.5e7, 0.95, 0.01)
+for k in range(len(t)):
+    outputs.append([float(v) for v in step(k)])
+print(json.dumps(outputs))
+"""
+
+
+@pytest.mark.rosco
+def test_the_c_interface_gives_the_rosco_toolboxs_commands_bit_for_bit():
+    """The same 100 s of measurements through ROSCO's Python toolbox (ControllerInterface) and
+    through this package's ctypes binding (turbine.discon), each in a fresh process."""
+    import json
+    import subprocess
+    import sys
+
+    from fowt_hydro_sim.testing import REPO
+    runs = {}
+    for kind in ("toolbox", "binding"):
+        done = subprocess.run([sys.executable, "-c", _CALLS, kind], cwd=REPO, capture_output=True, text=True,
+                              timeout=300)
+        assert done.returncode == 0, done.stderr[-2000:]
+        runs[kind] = np.array(json.loads(done.stdout.strip().splitlines()[-1]))
+    assert runs["binding"].shape == (2000, 3)
+    assert np.ptp(runs["binding"][:, 1]) > 0.01  # the pitch moves: above rated part of the time
+    assert np.array_equal(runs["binding"], runs["toolbox"])
 
 
 def test_a_wind_series_from_a_bag(tmp_path):

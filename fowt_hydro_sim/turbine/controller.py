@@ -1,21 +1,18 @@
-"""NREL's ROSCO, the compiled controller shipped in the rosco wheel, called through its own
-Python interface (``rosco.toolbox.control_interface.ControllerInterface``).
+"""NREL's ROSCO, the compiled controller shipped in the rosco wheel, called through its C
+interface (``turbine.discon``): only the library and its files are used, not ROSCO's Python
+toolbox, so that the turbine needs neither WISDEM nor the toolbox's start-up time.
 
 ROSCO keeps its state in the library's globals: one controller per process. It reads its
 DISCON.IN and writes its debug files under a folder of its own (a copy of the DISCON.IN
 with the performance table's path made absolute, debug output off unless asked)."""
 from __future__ import annotations
 
-import math
 import re
 import tempfile
 from pathlib import Path
 
 from fowt_hydro_sim.physics.config import ConfigError
-
-
-class ControllerError(RuntimeError):
-    """ROSCO reported an error (its message is in the text)."""
+from fowt_hydro_sim.turbine.discon import Discon
 
 
 def discon_copy(source: Path, folder: Path, logging_level: int = 0) -> Path:
@@ -42,35 +39,23 @@ class Rosco:
 
     def __init__(self, discon: Path, dt_s: float, generator_efficiency: float, logging_level: int = 0,
                  pitch_rad: float = 0.0):
-        from rosco import discon_lib_path
-        from rosco.toolbox.control_interface import ControllerInterface
+        from rosco import discon_lib_path  # the package's __init__ only locates the library
 
         self._folder = tempfile.TemporaryDirectory(prefix="fowt_rosco_")
         folder = Path(self._folder.name)
         param = discon_copy(Path(discon), folder, logging_level)
         self.dt_s, self._efficiency = dt_s, generator_efficiency
-        self._interface = ControllerInterface(discon_lib_path, param_filename=str(param),
-                                              sim_name=str(folder / "rosco"), DT=dt_s,
-                                              pitch=math.degrees(pitch_rad))  # its integrators start there
-        self._check("starting")  # the interface swallows a failed start: ask the library
-
-    def _check(self, when: str) -> None:
-        fail = self._interface.aviFAIL.value
-        if fail < 0:
-            message = self._interface.avcMSG.value.decode(errors="replace").strip() or "no message"
-            raise ControllerError(f"ROSCO failed {when}: {message}")
+        # its integrators start at pitch_rad
+        self._discon = Discon(discon_lib_path, param, str(folder / "rosco"), dt_s, pitch_rad, name="ROSCO")
 
     def step(self, t_s: float, wind_m_s: float, rotor_speed_rad_s: float, generator_speed_rad_s: float,
              pitch_rad: float, generator_torque_nm: float, pitch_acceleration_rad_s2: float = 0.0,
              last: bool = False) -> tuple[float, float]:
-        """One controller call (``iStatus`` 1, or -1 for the last); ControllerError if ROSCO fails."""
-        state = {"iStatus": -1 if last else 1, "t": t_s, "dt": self.dt_s, "ws": wind_m_s,
-                 "bld_pitch": pitch_rad, "gen_torque": generator_torque_nm, "gen_speed": generator_speed_rad_s,
-                 "gen_eff": self._efficiency, "rot_speed": rotor_speed_rad_s, "Yaw_fromNorth": 0.0,
-                 "Y_MeasErr": 0.0, "NacIMU_FA_RAcc": pitch_acceleration_rad_s2}
-        torque, pitch, _ = self._interface.call_controller(state)
-        self._check(f"at t = {t_s:.3f} s")
-        return float(torque), float(pitch)
+        """One controller call (status 1, or -1 for the last); ``discon.ControllerError`` if ROSCO fails."""
+        torque, pitch, _ = self._discon.call(t_s, wind_m_s, rotor_speed_rad_s, generator_speed_rad_s, pitch_rad,
+                                             generator_torque_nm, self._efficiency,
+                                             nacelle_angular_acceleration_rad_s2=pitch_acceleration_rad_s2, last=last)
+        return torque, pitch
 
     def close(self) -> None:
         self._folder.cleanup()
