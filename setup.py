@@ -5,7 +5,7 @@ pip-installable project on a machine without ROS:
 
     pip install .            # core simulator and bag tools (numpy, scipy, pyyaml, numba, mcap)
     pip install '.[ros]'     # + rclpy and message packages as PyPI wheels
-    pip install '.[ros,test]'
+    pip install '.[ros,dev]'   # + tests, docs and linter (what CI installs)
 """
 from setuptools import find_packages, setup
 
@@ -20,6 +20,12 @@ ROS_WHEELS = [
     'ros-std-msgs',
     'ros-builtin-interfaces',
 ]
+
+ROSCO = 'rosco>=2.10,<2.11'
+DOCS = ['mkdocs>=1.6', 'mkdocs-material>=9.5', 'mkdocstrings[python]>=0.26']
+# the tests' independent references: bag readers, OpenFAST's file library, ROSCO's simulator
+# (the turbine's oracle), MoorPy, capytaine (BEM)
+TEST = ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', ROSCO, 'moorpy', 'capytaine>=3.0']
 
 # Top-level packages are listed explicitly so that a missing directory is a loud
 # build error (find_packages would silently skip it); sub-packages are found.
@@ -57,13 +63,17 @@ setup(
         'tqdm',
     ],
     extras_require={
+        # the ROS 2 nodes and bag tools: rclpy and the message packages as PyPI wheels
         'ros': ROS_WHEELS,
-        # the turbine node's controller: NREL's ROSCO (compiled library, toolbox, IEA 15 MW files)
-        'rosco': ['rosco>=2.10,<2.11'],
-        # independent bag readers, to check the bags we write
-        # (capytaine: the BEM drift reference's check against the closed-form cylinder drift)
-        'test': ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', 'rosco>=2.10,<2.11', 'moorpy',
-                 'capytaine>=3.0'],
+        # NREL's ROSCO with its Python toolbox (tuning, its own simulator). The turbine node needs
+        # only the compiled controller and its files: `pip install --no-deps 'rosco>=2.10,<2.11'`
+        # gives those without the toolbox's WISDEM (the package's metadata requires it)
+        'rosco': [ROSCO],
+        'test': TEST,
+        # the documentation site
+        'docs': DOCS,
+        # everything a contributor runs: the tests, the docs build and the linter
+        'dev': [*TEST, 'ruff', *DOCS],
         # fowt-sim platform import (OpenFAST HydroDyn decks)
         'hydrodyn': ['openfast-io>=5.0'],
         # rebuilding the independent simulator's BEM database (the stored one needs neither)

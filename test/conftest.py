@@ -5,9 +5,10 @@ this machine (loopback only), and the caller's ROS_DOMAIN_ID is kept; without on
 id is derived from this checkout's path and the test session's process id, so that two
 checkouts (or two sessions) testing on one host at once do not see each other's nodes.
 
-Tests that need ROS (rclpy, the message packages and a middleware) are marked ``ros``, or
-skip their module with ``pytest.importorskip("rclpy")``: without ROS they are skipped,
-unless FOWT_REQUIRE_ROS=1 (set by .ci/run), where a missing rclpy fails the session.
+Test tiers are markers (pyproject.toml): the default run leaves out ``slow``. Tests that
+need ROS (rclpy, the message packages and a middleware) are marked ``ros``, those that need
+ROSCO's Python toolbox ``rosco``: without them installed they are skipped, unless
+FOWT_REQUIRE_ROS=1 (set by .ci/run), where a missing rclpy or toolbox fails the session.
 """
 import importlib.util
 import os
@@ -29,13 +30,17 @@ def free_domain_id(key: str) -> int:
 if not os.environ.get("ROS_DOMAIN_ID"):
     os.environ["ROS_DOMAIN_ID"] = str(free_domain_id(f"{Path(__file__).resolve().parent}:{os.getpid()}"))
 
-HAVE_ROS = importlib.util.find_spec("rclpy") is not None
-if not HAVE_ROS and os.environ.get("FOWT_REQUIRE_ROS") == "1":
-    raise pytest.UsageError("FOWT_REQUIRE_ROS=1 but rclpy cannot be imported: pip install '.[ros]'")
+# marker -> (installed?, what to install)
+NEEDS = {
+    "ros": (importlib.util.find_spec("rclpy") is not None, "pip install '.[ros]'"),
+    "rosco": (all(importlib.util.find_spec(m) is not None for m in ("rosco", "wisdem")), "pip install '.[rosco]'"),
+}
+missing = [f"{marker} ({install})" for marker, (present, install) in NEEDS.items() if not present]
+if missing and os.environ.get("FOWT_REQUIRE_ROS") == "1":
+    raise pytest.UsageError(f"FOWT_REQUIRE_ROS=1 but not installed: {', '.join(missing)}")
 
 
 def pytest_configure(config):
-    config.addinivalue_line("markers", "ros: needs rclpy and the ROS message packages (skipped without them)")
     # the kernel's literal_unroll over the load registry, on purpose (physics/loads/__init__.py)
     config.addinivalue_line("filterwarnings", "ignore::numba.core.errors.NumbaExperimentalFeatureWarning")
     if config.option.durations is None:  # the suite's time budget: say where it goes
@@ -43,12 +48,13 @@ def pytest_configure(config):
 
 
 def pytest_collection_modifyitems(config, items):
-    if HAVE_ROS:
-        return
-    skip = pytest.mark.skip(reason="rclpy is not installed (pip install '.[ros]')")
-    for item in items:
-        if item.get_closest_marker("ros"):
-            item.add_marker(skip)
+    for marker, (present, install) in NEEDS.items():
+        if present:
+            continue
+        skip = pytest.mark.skip(reason=f"not installed: {install}")
+        for item in items:
+            if item.get_closest_marker(marker):
+                item.add_marker(skip)
 
 
 @pytest.fixture
