@@ -4,7 +4,8 @@ Works both as a ROS 2 ament_python package (colcon build) and as a plain
 pip-installable project on a machine without ROS:
 
     pip install .            # core simulator and bag tools (numpy, scipy, pyyaml, numba, mcap)
-    pip install '.[ros]'     # + rclpy and message packages as PyPI wheels
+    pip install '.[ros]'     # + rclpy and message packages as PyPI wheels (the main job)
+    pip install '.[ros,plots,cluster]'   # + figures (matplotlib) and Dask for sweeps and fits
     pip install '.[ros,dev]'   # + tests, docs and linter (what CI installs)
 """
 from setuptools import find_packages, setup
@@ -23,9 +24,12 @@ ROS_WHEELS = [
 
 ROSCO = 'rosco>=2.10,<2.11'
 DOCS = ['mkdocs>=1.6', 'mkdocs-material>=9.5', 'mkdocstrings[python]>=0.26']
-# the tests' independent references: bag readers, OpenFAST's file library, ROSCO's simulator
-# (the turbine's oracle), MoorPy, capytaine (BEM)
-TEST = ['pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', ROSCO, 'moorpy', 'capytaine>=3.0']
+PLOTS = ['matplotlib']
+CLUSTER = ['dask[distributed]']
+# every command's extras, and the tests' independent references: bag readers, OpenFAST's file
+# library, ROSCO's simulator (the turbine's oracle), MoorPy, capytaine (BEM)
+TEST = [*PLOTS, *CLUSTER, 'pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', ROSCO, 'moorpy',
+        'capytaine>=3.0']
 
 # Top-level packages are listed explicitly so that a missing directory is a loud
 # build error (find_packages would silently skip it); sub-packages are found.
@@ -56,15 +60,17 @@ setup(
         'scipy',
         'pyyaml',
         'numba',
-        'matplotlib',
         'mcap>=1.2',
         'zstandard',
-        'dask[distributed]',  # calibration runs on a local or remote Dask cluster
         'tqdm',
     ],
     extras_require={
         # the ROS 2 nodes and bag tools: rclpy and the message packages as PyPI wheels
         'ros': ROS_WHEELS,
+        # the figures of analyze, load-cases, calibrate, diagnose and the turbine plots
+        'plots': PLOTS,
+        # sweep, calibrate, diagnose and diagnose-benchmark run on a local or remote Dask cluster
+        'cluster': CLUSTER,
         # NREL's ROSCO with its Python toolbox (tuning, its own simulator). The turbine node needs
         # only the compiled controller and its files: `pip install --no-deps 'rosco>=2.10,<2.11'`
         # gives those without the toolbox's WISDEM (the package's metadata requires it)
