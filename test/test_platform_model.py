@@ -407,3 +407,14 @@ def test_a_user_force_that_returns_nonsense_stops_the_run_with_one_line():
         model.run(2.0)
     with pytest.raises(ValueError, match="user force: need a function"):
         PlatformModel(load_platform("windmoor12"), user_force=np.zeros(6))
+
+
+def test_each_load_component_module_is_named_by_one_registry_line():
+    """The registry names each component's module (nothing else imports it by hand), and
+    every module of physics/loads/ is a registered component."""
+    from pathlib import Path
+
+    from fowt_hydro_sim.physics import loads
+
+    modules = sorted(p.stem for p in Path(loads.__file__).parent.glob("*.py") if p.stem != "__init__")
+    assert sorted(c.module for c in loads.COMPONENTS if c.module is not None) == modules
