@@ -104,15 +104,14 @@ def cli_page() -> str:
     from fowt_hydro_sim.cli import ROS_COMMANDS, parser
     if unknown := set(ROS_COMMAND_PARSERS) - set(ROS_COMMANDS):
         raise ValueError(f"reference tables: no ROS command {', '.join(sorted(unknown))} (cli.ROS_COMMANDS)")
-    top = parser()
-    commands = _subcommands(top)
+    commands = _subcommands(parser())
     body = ["`fowt-sim [-v] COMMAND ...`: `-v`, `--verbose` turns on debug logging. Each command's "
             "`--help` says the same as its table here.", ""]
     body += _table(("command", "what it does"), ((f"[`{name}`](#fowt-sim-{name})", text)
                                                 for name, (text, _) in commands.items()))
-    for name, (text, command) in commands.items():
-        if name not in ROS_COMMANDS:
-            body += _command_section(name, text, command)
+    for name, (text, _) in commands.items():
+        if name not in ROS_COMMANDS:  # the command's full parser: parser(name) defines it
+            body += _command_section(name, text, _subcommands(parser(name))[name][1])
             continue
         own = importlib.import_module(ROS_COMMAND_PARSERS[name]).parser() if name in ROS_COMMAND_PARSERS else None
         body += ["", f"## fowt-sim {name}", "", (own and own.description or text).strip(), "",
