@@ -33,7 +33,7 @@ def table(path, first_header: str) -> list[list[str]]:
 @pytest.mark.ros  # the nodes' settings import rclpy
 def test_the_reference_tables_are_current(tmp_path):
     """Each committed table of docs/reference/ is what the generator writes from the code now."""
-    from fowt_hydro_sim import reference_tables
+    from fowt_hydro_sim.cli import reference_tables
 
     written = reference_tables.write(tmp_path)
     assert {p.name for p in written} == {p.name for p in (DOCS / "reference").glob("*.md")}, \

@@ -3,11 +3,14 @@ command line's parsers, the nodes' settings, the topic contract, the load regist
 diagnosis's catalogue of effects. A table is never edited by hand; after a change of the
 code, rewrite them all:
 
-    python -m fowt_hydro_sim.reference_tables            # into docs/reference/ of this checkout
-    python -m fowt_hydro_sim.reference_tables -o DIR     # elsewhere
+    python -m fowt_hydro_sim.cli.reference_tables            # into docs/reference/ of this checkout
+    python -m fowt_hydro_sim.cli.reference_tables -o DIR     # elsewhere
 
 A test (test/test_docs.py) fails while a committed table differs from what this writes.
-Importing the nodes' settings imports rclpy (no ROS context is started).
+Importing the nodes' settings imports rclpy (no ROS context is started). It lives with the
+command line, the one layer that may import all the others it reads (the command parsers,
+the nodes, the physics and the studies), but it is not a ``fowt-sim`` command: the tables
+belong to a checkout's docs/.
 """
 from __future__ import annotations
 
@@ -19,8 +22,8 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-COMMAND = "python -m fowt_hydro_sim.reference_tables"
-CHECKOUT_FOLDER = Path(__file__).resolve().parents[1] / "docs" / "reference"
+COMMAND = "python -m fowt_hydro_sim.cli.reference_tables"
+CHECKOUT_FOLDER = Path(__file__).resolve().parents[2] / "docs" / "reference"
 
 # the ROS commands (cli.ROS_COMMANDS) whose arguments an argparse parser of their own reads:
 # the module with its ``parser()``; the nodes' parameters are in node_parameters.md
@@ -267,7 +270,7 @@ def write(folder: Path) -> list[Path]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m fowt_hydro_sim.reference_tables [-o DIR]``: write the tables."""
+    """``python -m fowt_hydro_sim.cli.reference_tables [-o DIR]``: write the tables."""
     p = argparse.ArgumentParser(prog=COMMAND, description="Write the reference tables of docs/reference/ "
                                                           "from the code.")
     p.add_argument("-o", "--output", type=Path, help="folder to write to (default: docs/reference/ of the "
