@@ -43,8 +43,15 @@ from fowt_hydro_sim.physics.dynamics import (
     StripData,
     WaveTable,
 )
-from fowt_hydro_sim.physics.loads import (FIRST_MODULE_ROW, N_LOADS, ROW, ComponentInputs, component_data, external,
-                                          params_of)
+from fowt_hydro_sim.physics.loads import (
+    FIRST_MODULE_ROW,
+    N_LOADS,
+    ROW,
+    ComponentInputs,
+    component_data,
+    external,
+    params_of,
+)
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
 from fowt_hydro_sim.physics.morison import (
@@ -60,9 +67,15 @@ from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_into, interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
-from fowt_hydro_sim.physics.waves.kinematics import (BlocksAhead, BlockSynthesis, KinematicsTable,
-                                                     complex_amplitudes, moving_point_kinematics, period_table,
-                                                     table_step)
+from fowt_hydro_sim.physics.waves.kinematics import (
+    BlocksAhead,
+    BlockSynthesis,
+    KinematicsTable,
+    complex_amplitudes,
+    moving_point_kinematics,
+    period_table,
+    table_step,
+)
 
 log = logging.getLogger(__name__)
 
