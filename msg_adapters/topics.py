@@ -62,3 +62,26 @@ def type_of(topic: str) -> str | None:
 def type_name(message_class: type) -> str:
     """'nav_msgs/msg/Odometry' of a generated rclpy message class."""
     return f"{message_class.__module__.split('.')[0]}/msg/{message_class.__name__}"
+
+
+MEANINGS = {  # what each topic of the contract carries (the load topics': the load registry's summaries)
+    ELEVATION: "one sample of the wave elevation: `header.stamp` = when it was measured, `point.x`, `point.y` = "
+               "where (world frame, must be `wave_point_xy`), `point.z` = elevation [m]; used with "
+               "`wave_source:=topic`",
+    EXTERNAL_WRENCH: "a load on the platform (rotor thrust from a controller, an aerodynamic model...); "
+                     "`header.frame_id` says where it acts: `hub` (platform axes, at the hub point), `platform` "
+                     "(platform axes, at the reference point) or `world` (world axes, at the reference point); "
+                     "it stays applied until the next message",
+    "/clock": "simulation time",
+    "/platform/odom": "pose in `world`; twist in `platform` axes (the ROS convention for odometry)",
+    POSE: "position and orientation of the reference point in `world`",
+    "/platform/twist": "linear and angular velocity, `world` axes",
+    "/platform/accel": "linear and angular acceleration, `world` axes",
+    ELEVATION_USED[0]: "the elevation the model used at the reference point, whatever the wave source",
+    "/turbine/rotor_speed": "rotor speed [rad/s] in `vector.x`",
+    "/turbine/generator_torque": "generator torque [N m] in `vector.x`",
+    "/turbine/generator_power": "generator power [W] in `vector.x`",
+    "/turbine/blade_pitch": "blade pitch [rad] in `vector.x`",
+    "/turbine/wind_speed": "free wind speed at the hub [m/s] in `vector.x`",
+    "/turbine/relative_wind_speed": "wind speed minus the hub's fore-aft velocity [m/s] in `vector.x`",
+}

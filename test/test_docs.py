@@ -1,7 +1,8 @@
-"""The documents a clone carries (docs/): their tables say what the code does. The topic
-contract against ``msg_adapters.topics`` and the load registry, the load cases against the
-packaged YAML, the platform's mass and mooring against the packaged platform; and no
-pointer to files outside the repository."""
+"""The documents a clone carries (docs/): their tables say what the code does. The generated
+reference tables (docs/reference/) are current, and the topic contract there is the one of
+``msg_adapters.topics`` and the load registry; the load cases against the packaged YAML, the
+platform's mass and mooring against the packaged platform; and no pointer to files outside
+the repository."""
 from __future__ import annotations
 
 import re
@@ -29,8 +30,21 @@ def table(path, first_header: str) -> list[list[str]]:
     return rows
 
 
+@pytest.mark.ros  # the nodes' settings import rclpy
+def test_the_reference_tables_are_current(tmp_path):
+    """Each committed table of docs/reference/ is what the generator writes from the code now."""
+    from fowt_hydro_sim.cli import reference_tables
+
+    written = reference_tables.write(tmp_path)
+    assert {p.name for p in written} == {p.name for p in (DOCS / "reference").glob("*.md")}, \
+        f"docs/reference/ holds other files than the generated ones: run {reference_tables.COMMAND}"
+    stale = [p.name for p in written if not (DOCS / "reference" / p.name).is_file()
+             or (DOCS / "reference" / p.name).read_text() != p.read_text()]
+    assert not stale, f"docs/reference/{', '.join(stale)}: not what the code says; run {reference_tables.COMMAND}"
+
+
 def test_the_topic_tables_are_the_contract_the_code_uses():
-    doc = DOCS / "ros_interface.md"
+    doc = DOCS / "reference" / "topics.md"
     rows = {}
     lines = doc.read_text().splitlines()
     for start in (i for i, line in enumerate(lines) if line.startswith("| topic | type |")):
@@ -39,8 +53,9 @@ def test_the_topic_tables_are_the_contract_the_code_uses():
                 break
             cells = [cell.strip().strip("`") for cell in line.strip("|").split("|")]
             rows[cells[0]] = cells[1].replace("/", "/msg/", 1)
-    assert set(rows) == set(topics.INPUTS) | {t for t, _ in topics.outputs(PUBLISHED).values()}
-    expected = {**topics.INPUTS, **dict(topics.outputs(PUBLISHED).values())}
+    assert set(rows) == set(topics.INPUTS) | {t for t, _ in topics.outputs(PUBLISHED).values()} | {
+        t for t, _ in topics.TURBINE.values()}
+    expected = {**topics.INPUTS, **dict(topics.outputs(PUBLISHED).values()), **dict(topics.TURBINE.values())}
     assert rows == expected
 
 

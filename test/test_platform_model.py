@@ -325,3 +325,96 @@ def test_external_wrench_frames():
         model.set_external_wrench(thrust, frame="tower")
     with pytest.raises(ValueError, match="finite"):
         model.set_external_wrench(np.array([np.nan] * 6))
+
+
+def test_a_user_force_of_zero_steps_like_the_compiled_loop_bit_for_bit():
+    """With a user force the model steps in Python (dynamics.integrate_stepwise); a force of
+    zero gives the compiled loop's numbers exactly, in waves, with the filtered drag's states."""
+    waves = synthesize(load_case("lc5.3").sea_state, 600.0)
+    results = []
+    for force in (None, lambda t, position, velocity: np.zeros(6)):
+        model = PlatformModel(load_platform("windmoor12"), waves, drag_model="filtered", user_force=force)
+        model.reset(motion=np.array([2.0, 0.0, 0.5, 0.0, 0.02, 0.0]))
+        results.append(model.run(30.0))
+    compiled, stepwise = results
+    for name in ("motion", "velocity", "acceleration", "loads"):
+        assert np.array_equal(getattr(compiled, name), getattr(stepwise, name)), name
+    assert not np.any(stepwise.load("user"))
+
+
+def test_a_user_force_equals_the_same_compiled_term():
+    """A linear damping written in Python moves the platform as the same damping compiled in
+    the kernel (an extension term), to round-off; the user row holds it, and a prescribed
+    motion's user row is the function at each sample."""
+    from fowt_hydro_sim.physics.loads.extension import Extension
+
+    damping = np.diag([4e5, 4e5, 1e6, 2e9, 2e9, 1e9])
+    waves = synthesize(load_case("lc5.3").sea_state, 600.0)
+    start = np.array([2.0, 0.0, 0.5, 0.0, 0.02, 0.0])
+    compiled = PlatformModel(load_platform("windmoor12"), waves, extension=Extension(linear_damping=damping))
+    compiled.reset(motion=start)
+    calls = []
+
+    def damper(t: float, position: np.ndarray, velocity: np.ndarray) -> np.ndarray:
+        calls.append(t)
+        return -damping @ velocity
+
+    python = PlatformModel(load_platform("windmoor12"), waves, user_force=damper)
+    python.reset(motion=start)
+    calls.clear()  # (the reset's evaluation at t = 0)
+    a, b = compiled.run(60.0, output_interval_s=0.5), python.run(60.0, output_interval_s=0.5)
+    assert np.abs(b.motion - a.motion).max() < 1e-9 * np.abs(a.motion).max()
+    assert np.allclose(b.load("user"), a.load("extension"), rtol=1e-7, atol=1e-6 * np.abs(a.load("extension")).max())
+    assert not np.any(b.load("extension")) and np.abs(b.load("user")[:, 0]).max() > 1e4
+    assert len(calls) == 3 * 4 + (1200 - 3) * 2  # RK4's four for the first three steps, then ABM4's two
+
+    t = np.linspace(0.0, 10.0, 11)
+    motion, velocity, acceleration = _prescribed_motion(t)
+    loads = python.prescribed_motion_loads(t, motion, velocity, acceleration)
+    assert np.array_equal(loads[:, ROW["user"]], -velocity @ damping.T)
+    assert not np.any(compiled.prescribed_motion_loads(t, motion, velocity, acceleration)[:, ROW["user"]])
+
+
+@pytest.mark.slow
+def test_a_user_linear_damping_gives_the_closed_form_damping_ratio():
+    """Surge free decay in still water without drag: a linear surge damping -B v written in
+    Python gives the damping ratio B / (2 sqrt(k m)) of the surge mode (k, m: the linearised
+    model's restoring and mass, rigid plus added, along the mode shape)."""
+    platform = scaled_drag(load_platform("windmoor12"), 0.0)
+    model = PlatformModel(platform)
+    mass, restoring = model.mass_matrix(), model.restoring_matrix()
+    values, vectors = np.linalg.eig(np.linalg.solve(mass, restoring))
+    mode = int(np.argmax(np.abs(vectors[0])))
+    shape = vectors[:, mode].real / vectors[0, mode].real
+    k, m = shape @ restoring @ shape, shape @ mass @ shape
+    ratio = 0.05
+    b = ratio * 2.0 * math.sqrt(k * m)
+    model = PlatformModel(platform, user_force=lambda t, position, velocity: [-b * velocity[0], 0, 0, 0, 0, 0])
+    model.reset(motion=6.0 * shape)
+    result = model.run(500.0, output_interval_s=0.05)
+    peaks = _peaks(result.motion[:, 0])
+    decrement = np.log(peaks[:-1] / peaks[1:]).mean()
+    assert decrement / math.sqrt(4 * math.pi**2 + decrement**2) == pytest.approx(ratio, rel=0.03)
+    assert _crossing_period(result.time_s, result.motion[:, 0]) == pytest.approx(
+        2 * np.pi / math.sqrt(values[mode].real) / math.sqrt(1 - ratio**2), rel=0.02)
+
+
+def test_a_user_force_that_returns_nonsense_stops_the_run_with_one_line():
+    with pytest.raises(ValueError, match=r"user force at t = 0 s: must return 6 finite numbers, got \[nan"):
+        PlatformModel(load_platform("windmoor12"), user_force=lambda t, q, v: np.full(6, np.nan))
+    model = PlatformModel(load_platform("windmoor12"), user_force=lambda t, q, v: np.zeros(6) if t < 1.0 else [1.0])
+    with pytest.raises(ValueError, match=r"user force at t = 1 s: must return 6 finite numbers, got \[1.0\]"):
+        model.run(2.0)
+    with pytest.raises(ValueError, match="user force: need a function"):
+        PlatformModel(load_platform("windmoor12"), user_force=np.zeros(6))
+
+
+def test_each_load_component_module_is_named_by_one_registry_line():
+    """The registry names each component's module (nothing else imports it by hand), and
+    every module of physics/loads/ is a registered component."""
+    from pathlib import Path
+
+    from fowt_hydro_sim.physics import loads
+
+    modules = sorted(p.stem for p in Path(loads.__file__).parent.glob("*.py") if p.stem != "__init__")
+    assert sorted(c.module for c in loads.COMPONENTS if c.module is not None) == modules

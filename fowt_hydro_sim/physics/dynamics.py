@@ -13,6 +13,7 @@ time and a batch run call the same function, so both give the same numbers, bit 
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -320,12 +321,44 @@ def _rk4(t: float, dt: float, y: np.ndarray, k1: np.ndarray, d: KernelData, w: W
     stage, k = w.trial_state, w.trial_rates
     previous = k1
     for s, fraction in enumerate((0.5, 0.5, 1.0)):  # k2, k3, k4 at t + fraction dt
-        for m in range(y.size):
-            stage[m] = y[m] + fraction * dt * previous[m]
+        rk4_stage(y, fraction, dt, previous, stage)
         derivative(t + fraction * dt, stage, d, w, k[s])
         previous = k[s]
+    rk4_combine(y, dt, k1, k)
+
+
+# the integrators' arithmetic, one definition for the compiled loop (inlined there) and the
+# Python-level one (``integrate_stepwise``): compiled alike, so both give the same numbers
+_step_arithmetic = njit(cache=True, _nrt=False, fastmath={"contract"}, inline="always")
+
+
+@_step_arithmetic
+def rk4_stage(y: np.ndarray, fraction: float, dt: float, rate: np.ndarray, stage: np.ndarray) -> None:
+    """An RK4 stage state: stage = y + fraction dt rate."""
+    for m in range(y.size):
+        stage[m] = y[m] + fraction * dt * rate[m]
+
+
+@_step_arithmetic
+def rk4_combine(y: np.ndarray, dt: float, k1: np.ndarray, k: np.ndarray) -> None:
+    """The RK4 step of y in place from its four rates (k1, and k2, k3, k4 as rows of k)."""
     for m in range(y.size):
         y[m] += (dt / 6.0) * (k1[m] + 2.0 * k[0, m] + 2.0 * k[1, m] + k[2, m])
+
+
+@_step_arithmetic
+def abm4_predict(y: np.ndarray, h: float, f0: np.ndarray, f1: np.ndarray, f2: np.ndarray, f3: np.ndarray,
+                 predicted: np.ndarray) -> None:
+    """Adams-Bashforth's prediction from the last four rates, newest first (h = dt / 24)."""
+    for m in range(y.size):  # (loops: no temporaries over the filter states)
+        predicted[m] = y[m] + h * (55.0 * f0[m] - 59.0 * f1[m] + 37.0 * f2[m] - 9.0 * f3[m])
+
+
+@_step_arithmetic
+def abm4_correct(y: np.ndarray, h: float, fp: np.ndarray, f0: np.ndarray, f1: np.ndarray, f2: np.ndarray) -> None:
+    """Adams-Moulton's correction of y in place from the predicted rate fp and the last three."""
+    for m in range(y.size):
+        y[m] += h * (9.0 * fp[m] + 19.0 * f0[m] - 5.0 * f1[m] + f2[m])
 
 
 # step_loop's options (physics.jit) and nogil: a node publishes the last batch while the next one runs
@@ -356,12 +389,10 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
             _rk4(t, dt, y, f0, d, w)
             interpolate_into(d.waves.values, d.waves.step_s, t_next, w.kinematics)
         else:
-            for m in range(y.size):  # (loops: no temporaries over the filter states)
-                predicted[m] = y[m] + h * (55.0 * f0[m] - 59.0 * f1[m] + 37.0 * f2[m] - 9.0 * f3[m])
+            abm4_predict(y, h, f0, f1, f2, f3, predicted)
             interpolate_into(d.waves.values, d.waves.step_s, t_next, w.kinematics)
             _derivative(t_next, predicted, d, w, fp)
-            for m in range(y.size):
-                y[m] += h * (9.0 * fp[m] + 19.0 * f0[m] - 5.0 * f1[m] + f2[m])
+            abm4_correct(y, h, fp, f0, f1, f2)
         newest[0] = (i0 + 1) % 4  # the oldest row takes the new derivative
         _derivative(t_next, y, d, w, history[newest[0]])
         if (n + 1) % record_every == 0:
@@ -369,5 +400,43 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
             copy_into(y[:N_BODY_STATES], out_y[written])
             copy_into(history[newest[0], 6:12], out_acceleration[written])
             copy_into(w.loads, out_loads[written])
+            written += 1
+    return written
+
+
+def integrate_stepwise(rates: Callable[[float, np.ndarray, np.ndarray], None], y: np.ndarray, first_step: int,
+                       dt: float, n_steps: int, record_every: int, w: Workspace, history: np.ndarray,
+                       newest: np.ndarray, out_t: np.ndarray, out_y: np.ndarray, out_acceleration: np.ndarray,
+                       out_loads: np.ndarray) -> int:
+    """``integrate`` as a Python loop around ``rates(t, y, out)``, which writes dy/dt at (t, y)
+    to ``out`` and the loads to ``w.loads`` (e.g. a Python force written into the kernel data,
+    then ``derivative``): the same steps, evaluations and arithmetic, so that with rates that
+    are ``derivative``'s the numbers are ``integrate``'s, bit for bit."""
+    predicted, fp, stage, k = w.trial_state, w.trial_rates[0], w.trial_state, w.trial_rates
+    h = dt / 24.0
+    written = 0
+    for n in range(n_steps):
+        t = (first_step + n) * dt
+        t_next = (first_step + n + 1) * dt
+        i0 = int(newest[0])
+        f0, f1, f2, f3 = history[i0], history[(i0 + 3) % 4], history[(i0 + 2) % 4], history[(i0 + 1) % 4]
+        if np.isnan(f3[0]):
+            previous = f0
+            for s, fraction in enumerate((0.5, 0.5, 1.0)):
+                rk4_stage(y, fraction, dt, previous, stage)
+                rates(t + fraction * dt, stage, k[s])
+                previous = k[s]
+            rk4_combine(y, dt, f0, k)
+        else:
+            abm4_predict(y, h, f0, f1, f2, f3, predicted)
+            rates(t_next, predicted, fp)
+            abm4_correct(y, h, fp, f0, f1, f2)
+        newest[0] = (i0 + 1) % 4
+        rates(t_next, y, history[newest[0]])
+        if (n + 1) % record_every == 0:
+            out_t[written] = t_next
+            out_y[written] = y[:N_BODY_STATES]
+            out_acceleration[written] = history[newest[0], 6:12]
+            out_loads[written] = w.loads
             written += 1
     return written

@@ -5,11 +5,19 @@ hydrostatics, mooring, gravity and an external wrench into a 6-DOF time-domain s
     model = PlatformModel(load_platform("windmoor12"), synthesize(sea, 3600.0))
     result = model.run(600.0)            # batch
     sample = model.step()                # or one dt at a time (a node does this)
+
+A force written in Python, without a load component of its own (docs/contributing.md):
+
+    def mooring_damper(t, position, velocity):      # world axes, about the reference point
+        return np.array([-2e5 * velocity[0], 0, 0, 0, 0, 0])
+
+    model = PlatformModel(platform, waves, user_force=mooring_damper)
+    model.run(600.0).load("user")        # its wrench, one row per output sample
 """
 from __future__ import annotations
 
 import logging
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -35,8 +43,15 @@ from fowt_hydro_sim.physics.dynamics import (
     StripData,
     WaveTable,
 )
-from fowt_hydro_sim.physics.loads import (FIRST_MODULE_ROW, N_LOADS, ROW, ComponentInputs, component_data, external,
-                                          params_of)
+from fowt_hydro_sim.physics.loads import (
+    FIRST_MODULE_ROW,
+    N_LOADS,
+    ROW,
+    ComponentInputs,
+    component_data,
+    external,
+    params_of,
+)
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
 from fowt_hydro_sim.physics.morison import (
@@ -52,13 +67,21 @@ from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_into, interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
-from fowt_hydro_sim.physics.waves.kinematics import (BlocksAhead, BlockSynthesis, KinematicsTable,
-                                                     complex_amplitudes, moving_point_kinematics, period_table,
-                                                     table_step)
+from fowt_hydro_sim.physics.waves.kinematics import (
+    BlocksAhead,
+    BlockSynthesis,
+    KinematicsTable,
+    complex_amplitudes,
+    moving_point_kinematics,
+    period_table,
+    table_step,
+)
 
 log = logging.getLogger(__name__)
 
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+# f(t, position (6), velocity (6)) -> wrench (6): PlatformModel's user_force
+UserForce = Callable[[float, np.ndarray, np.ndarray], np.ndarray]
 WAVE_BLOCK_S = 600.0  # kinematics synthesised per block of this length (two blocks held)
 
 
@@ -103,17 +126,28 @@ class PlatformModel:
     block is made whole, once). ``options``: how the moving body's hydrodynamics are taken
     (config.HydroOptions; default: undisplaced wetted length, fixed directions, nonlinear
     hydrostatics and Newman's slow drift; config.HYDRODYN is HydroDyn's, without the drift).
+    ``user_force``: a Python function ``f(t, position, velocity) -> (6,)`` adding its wrench
+    [Fx, Fy, Fz, Mx, My, Mz] (world axes, about the reference point; N, N m) to the equations
+    of motion, reported as the load component ``user``. ``position`` is [x, y, z, roll, pitch,
+    yaw] (m, rad) and ``velocity`` [v_x, v_y, v_z, w_x, w_y, w_z] (m/s, rad/s, world axes), both
+    copies, at time ``t`` [s]; it is called at every evaluation of the equations of motion (two
+    per step, four per step over the first three steps) with the state of that evaluation.
+    With it the model steps in a Python loop (``dynamics.integrate_stepwise``: a few times
+    slower); without it the compiled loop runs alone, unchanged.
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
                  drag_model: str = "constant", wave_table_dt_s: float | None = None,
                  extension: Extension | None = None, kinematics: KinematicsTable | None = None,
                  options: HydroOptions | None = None, wave_block_s: float = WAVE_BLOCK_S,
-                 blocks_ahead: bool = True):
+                 blocks_ahead: bool = True, user_force: UserForce | None = None):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
         if drag_model == "filtered" and not platform.drag_bands:
             raise ConfigError(f"drag model 'filtered': platform {platform.name} has no drag_bands")
+        if user_force is not None and not callable(user_force):
+            raise ConfigError(f"user force: need a function f(t, position, velocity), got {user_force!r}")
+        self.user_force = user_force
         self.platform = platform
         self.waves = waves
         self.dt_s = float(dt_s)
@@ -309,7 +343,21 @@ class PlatformModel:
         self._history = np.full((4, self._state.size), np.nan)
         self._newest = np.zeros(1, dtype=np.int64)  # the ring's latest row
         self._hold_times(self.time_s, self.time_s)
-        dynamics.derivative(self.time_s, self._state, self._data, self._work, self._history[0])
+        self._rates(self.time_s, self._state, self._history[0])
+
+    def _rates(self, t: float, y: np.ndarray, out: np.ndarray) -> None:
+        """dy/dt at (t, y) into ``out`` and the loads into the workspace; with a user force,
+        its wrench at (t, y) first into its component's params."""
+        if self.user_force is not None:
+            params_of("user", self._data.component_params)[:] = self._user_wrench(t, y)
+        dynamics.derivative(t, y, self._data, self._work, out)
+
+    def _user_wrench(self, t: float, y: np.ndarray) -> np.ndarray:
+        """The user force's wrench at time t and state y, checked."""
+        wrench = np.asarray(self.user_force(t, y[0:6].copy(), y[6:12].copy()), dtype=float)
+        if wrench.shape != (6,) or not np.all(np.isfinite(wrench)):
+            raise ValueError(f"user force at t = {t:g} s: must return 6 finite numbers, got {wrench.tolist()!r}")
+        return wrench
 
     def set_external_wrench(self, wrench: np.ndarray, frame: str = "world") -> None:
         """Hold a wrench [Fx, Fy, Fz, Mx, My, Mz] until the next call.
@@ -321,7 +369,7 @@ class PlatformModel:
                             self.platform.hub_point_m)
         # the derivative at the current time changes with the input
         self._hold_times(self.time_s, self.time_s)
-        dynamics.derivative(self.time_s, self._state, self._data, self._work, self._history[self._newest[0]])
+        self._rates(self.time_s, self._state, self._history[self._newest[0]])
 
     def use_streamed_waves(self, step_s: float, n_rows: int = 256) -> None:
         """Take the wave kinematics from ``write_waves`` (a stream, e.g. a wave topic) instead of
@@ -444,9 +492,14 @@ class PlatformModel:
             if part <= 0:
                 raise ValueError(f"output interval {every * self.dt_s:g} s: longer than the wave table's "
                                  f"blocks hold; use a longer wave_block_s")
-            written += dynamics.integrate(self._state, self._step_index, self.dt_s, part, every, self._data,
-                                          self._work, self._history, self._newest, out_t[written:], out_y[written:],
-                                          out_acc[written:], out_loads[written:])
+            outputs = (self._history, self._newest, out_t[written:], out_y[written:], out_acc[written:],
+                       out_loads[written:])
+            if self.user_force is None:
+                written += dynamics.integrate(self._state, self._step_index, self.dt_s, part, every, self._data,
+                                              self._work, *outputs)
+            else:
+                written += dynamics.integrate_stepwise(self._rates, self._state, self._step_index, self.dt_s, part,
+                                                       every, self._work, *outputs)
             self._step_index += part
             done += part
         return out_t, out_y, out_acc, out_loads
@@ -469,6 +522,7 @@ class PlatformModel:
         motion = np.asarray(motion, dtype=float)
         surfaces = self._surfaces(time_s, motion)
         out = np.zeros((n, N_LOADS, 6))
+        params_of("user", self._data.component_params)[:] = 0.0  # its row: below
         per_time = self.options.kinematics == "displaced" or self.options.stretching == "wheeler"
         if per_time and self.waves is not None and self.waves.frequency_hz.size:
             data = self._data._replace(waves=self._moving_table(time_s, motion))
@@ -486,6 +540,8 @@ class PlatformModel:
             out[:, ROW["hydrostatic"]] = free_surface.prescribed_motion_wrenches(
                 free_surface.platform_members(self.platform), eta, time_s, motion,
                 env.water_density_kg_m3, env.gravity_m_s2)
+        if self.user_force is not None:
+            out[:, ROW["user"]] = [self._user_wrench(t, y) for t, y in zip(time_s, states)]
         return out
 
     def _held_parts(self, time_s: np.ndarray) -> list[slice]:

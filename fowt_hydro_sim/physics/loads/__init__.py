@@ -3,10 +3,11 @@ computes (world axes, about the reference point), in row order.
 
 Each entry says whether the component is part of the contract's ``total`` and whether it
 has a topic of its own (``/platform/loads/NAME``); the compiled kernel, the model's
-results, the node's publishers and recording, and the offline outputs all read this table.
+results, the node's publishers and recording, the offline outputs and the reference tables
+(docs/reference/) all read this table.
 
 The Morison strip model (``physics.morison``) fills the first rows itself. Every other
-component is a module with
+component is a module of this package, named by its entry, with
 
 - ``parameters(inputs: ComponentInputs) -> (params, table)``: its data as one float array
   and one 2-D float table (periodic samples, if it has any), built once per model;
@@ -14,13 +15,14 @@ component is a module with
   at state y and time t to ``out`` (6,) and any mass it puts on the left-hand side of the
   equations of motion to ``mass`` (6, 6); its row then also holds -mass a.
 
-Adding a component is one such module and one ``LoadComponent`` line below.
+Adding a component is one such module and one ``LoadComponent`` line below
+(docs/contributing.md).
 """
 from __future__ import annotations
 
+import importlib
 import warnings
 from dataclasses import dataclass
-from types import ModuleType
 from typing import NamedTuple
 
 import numpy as np
@@ -29,7 +31,6 @@ from numba.core.errors import NumbaExperimentalFeatureWarning
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.physics.jit import step_loop
-from fowt_hydro_sim.physics.loads import drift, extension, external, gravity, hydrostatic, mooring
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics
 from fowt_hydro_sim.physics.strips import Discretisation
@@ -41,26 +42,32 @@ warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
 
 @dataclass(frozen=True)
 class LoadComponent:
+    """One row of the loads: its name, a one-line summary (the reference tables' and the
+    topic's meaning), whether it is summed into the total and published on a topic of its
+    own, and the module computing it (``fowt_hydro_sim.physics.loads.<module>``)."""
+
     name: str
     summary: str
     summed: bool  # part of the contract's total (/platform/loads/total)
     published: bool  # a topic of its own, /platform/loads/NAME
-    module: ModuleType | None = None  # None: a row of the Morison strip model
+    module: str | None = None  # None: a row of the Morison strip model
 
 
 COMPONENTS = (
     LoadComponent("drag", "Morison drag on the relative velocity (constant or band-filtered Cd)", True, True),
     LoadComponent("inertia", "Froude-Krylov and added-mass force from the fluid acceleration", True, True),
-    LoadComponent("added_mass", "strip added mass on the body acceleration (-A a) and its centripetal part",
-                  False, True),
-    LoadComponent("hydrostatic", "buoyancy and hydrostatic restoring", True, True, hydrostatic),
-    LoadComponent("mooring", "mooring lines", True, True, mooring),
-    LoadComponent("gravity", "weight at the centre of gravity", False, True, gravity),
-    LoadComponent("external", "external wrench (controller, rotor)", True, True, external),
-    LoadComponent("drift", "second-order slow drift (Newman's approximation from the platform's drift table)",
-                  True, True, drift),
+    LoadComponent("added_mass", "strip added mass on the body acceleration (-A a; it sits on the mass side of the "
+                                "equations) and its centripetal part", False, True),
+    LoadComponent("hydrostatic", "buoyancy and hydrostatic restoring", True, True, "hydrostatic"),
+    LoadComponent("mooring", "mooring lines", True, True, "mooring"),
+    LoadComponent("gravity", "weight at the centre of gravity", False, True, "gravity"),
+    LoadComponent("external", "external wrench (controller, rotor) as applied, moved to the reference point",
+                  True, True, "external"),
+    LoadComponent("drift", "second-order slow drift (Newman's approximation from the platform's drift table; "
+                           "zero with slow_drift none, streamed waves or no table)", True, True, "drift"),
     LoadComponent("extension", "loads beyond the Morison model (the gap diagnosis's effects)", False, False,
-                  extension),
+                  "extension"),
+    LoadComponent("user", "a Python force passed to the model (PlatformModel user_force)", False, False, "user"),
 )
 
 NAMES = tuple(c.name for c in COMPONENTS)
@@ -72,7 +79,8 @@ MODULE_COMPONENTS = tuple(c for c in COMPONENTS if c.module is not None)
 FIRST_MODULE_ROW = ROW[MODULE_COMPONENTS[0].name]
 if any(c.module is None for c in COMPONENTS[FIRST_MODULE_ROW:]):
     raise ImportError("load registry: the Morison strip model's rows must come before the module components")
-_WRENCHES = tuple(c.module.wrench for c in MODULE_COMPONENTS)
+_MODULES = tuple(importlib.import_module(f"{__name__}.{c.module}") for c in MODULE_COMPONENTS)
+_WRENCHES = tuple(m.wrench for m in _MODULES)
 
 
 class ComponentInputs(NamedTuple):
@@ -88,7 +96,7 @@ class ComponentInputs(NamedTuple):
 
 def component_data(inputs: ComponentInputs) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
     """Every module component's (params, table), in registry order, as the kernel takes them."""
-    data = [c.module.parameters(inputs) for c in MODULE_COMPONENTS]
+    data = [m.parameters(inputs) for m in _MODULES]
     return (tuple(np.ascontiguousarray(p, dtype=float) for p, _ in data),
             tuple(np.ascontiguousarray(np.atleast_2d(t), dtype=float) for _, t in data))
 
