@@ -16,7 +16,7 @@ from fowt_hydro_sim.physics.config import EARLIER, HYDRODYN, HydroOptions, load_
 from fowt_hydro_sim.physics.loads import ROW
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import uniform_drag
-from fowt_hydro_sim.studies.loads import CHANNELS, hydro_channels, motion_from_columns
+from fowt_hydro_sim.studies.prescribed_motion import CHANNELS, hydro_channels, motion_from_columns
 from fowt_hydro_sim.testing.references import hydrodyn_case, read_hydrodyn_out
 
 RHO_G = 1025.0 * 9.80665

@@ -77,12 +77,12 @@ def test_the_message_adapters_and_bags_load_no_physics_and_no_numba():
 
 
 def test_the_physics_loads_no_ros_and_no_bags():
-    modules = loaded_by("import fowt_hydro_sim.physics.model, fowt_hydro_sim.physics.waves.feed")
+    modules = loaded_by("import fowt_hydro_sim.physics.model, fowt_hydro_sim.physics.wave_feed")
     assert not {"rclpy", "mcap", "msg_adapters", "dask"} & modules
 
 
 @pytest.mark.ros
 def test_the_bag_tools_and_the_controller_start_rclpy_without_the_model():
     modules = loaded_by("import fowt_hydro_sim.ros.player, fowt_hydro_sim.ros.recorder, "
-                        "fowt_hydro_sim.ros.controller, fowt_hydro_sim.ros.startup")
+                        "fowt_hydro_sim.ros.thrust_controller, fowt_hydro_sim.ros.startup")
     assert "numba" not in modules and "fowt_hydro_sim.physics.model" not in modules

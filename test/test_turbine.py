@@ -11,7 +11,7 @@ from scipy.optimize import brentq, root
 from fowt_hydro_sim.physics.config import ConfigError, HydroOptions, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.testing import rosco_oracle
-from fowt_hydro_sim.turbine.controller import ControllerError, Rosco
+from fowt_hydro_sim.turbine.rosco import ControllerError, Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads

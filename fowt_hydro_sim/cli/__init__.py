@@ -18,9 +18,10 @@ import sys
 COMMAND_MODULES = {
     "simulate": "simulate", "load-cases": "simulate", "waves": "bags", "recover": "bags", "info": "bags",
     "analyze": "analyze", "calibrate": "calibrate", "diagnose": "diagnose", "diagnose-benchmark": "diagnose",
-    "loads": "loads", "platform": "platform", "sweep": "sweep", "compile": "kernels",
+    "loads": "prescribed_motion", "platform": "platform", "sweep": "sweep", "compile": "compile",
 }
-MODULE_ORDER = ("simulate", "bags", "analyze", "calibrate", "diagnose", "loads", "platform", "sweep", "kernels")
+MODULE_ORDER = ("simulate", "bags", "analyze", "calibrate", "diagnose", "prescribed_motion", "platform", "sweep",
+                "compile")
 
 # commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')
 ROS_COMMANDS = {
@@ -55,7 +56,7 @@ def _ros_command(name: str, argv: list[str]) -> int:
         from fowt_hydro_sim.ros.node import main as run
         return run(["fowt-sim", *argv])
     if name == "controller":
-        from fowt_hydro_sim.ros.controller import main as run
+        from fowt_hydro_sim.ros.thrust_controller import main as run
         return run(["fowt-sim", *argv])
     if name == "turbine":
         from fowt_hydro_sim.ros.turbine_node import main as run

@@ -49,7 +49,7 @@ from fowt_hydro_sim.physics.loads import PUBLISHED, ROW, SUMMED
 from fowt_hydro_sim.physics.loads.external import check_wrench
 from fowt_hydro_sim.physics.model import WAVE_BLOCK_S, PlatformModel
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
-from fowt_hydro_sim.physics.waves.feed import WaveFeed
+from fowt_hydro_sim.physics.wave_feed import WaveFeed
 from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.run_config import run_config
 from fowt_hydro_sim.ros.startup import init_ros

@@ -26,7 +26,7 @@ from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.settings import like, setting
-from fowt_hydro_sim.turbine.controller import ControllerError, Rosco
+from fowt_hydro_sim.turbine.rosco import ControllerError, Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads, steady_operating_point
