@@ -7,8 +7,8 @@ from pathlib import Path
 
 import yaml
 
-from fowt_hydro_sim.physics.config import ConfigError
 from fowt_hydro_sim.io import hydrodyn
+from fowt_hydro_sim.physics.config import ConfigError
 
 
 def import_deck(args: argparse.Namespace) -> int:
@@ -19,7 +19,7 @@ def import_deck(args: argparse.Namespace) -> int:
     if not source.is_file():
         raise ConfigError(f"{source}: no such file")
     document = hydrodyn.platform_from_deck(hydrodyn.read_deck(source), args.name or source.stem, source.name,
-                                                args.water_density, args.gravity, args.water_depth)
+                                           args.water_density, args.gravity, args.water_depth)
     out.write_text(yaml.safe_dump(document, sort_keys=False))
     sys.stdout.write(f"wrote {out}: {len(document['members'])} members (placeholder mass, no mooring)\n")
     return 0
