@@ -19,11 +19,13 @@ import typing
 from dataclasses import dataclass
 from typing import Any
 
+from fowt_hydro_sim.errors import InputError
+
 _NOTHING = object()
 REQUIRED = dataclasses.MISSING  # ``setting(REQUIRED, ...)``: a field without a default
 
 
-class SettingError(ValueError):
+class SettingError(InputError):
     """A value outside its setting's type or range; the message says what is allowed."""
 
 

@@ -1,8 +1,9 @@
 """``fowt-sim``: the command line. Each subcommand's module parses its options and calls a
 function of the studies, bags or ROS packages that tests and Python users call directly.
 
-Errors in the user's input end the command with one line naming the problem (exit 2),
-never a traceback.
+Errors in the user's input (``errors.InputError``) end the command with one line naming the
+problem (exit 2), and its traceback too with ``-v``; any other exception is a defect and ends
+the command with its traceback (exit 1).
 
 Only the chosen command's module is imported (start-up time: the modules import numba,
 scipy and the model); ``fowt-sim --help`` and an unknown command import them all.
@@ -13,6 +14,9 @@ import argparse
 import importlib
 import logging
 import sys
+import traceback
+
+from fowt_hydro_sim.errors import InputError
 
 # each subcommand and the module (fowt_hydro_sim.cli.<module>) whose add_parsers defines it
 COMMAND_MODULES = {
@@ -110,6 +114,7 @@ def parser(command: str | None = None) -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run ``fowt-sim`` with ``argv`` (default: the process's arguments); the exit code."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] and argv[0] in ROS_COMMANDS:
         return _ros_command(argv[0], argv[1:])
@@ -118,7 +123,9 @@ def main(argv: list[str] | None = None) -> int:
                         format="%(levelname)s %(name)s: %(message)s")
     try:
         return args.func(args)
-    except ValueError as exc:  # ConfigError, BagError, SettingError...: the user's input
+    except InputError as exc:  # ConfigError, BagError, SettingError...: the user's input
+        if args.verbose:
+            traceback.print_exc()
         sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
         return 2
     except KeyboardInterrupt:

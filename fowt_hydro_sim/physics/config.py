@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 import yaml
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, like, setting, validate
 
 DRAG_MODELS = ("constant", "filtered")
@@ -32,11 +33,11 @@ STRETCHING = ("none", "vertical", "wheeler")
 SLOW_DRIFTS = ("newman", "none")
 
 
-class ConfigError(ValueError):
+class ConfigError(InputError):
     """A configuration file or value that cannot be used; the message names the field."""
 
 
-class InputError(ValueError):
+class SampleError(InputError):
     """An input sample or message the simulator refuses (the message says why); the caller
     logs it and keeps the last good input."""
 

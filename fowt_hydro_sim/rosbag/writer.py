@@ -51,6 +51,7 @@ from mcap.records import (
 from mcap.writer import MCAP0_MAGIC
 
 from fowt_hydro_sim import __version__
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.files import replace_text
 from fowt_hydro_sim.rosbag.schemas import schema
 
@@ -92,7 +93,7 @@ def message_records(log_times_ns: np.ndarray, channels: list[int], blocks: list[
     return rows
 
 
-class BagError(ValueError):
+class BagError(InputError):
     """A bag that cannot be written or read; the message names the problem."""
 
 
