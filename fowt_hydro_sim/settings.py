@@ -112,12 +112,6 @@ def described(cls: type, names: tuple[str, ...] | None = None) -> dict[str, Desc
     return found if names is None else {name: found[name] for name in names}
 
 
-def with_changes(item: Described, **changes: Any) -> Described:
-    """A setting with another default or another range (e.g. a node's 0 = until stopped)."""
-    default = changes.pop("default", item.default)
-    return dataclasses.replace(item, default=default, setting=dataclasses.replace(item.setting, **changes))
-
-
 def _scalar(value: Any, kind: type) -> Any:
     if kind is bool:
         if isinstance(value, bool):

@@ -185,10 +185,6 @@ class BagWriter:
         """One message (CDR bytes) with its log time (simulation time) in ns."""
         self.write_rows([(log_time_ns, [(channel_id, data)])])
 
-    def write_many(self, log_time_ns: int, messages: Iterable[tuple[int, bytes]]) -> None:
-        """Several messages of one log time: (channel id, CDR bytes) pairs."""
-        self.write_rows([(log_time_ns, messages)])
-
     def write_rows(self, rows: Iterable[tuple[int, Iterable[tuple[int, bytes]]]]) -> None:
         """Messages grouped by log time: (log time [ns], [(channel id, CDR bytes), ...]) rows.
         Ignored once the recording stopped."""
