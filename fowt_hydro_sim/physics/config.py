@@ -177,6 +177,9 @@ class Mooring:
 
 @dataclass(frozen=True)
 class Platform:
+    """A floating platform: environment, mass properties, Morison members and mooring
+    (``load_platform`` reads one from a YAML file or the packaged platforms)."""
+
     name: str
     environment: Environment
     mass: MassProperties
@@ -278,6 +281,8 @@ HYDRO_OPTION_NAMES = ("wetted_length", "load_directions", "hydrostatics", "slow_
 
 @dataclass(frozen=True)
 class LoadCase:
+    """A named sea state of the packaged load cases and its role in the studies."""
+
     name: str
     role: str
     sea_state: SeaState
