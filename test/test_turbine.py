@@ -11,9 +11,9 @@ from scipy.optimize import brentq, root
 from fowt_hydro_sim.physics.config import ConfigError, HydroOptions, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.testing import rosco_oracle
-from fowt_hydro_sim.turbine.rosco import ControllerError, Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
+from fowt_hydro_sim.turbine.rosco import ControllerError, Rosco
 from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads
 from fowt_hydro_sim.turbine.wind import Wind, read_series
 
