@@ -25,7 +25,7 @@ import yaml
 
 from fowt_hydro_sim.physics.config import platform_document
 from fowt_hydro_sim.testing import REPO
-from fowt_hydro_sim.testing.references import hydrodyn_case
+from fowt_hydro_sim.testing.references import hydrodyn_case, hydrodyn_hull, reference_motion
 
 HYDRODYN_WALL_S = {"still water": 62.0, "waves": 103.0}
 
@@ -34,9 +34,6 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
-    sys.path.insert(0, str(REPO / "test"))
-    from test_hydrodyn_moving import hydrodyn_hull, reference_motion
-
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         np.savetxt(folder / "prp.dat", reference_motion(), fmt="%.6f" + " %.12e" * 18)

@@ -19,11 +19,13 @@ import typing
 from dataclasses import dataclass
 from typing import Any
 
+from fowt_hydro_sim.errors import InputError
+
 _NOTHING = object()
 REQUIRED = dataclasses.MISSING  # ``setting(REQUIRED, ...)``: a field without a default
 
 
-class SettingError(ValueError):
+class SettingError(InputError):
     """A value outside its setting's type or range; the message says what is allowed."""
 
 
@@ -108,12 +110,6 @@ def described(cls: type, names: tuple[str, ...] | None = None) -> dict[str, Desc
     found = {f.name: Described(f.name, hints[f.name], f.default, f.metadata["setting"])
              for f in dataclasses.fields(cls) if "setting" in f.metadata}
     return found if names is None else {name: found[name] for name in names}
-
-
-def with_changes(item: Described, **changes: Any) -> Described:
-    """A setting with another default or another range (e.g. a node's 0 = until stopped)."""
-    default = changes.pop("default", item.default)
-    return dataclasses.replace(item, default=default, setting=dataclasses.replace(item.setting, **changes))
 
 
 def _scalar(value: Any, kind: type) -> Any:

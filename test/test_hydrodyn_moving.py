@@ -4,7 +4,6 @@ water, constant offsets) and against closed forms (nonlinear hydrostatics), thro
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
 import math
 
 import numpy as np
@@ -16,31 +15,11 @@ from fowt_hydro_sim.physics.config import EARLIER, HYDRODYN, HydroOptions, load_
 from fowt_hydro_sim.physics.loads import ROW
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import uniform_drag
-from fowt_hydro_sim.studies.loads import CHANNELS, hydro_channels, motion_from_columns
-from fowt_hydro_sim.testing.references import hydrodyn_case, read_hydrodyn_out
+from fowt_hydro_sim.studies.prescribed_motion import CHANNELS, hydro_channels, motion_from_columns
+from fowt_hydro_sim.testing.references import PRESCRIBED_STILL_CASE as CASE
+from fowt_hydro_sim.testing.references import hydrodyn_case, hydrodyn_hull, read_hydrodyn_out, reference_motion
 
 RHO_G = 1025.0 * 9.80665
-CASE = "windmoor12_prescribed_still"
-
-
-def hydrodyn_hull():
-    """windmoor12 as in the reference decks: columns Cd 0.8, pontoons Cd 2.0 both ways, 0.5 m strips."""
-    p = load_platform("windmoor12")
-    members = tuple(dataclasses.replace(uniform_drag(m, 0.8, 0.8) if m.section == "circular"
-                                        else uniform_drag(m, 2.0, 2.0), strip_length_m=0.5) for m in p.members)
-    return dataclasses.replace(p, members=members)
-
-
-def reference_motion() -> np.ndarray:
-    """The reference's PRP file (19 columns), regenerated with its own gen_motion.py."""
-    spec = importlib.util.spec_from_file_location("gen_motion", hydrodyn_case(CASE) / "gen_motion.py")
-    gen = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(gen)
-    t = np.round(np.arange(0, round(gen.TEND / gen.DT) + 1) * gen.DT, 10)
-    x = [a + b for a, b in zip(gen.harmonic(t, 4.0, 0.01), gen.harmonic(t, 0.8, 0.09))]
-    dofs = (x, gen.harmonic(t, 0.02, 0.02), gen.harmonic(t, 0.6, 0.07, 0.3), gen.harmonic(t, 0.02, 0.02),
-            gen.harmonic(t, 0.04, 0.035, 0.5), gen.harmonic(t, 0.02, 0.02))
-    return np.column_stack([t] + [dof[order] for order in range(3) for dof in dofs])
 
 
 def relative_rms(ours: np.ndarray, reference: np.ndarray) -> float:

@@ -26,7 +26,7 @@ from rosbags.highlevel import AnyReader
 from fowt_hydro_sim.physics.config import load_case, load_platform
 from fowt_hydro_sim.physics.loads import COMPONENTS, PUBLISHED
 from fowt_hydro_sim.physics.model import PlatformModel
-from fowt_hydro_sim.physics.waves.feed import run_with_elevation
+from fowt_hydro_sim.physics.wave_feed import run_with_elevation
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, message_index
 from fowt_hydro_sim.studies.wave_bags import write_wave_bag

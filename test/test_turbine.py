@@ -11,10 +11,10 @@ from scipy.optimize import brentq, root
 from fowt_hydro_sim.physics.config import ConfigError, HydroOptions, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.testing import rosco_oracle
-from fowt_hydro_sim.turbine.controller import Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.discon import ControllerError
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
+from fowt_hydro_sim.turbine.rosco import Rosco
 from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads
 from fowt_hydro_sim.turbine.wind import Wind, read_series
 
@@ -226,7 +226,7 @@ import json, sys, tempfile
 from pathlib import Path
 import numpy as np
 from rosco import discon_lib_path
-from fowt_hydro_sim.turbine.controller import discon_copy
+from fowt_hydro_sim.turbine.rosco import discon_copy
 from fowt_hydro_sim.turbine.description import load_turbine
 folder = Path(tempfile.mkdtemp())
 param = discon_copy(load_turbine().discon_path, folder)

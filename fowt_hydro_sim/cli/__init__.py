@@ -1,8 +1,9 @@
 """``fowt-sim``: the command line. Each subcommand's module parses its options and calls a
 function of the studies, bags or ROS packages that tests and Python users call directly.
 
-Errors in the user's input end the command with one line naming the problem (exit 2),
-never a traceback.
+Errors in the user's input (``errors.InputError``) end the command with one line naming the
+problem (exit 2), and its traceback too with ``-v``; any other exception is a defect and ends
+the command with its traceback (exit 1).
 
 Only the chosen command's module is imported (start-up time: the modules import numba,
 scipy and the model); ``fowt-sim --help`` and an unknown command import them all.
@@ -13,14 +14,18 @@ import argparse
 import importlib
 import logging
 import sys
+import traceback
+
+from fowt_hydro_sim.errors import InputError
 
 # each subcommand and the module (fowt_hydro_sim.cli.<module>) whose add_parsers defines it
 COMMAND_MODULES = {
     "simulate": "simulate", "load-cases": "simulate", "waves": "bags", "recover": "bags", "info": "bags",
     "analyze": "analyze", "calibrate": "calibrate", "diagnose": "diagnose", "diagnose-benchmark": "diagnose",
-    "loads": "loads", "platform": "platform", "sweep": "sweep", "compile": "kernels",
+    "loads": "prescribed_motion", "platform": "platform", "sweep": "sweep", "compile": "compile",
 }
-MODULE_ORDER = ("simulate", "bags", "analyze", "calibrate", "diagnose", "loads", "platform", "sweep", "kernels")
+MODULE_ORDER = ("simulate", "bags", "analyze", "calibrate", "diagnose", "prescribed_motion", "platform", "sweep",
+                "compile")
 
 # commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')
 ROS_COMMANDS = {
@@ -55,7 +60,7 @@ def _ros_command(name: str, argv: list[str]) -> int:
         from fowt_hydro_sim.ros.node import main as run
         return run(["fowt-sim", *argv])
     if name == "controller":
-        from fowt_hydro_sim.ros.controller import main as run
+        from fowt_hydro_sim.ros.thrust_controller import main as run
         return run(["fowt-sim", *argv])
     if name == "turbine":
         from fowt_hydro_sim.ros.turbine_node import main as run
@@ -109,6 +114,7 @@ def parser(command: str | None = None) -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run ``fowt-sim`` with ``argv`` (default: the process's arguments); the exit code."""
     argv = sys.argv[1:] if argv is None else argv
     if argv[:1] and argv[0] in ROS_COMMANDS:
         return _ros_command(argv[0], argv[1:])
@@ -117,7 +123,9 @@ def main(argv: list[str] | None = None) -> int:
                         format="%(levelname)s %(name)s: %(message)s")
     try:
         return args.func(args)
-    except ValueError as exc:  # ConfigError, BagError, SettingError...: the user's input
+    except InputError as exc:  # ConfigError, BagError, SettingError...: the user's input
+        if args.verbose:
+            traceback.print_exc()
         sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
         return 2
     except KeyboardInterrupt:

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import yaml
 
+from fowt_hydro_sim.io import hydrodyn
 from fowt_hydro_sim.physics.config import ConfigError
-from fowt_hydro_sim.studies import hydrodyn_deck
 
 
 def import_deck(args: argparse.Namespace) -> int:
@@ -18,8 +18,8 @@ def import_deck(args: argparse.Namespace) -> int:
     source = Path(args.deck)
     if not source.is_file():
         raise ConfigError(f"{source}: no such file")
-    document = hydrodyn_deck.platform_from_deck(hydrodyn_deck.read_deck(source), args.name or source.stem, source.name,
-                                                args.water_density, args.gravity, args.water_depth)
+    document = hydrodyn.platform_from_deck(hydrodyn.read_deck(source), args.name or source.stem, source.name,
+                                           args.water_density, args.gravity, args.water_depth)
     out.write_text(yaml.safe_dump(document, sort_keys=False))
     sys.stdout.write(f"wrote {out}: {len(document['members'])} members (placeholder mass, no mooring)\n")
     return 0
@@ -29,7 +29,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("platform", help="platform files: import an OpenFAST HydroDyn deck")
     commands = p.add_subparsers(dest="platform_command", required=True, metavar="COMMAND")
     imp = commands.add_parser("import", help="write a platform YAML from a HydroDyn v5 input file",
-                              description=hydrodyn_deck.__doc__.split("\n\n")[0])
+                              description=hydrodyn.__doc__.split("\n\n")[0])
     imp.add_argument("deck", type=Path, help="HydroDyn v5 primary input file")
     imp.add_argument("-o", "--output", required=True, type=Path, help="platform YAML to write")
     imp.add_argument("--name", help="platform name (default the deck's file name)")

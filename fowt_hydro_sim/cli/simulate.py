@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, RunConfig, load_case, load_platform, load_run_file
 from fowt_hydro_sim.studies import simulate as study
 from fowt_hydro_sim.studies.load_case_study import STUDY_CASES, run_study
@@ -35,7 +36,7 @@ def simulate(args: argparse.Namespace) -> int:
     else:
         waves, info = study.sea_state_waves(sea, run.duration_s, case)
     if args.transient < 0:
-        raise ValueError(f"--transient: must not be negative, got {args.transient:g}")
+        raise InputError(f"--transient: must not be negative, got {args.transient:g}")
     summary = study.simulate(run, waves, info, Path(args.output), args.transient, args.overwrite)
     sys.stdout.write(study.summary_text(summary, Path(args.output)) + "\n")
     return 0
@@ -44,7 +45,7 @@ def simulate(args: argparse.Namespace) -> int:
 def load_cases(args: argparse.Namespace) -> int:
     out = Path(args.output)
     if out.exists() and any(out.iterdir()) and not args.overwrite:
-        raise ValueError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
+        raise InputError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
     cases = tuple(load_case(c).name for c in args.cases)
     rows = run_study(load_platform(args.platform), cases, args.duration, args.transient, args.seed, out)
     sys.stdout.write((out / "band_stds.md").read_text())

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import DEFAULT_PLATFORM, DRAG_MODELS, RunConfig
 from fowt_hydro_sim.studies import sweep as study
 
@@ -25,7 +26,7 @@ def sweep(args: argparse.Namespace) -> int:
     else:
         run = RunConfig(**{k: v for k, v in options.values(args, RunConfig, RUN_OPTIONS).items() if v is not None})
         if args.seed_count and len(args.seeds) != 1:
-            raise ValueError(f"--seed-count: give one count with --seeds, got {len(args.seeds)} numbers")
+            raise InputError(f"--seed-count: give one count with --seeds, got {len(args.seeds)} numbers")
         seeds = tuple(range(1, args.seeds[0] + 1)) if args.seed_count else tuple(args.seeds)
         table = study.Sweep(tuple(args.load_cases), seeds, tuple(args.drag_models),
                             _variants(args.platforms, args.cd_scales), run, args.transient)

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 import yaml
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, like, setting, validate
 
 DRAG_MODELS = ("constant", "filtered")
@@ -32,11 +33,11 @@ STRETCHING = ("none", "vertical", "wheeler")
 SLOW_DRIFTS = ("newman", "none")
 
 
-class ConfigError(ValueError):
+class ConfigError(InputError):
     """A configuration file or value that cannot be used; the message names the field."""
 
 
-class InputError(ValueError):
+class SampleError(InputError):
     """An input sample or message the simulator refuses (the message says why); the caller
     logs it and keeps the last good input."""
 
@@ -176,6 +177,9 @@ class Mooring:
 
 @dataclass(frozen=True)
 class Platform:
+    """A floating platform: environment, mass properties, Morison members and mooring
+    (``load_platform`` reads one from a YAML file or the packaged platforms)."""
+
     name: str
     environment: Environment
     mass: MassProperties
@@ -277,6 +281,8 @@ HYDRO_OPTION_NAMES = ("wetted_length", "load_directions", "hydrostatics", "slow_
 
 @dataclass(frozen=True)
 class LoadCase:
+    """A named sea state of the packaged load cases and its role in the studies."""
+
     name: str
     role: str
     sea_state: SeaState

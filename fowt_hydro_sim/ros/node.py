@@ -38,8 +38,8 @@ import msg_adapters as adapt
 from fowt_hydro_sim.physics.config import (
     ConfigError,
     HydroOptions,
-    InputError,
     RunConfig,
+    SampleError,
     SeaState,
     load_case,
     load_platform,
@@ -48,8 +48,8 @@ from fowt_hydro_sim.physics.config import (
 from fowt_hydro_sim.physics.loads import PUBLISHED, ROW, SUMMED
 from fowt_hydro_sim.physics.loads.external import check_wrench
 from fowt_hydro_sim.physics.model import WAVE_BLOCK_S, PlatformModel
+from fowt_hydro_sim.physics.wave_feed import WaveFeed
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
-from fowt_hydro_sim.physics.waves.feed import WaveFeed
 from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.run_config import run_config
 from fowt_hydro_sim.ros.startup import init_ros
@@ -291,7 +291,7 @@ class SimulatorNode(Node):
         t, wrench, frame = adapt.wrench_from_msg(deserialize_message(data, WrenchStamped))
         try:
             wrench = check_wrench(wrench, frame)
-        except InputError as exc:
+        except SampleError as exc:
             self._refused(f"{exc}; keeping the last good wrench")
             return
         with self._lock:
@@ -309,7 +309,7 @@ class SimulatorNode(Node):
         feed = self._feed
         try:
             made = feed.accept(t, x, y, eta, frame)
-        except InputError as exc:
+        except SampleError as exc:
             self._refused(f"{exc}; sample ignored")
             return
         if feed.resampler.gap_s > 2.5 * feed.resampler.sample_dt_s and not self._still_water:

@@ -11,6 +11,7 @@ import scipy
 import yaml
 
 from fowt_hydro_sim import __version__
+from fowt_hydro_sim.errors import InputError
 
 
 def run_config(parameters: dict, platform_yaml: str, sea_state: dict) -> dict:
@@ -30,7 +31,7 @@ def write_params_file(config: dict, path: str | Path) -> Path:
     recorded run (not recording again), with its platform written beside it."""
     path = Path(path)
     if "parameters" not in config or "platform_yaml" not in config:
-        raise ValueError("the bag's configuration has no node parameters (not recorded by fowt-sim node)")
+        raise InputError("the bag's configuration has no node parameters (not recorded by fowt-sim node)")
     platform_file = path.with_name(path.stem + "_platform.yaml")
     platform_file.write_text(config["platform_yaml"])
     parameters = {**config["parameters"], "platform": str(platform_file.resolve()), "record": "",

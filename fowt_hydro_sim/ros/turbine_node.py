@@ -26,10 +26,10 @@ from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.settings import like, setting
-from fowt_hydro_sim.turbine.controller import Rosco
 from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.discon import ControllerError
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
+from fowt_hydro_sim.turbine.rosco import Rosco
 from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads, steady_operating_point
 from fowt_hydro_sim.turbine.wind import WIND_KINDS, Wind, check_series, read_series, series_wind
 from msg_adapters import topics

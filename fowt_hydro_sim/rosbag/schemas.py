@@ -14,13 +14,15 @@ from functools import lru_cache
 from importlib import resources
 from pathlib import Path
 
+from fowt_hydro_sim.errors import InputError
+
 SEPARATOR = "=" * 80
 BUILTIN_TYPES = {"bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16", "int32",
                  "uint32", "int64", "uint64", "string", "wstring"}
 _FIELD = re.compile(r"^\s*([A-Za-z][\w/]*)(?:<=\d+)?(?:\[[^\]]*\])?\s+\w+")
 
 
-class SchemaError(LookupError):
+class SchemaError(InputError, LookupError):
     """A message type whose definition cannot be found."""
 
 

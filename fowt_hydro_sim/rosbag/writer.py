@@ -51,6 +51,7 @@ from mcap.records import (
 from mcap.writer import MCAP0_MAGIC
 
 from fowt_hydro_sim import __version__
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.files import replace_text
 from fowt_hydro_sim.rosbag.schemas import schema
 
@@ -92,7 +93,7 @@ def message_records(log_times_ns: np.ndarray, channels: list[int], blocks: list[
     return rows
 
 
-class BagError(ValueError):
+class BagError(InputError):
     """A bag that cannot be written or read; the message names the problem."""
 
 
@@ -183,10 +184,6 @@ class BagWriter:
     def write(self, channel_id: int, log_time_ns: int, data: bytes) -> None:
         """One message (CDR bytes) with its log time (simulation time) in ns."""
         self.write_rows([(log_time_ns, [(channel_id, data)])])
-
-    def write_many(self, log_time_ns: int, messages: Iterable[tuple[int, bytes]]) -> None:
-        """Several messages of one log time: (channel id, CDR bytes) pairs."""
-        self.write_rows([(log_time_ns, messages)])
 
     def write_rows(self, rows: Iterable[tuple[int, Iterable[tuple[int, bytes]]]]) -> None:
         """Messages grouped by log time: (log time [ns], [(channel id, CDR bytes), ...]) rows.

@@ -26,6 +26,7 @@ import numpy as np
 import scipy.stats
 import yaml
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.model import DOF_NAMES
 from fowt_hydro_sim.studies.psd import BANDS_HZ, SEGMENT_S, band_dof, band_std, psd
 
@@ -112,7 +113,7 @@ def uniform(time_s: np.ndarray, values: np.ndarray) -> tuple[float, np.ndarray]:
     """(step, values) on a uniform grid at the median step (linear interpolation)."""
     step = float(np.median(np.diff(time_s)))
     if step <= 0:
-        raise ValueError("analysis: stamps do not increase")
+        raise InputError("analysis: stamps do not increase")
     grid = np.arange(time_s[0], time_s[-1] + 0.5 * step, step)
     return step, np.column_stack([np.interp(grid, time_s, column) for column in values.T])
 
@@ -122,7 +123,7 @@ def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: Analysi
     """Spectra and band STDs of a run's 6-DOF motion (surge ... yaw, angles in rad)."""
     keep = time_s >= time_s[0] + settings.transient_s
     if keep.sum() < 64:
-        raise ValueError(f"run {name}: {time_s[-1] - time_s[0]:.0f} s recorded, nothing left after the "
+        raise InputError(f"run {name}: {time_s[-1] - time_s[0]:.0f} s recorded, nothing left after the "
                          f"{settings.transient_s:g} s transient")
     step, values = uniform(time_s[keep], motion[keep])
     analysed_s = step * len(values)
@@ -261,7 +262,7 @@ def analyze_bags(runs: list[str | Path], references: list[str | Path], settings:
     """``fowt-sim analyze``: every run (bag or simulate folder) analysed, against one
     reference for all or one per run; the table's text and the report's files."""
     if references and len(references) not in (1, len(runs)):
-        raise ValueError(f"--ref: give one reference, or one per run ({len(runs)}), got {len(references)}")
+        raise InputError(f"--ref: give one reference, or one per run ({len(runs)}), got {len(references)}")
 
     def load(path: str | Path) -> RunAnalysis:
         time_s, motion, context = load_run(path)
@@ -281,9 +282,8 @@ def closed_loop_report(runs: list[str | Path], settings: AnalysisSettings, folde
     """For the runs with a turbine (a closed loop): time-series plots of rotor speed, pitch,
     power, platform pitch and surge, and their statistics after the transient."""
     from fowt_hydro_sim.rosbag.reader import Bag
-    from fowt_hydro_sim.studies import turbine_plots
-
     from fowt_hydro_sim.rosbag.writer import METADATA_FILE
+    from fowt_hydro_sim.studies import turbine_plots
     rows, files = [], []
     for path in runs:
         if not (Path(path) / METADATA_FILE).exists():  # a simulate folder: no turbine

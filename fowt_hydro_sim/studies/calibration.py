@@ -26,6 +26,7 @@ import numpy as np
 import scipy.optimize
 import yaml
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import Platform, RunConfig, platform_document
 from fowt_hydro_sim.physics.platform_edits import coefficient, widest_circular_diameter_m, with_coefficients
 from fowt_hydro_sim.studies.analysis import AnalysisSettings, RunAnalysis, analyse
@@ -185,7 +186,7 @@ def regress(hs_over_d: np.ndarray, values: np.ndarray, degree: int = 2) -> np.nd
     to what the number of points allows."""
     degree = min(degree, len(hs_over_d) - 1)
     if degree < 0:
-        raise ValueError("regression: no calibrated runs")
+        raise InputError("regression: no calibrated runs")
     return np.polyfit(hs_over_d, values, degree)
 
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from fowt_hydro_sim.errors import InputError
+
 # default bands of the paper's metric [Hz]: low-frequency (resonance) and wave-frequency
 BANDS_HZ = {"low_frequency": (0.005, 0.05), "wave": (0.05, 0.25)}
 SEGMENT_S = 2048.0  # longest Welch segment: 0.0005 Hz resolution, 10 bins below the 0.005 Hz band edge
@@ -17,13 +19,17 @@ def psd(signal: np.ndarray, dt_s: float, segment_s: float = SEGMENT_S, window: s
     name) and ``overlap`` (fraction of a segment)."""
     signal = np.asarray(signal, dtype=float)
     if signal.ndim != 1 or signal.size < 8 * MIN_SEGMENTS or not np.all(np.isfinite(signal)):
-        raise ValueError(f"psd: need a finite 1-D record of at least {8 * MIN_SEGMENTS} samples, "
+        raise InputError(f"psd: need a finite 1-D record of at least {8 * MIN_SEGMENTS} samples, "
                          f"got shape {signal.shape}")
     if not 0 <= overlap < 1:
-        raise ValueError(f"psd: overlap must be in [0, 1), got {overlap}")
+        raise InputError(f"psd: overlap must be in [0, 1), got {overlap}")
     import scipy.signal  # here, not at the top: 0.6 s of start-up for commands that take no PSD
 
     n = min(signal.size // MIN_SEGMENTS, int(round(segment_s / dt_s)))
+    try:
+        scipy.signal.get_window(window, n)
+    except ValueError as exc:
+        raise InputError(f"psd: window {window!r}: {exc}") from None
     return scipy.signal.welch(signal, fs=1.0 / dt_s, window=window, nperseg=n, noverlap=int(overlap * n),
                               detrend="constant")
 
@@ -32,7 +38,7 @@ def band_std(frequency_hz: np.ndarray, density: np.ndarray, band_hz: tuple[float
     """sqrt of the PSD integrated over [low, high) (rectangle rule on the Welch bins)."""
     low, high = band_hz
     if not 0 <= low < high:
-        raise ValueError(f"band {band_hz}: need 0 <= low < high")
+        raise InputError(f"band {band_hz}: need 0 <= low < high")
     df = frequency_hz[1] - frequency_hz[0]
     inside = (frequency_hz >= low) & (frequency_hz < high)
     return float(np.sqrt(np.sum(density[inside]) * df))

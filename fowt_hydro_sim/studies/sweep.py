@@ -202,6 +202,7 @@ def sweep_from_dict(data: Any, source: str = "sweep") -> Sweep:
 
 
 def load_sweep_file(path: str | Path) -> Sweep:
+    """A sweep from its YAML file; ConfigError naming the problem."""
     path = Path(path)
     try:
         data = yaml.safe_load(path.read_text())

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import Environment, SeaState
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 from fowt_hydro_sim.rosbag.writer import BagWriter, qos_profiles
@@ -20,7 +21,7 @@ def write_wave_bag(path: str | Path, sea: SeaState, duration_s: float, environme
     """Write ``duration_s`` of elevation at ``point_xy_m`` every ``sample_dt_s`` (log time =
     sample time); returns the number of samples."""
     if duration_s <= 0 or sample_dt_s <= 0:
-        raise ValueError(f"waves: duration and sample step must be positive, got {duration_s}, {sample_dt_s}")
+        raise InputError(f"waves: duration and sample step must be positive, got {duration_s}, {sample_dt_s}")
     period_s = repeat_period(sea, duration_s)
     eta = synthesize(sea, period_s).elevation_series(*point_xy_m, sample_dt_s, environment.water_depth_m,
                                                       environment.gravity_m_s2)

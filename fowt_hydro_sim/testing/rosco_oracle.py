@@ -23,8 +23,8 @@ def simulate(turbine_name: str, dt_s: float, duration_s: float, step_s: float, f
     from rosco.toolbox.turbine import RotorPerformance
     from rosco.toolbox.utilities import load_from_txt
 
-    from fowt_hydro_sim.turbine.controller import discon_copy
     from fowt_hydro_sim.turbine.description import load_turbine
+    from fowt_hydro_sim.turbine.rosco import discon_copy
 
     d = load_turbine(turbine_name)
     pitch, tsr, cp, _, cq = load_from_txt(str(d.performance_path))

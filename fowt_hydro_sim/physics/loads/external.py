@@ -7,7 +7,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.frames import WRENCH_FRAMES
-from fowt_hydro_sim.physics.config import InputError
+from fowt_hydro_sim.physics.config import SampleError
 from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.rigid_body import cross3
 
@@ -16,14 +16,14 @@ MAX_MOMENT_NM = 1e11
 
 
 def check_wrench(wrench: np.ndarray, frame_id: str) -> np.ndarray:
-    """The wrench as 6 floats, or InputError: non-finite, absurd, or an unknown frame."""
+    """The wrench as 6 floats, or SampleError: non-finite, absurd, or an unknown frame."""
     wrench = np.asarray(wrench, dtype=float)
     if frame_id not in WRENCH_FRAMES:
-        raise InputError(f"external wrench: unknown frame_id {frame_id!r} (use {', '.join(WRENCH_FRAMES)})")
+        raise SampleError(f"external wrench: unknown frame_id {frame_id!r} (use {', '.join(WRENCH_FRAMES)})")
     if not np.all(np.isfinite(wrench)):
-        raise InputError(f"external wrench: non-finite value in {wrench.tolist()}")
+        raise SampleError(f"external wrench: non-finite value in {wrench.tolist()}")
     if np.abs(wrench[:3]).max() > MAX_FORCE_N or np.abs(wrench[3:]).max() > MAX_MOMENT_NM:
-        raise InputError(f"external wrench: absurd value {wrench.tolist()} (limits {MAX_FORCE_N:g} N, "
+        raise SampleError(f"external wrench: absurd value {wrench.tolist()} (limits {MAX_FORCE_N:g} N, "
                          f"{MAX_MOMENT_NM:g} N m)")
     return wrench
 

@@ -25,6 +25,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.waves.components import WaveComponents, wavenumber
 
 CHANNELS = ("u_x", "u_y", "u_z", "a_x", "a_y", "a_z", "p_dyn")
@@ -185,11 +186,11 @@ class KinematicsTable:
         points = np.atleast_2d(np.asarray(points_m, dtype=float))
         n_samples = int(round(waves.period_s / step_s))
         if abs(n_samples * step_s - waves.period_s) > 1e-6 * waves.period_s:
-            raise ValueError(f"wave table step {step_s:g} s does not divide the repeat period "
+            raise InputError(f"wave table step {step_s:g} s does not divide the repeat period "
                              f"{waves.period_s:g} s")
         harmonic = waves.harmonic
         if harmonic.size and harmonic.max() >= n_samples // 2:
-            raise ValueError(f"wave table step {step_s:g} s is too coarse for the highest wave "
+            raise InputError(f"wave table step {step_s:g} s is too coarse for the highest wave "
                              f"frequency {waves.frequency_hz.max():g} Hz")
         return cls(period_table(waves, points, n_samples, depth_m, gravity_m_s2, density_kg_m3, np.float32),
                    step_s, points)
@@ -224,7 +225,7 @@ class BlockSynthesis:
         self.points_m = np.atleast_2d(np.asarray(points_m, dtype=float))
         self.n_samples = int(round(waves.period_s / step_s))
         if abs(self.n_samples * step_s - waves.period_s) > 1e-6 * waves.period_s:
-            raise ValueError(f"wave table step {step_s:g} s does not divide the repeat period "
+            raise InputError(f"wave table step {step_s:g} s does not divide the repeat period "
                              f"{waves.period_s:g} s")
         if block_rows < 1 or waves.harmonic.size == 0:
             raise ValueError("block synthesis: needs wave components and at least one row per block")

@@ -62,6 +62,7 @@ import numpy as np
 import scipy.fft
 from scipy.signal.windows import blackman, tukey
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.waves.components import wavenumber
 from fowt_hydro_sim.physics.waves.kinematics import CHANNELS, N_CHANNELS, depth_factors
 
@@ -184,24 +185,24 @@ class ElevationStream:
         if points.ndim != 2 or points.shape[1] != 3 or elevation_xy.shape[1] != 2:
             raise ValueError("wave stream: points_m must be (n, 3) and elevation_points_xy_m (n, 2)")
         if not sample_dt_s > 0:
-            raise ValueError(f"wave stream: sample_dt_s must be positive, got {sample_dt_s}")
+            raise InputError(f"wave stream: sample_dt_s must be positive, got {sample_dt_s}")
         f_low, f_high = band_hz
         nyquist_hz = 0.5 / sample_dt_s
         if not 0.0 <= f_low < f_high < nyquist_hz:
-            raise ValueError(f"wave stream: band_hz {band_hz} must satisfy 0 <= low < high < the "
+            raise InputError(f"wave stream: band_hz {band_hz} must satisfy 0 <= low < high < the "
                              f"Nyquist frequency {nyquist_hz:g} Hz")
         if not (min(taper_hz) > 0 and sum(taper_hz) <= f_high - f_low):
-            raise ValueError(f"wave stream: taper_hz {taper_hz} must be positive and fit in the band {band_hz}")
+            raise InputError(f"wave stream: taper_hz {taper_hz} must be positive and fit in the band {band_hz}")
         kernel_s = 2.0 * preview_s if kernel_s is None else kernel_s
         all_points = np.vstack([points, np.column_stack([elevation_xy, np.zeros(len(elevation_xy))])])
         need_preview, need_causal = required_support_s(all_points, measurement_xy_m, heading_deg, depth_m,
                                                        gravity_m_s2, band_hz, taper_hz)
         if not preview_s >= need_preview:  # NaN too
-            raise ValueError(f"wave stream: preview_s {preview_s:g} s is too short; it must be at least "
+            raise InputError(f"wave stream: preview_s {preview_s:g} s is too short; it must be at least "
                              f"{need_preview:.1f} s (the wave groups' travel time from the farthest upstream "
                              f"point plus the band edges' ringing 1 / taper_hz: see required_support_s)")
         if not kernel_s - preview_s >= need_causal:
-            raise ValueError(f"wave stream: kernel_s {kernel_s:g} s is too short; it must be at least "
+            raise InputError(f"wave stream: kernel_s {kernel_s:g} s is too short; it must be at least "
                              f"preview_s + {need_causal:.1f} s = {preview_s + need_causal:.1f} s")
         self._preview_s = float(preview_s)
         self._n_points = points.shape[0]
@@ -237,7 +238,7 @@ class ElevationStream:
         while fewer than n_taps samples are in."""
         value = float(elevation_m)
         if not np.isfinite(value):
-            raise ValueError(f"wave stream: elevation sample {elevation_m!r} is not finite")
+            raise InputError(f"wave stream: elevation sample {elevation_m!r} is not finite")
         n = self.n_taps
         slot = self._count % n
         self._buffer[slot] = self._buffer[slot + n] = value

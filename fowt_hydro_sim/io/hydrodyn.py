@@ -74,7 +74,8 @@ def read_deck(path: str | Path) -> dict[str, Any]:
 
 def _refuse_unsupported(hd: dict, source: str) -> None:
     if hd["PotMod"] != 0:
-        raise ConfigError(f"{source}: PotMod {hd['PotMod']}: potential-flow bodies are not supported (strip theory only)")
+        raise ConfigError(f"{source}: PotMod {hd['PotMod']}: potential-flow bodies are not supported "
+                          "(strip theory only)")
     if any(hd["PropPot"]):
         raise ConfigError(f"{source}: members {[m for m, p in zip(hd['MemberID'], hd['PropPot']) if p]} use potential "
                           "flow (PropPot): not supported")

@@ -1,17 +1,17 @@
 """Wave elevation samples at one point feeding a model's streamed kinematics: the checks
 and resampling (``ElevationResampler``), the causal filter bank (``waves.stream``) and the
 model's wave ring, in one place shared by the node (topic and bag sources) and offline
-runs (``run_with_elevation``). Each refused sample is an ``InputError`` naming the
+runs (``run_with_elevation``). Each refused sample is an ``SampleError`` naming the
 problem; the caller logs it and keeps going."""
 from __future__ import annotations
 
 import math
 from collections import deque
-from typing import Iterable
+from collections.abc import Iterable
 
 import numpy as np
 
-from fowt_hydro_sim.physics.config import InputError
+from fowt_hydro_sim.physics.config import SampleError
 from fowt_hydro_sim.physics.model import PlatformModel, RunResult
 from fowt_hydro_sim.physics.waves.stream import ElevationStream
 
@@ -33,22 +33,22 @@ class ElevationResampler:
 
     def accept(self, time_s: float, x_m: float, y_m: float, elevation_m: float, frame_id: str,
                now_s: float) -> list[tuple[float, float]]:
-        """Grid samples (time, elevation) made available by this sample, or InputError."""
+        """Grid samples (time, elevation) made available by this sample, or SampleError."""
         if not math.isfinite(elevation_m) or not math.isfinite(time_s):
-            raise InputError(f"wave elevation: non-finite sample {elevation_m} m at t = {time_s} s")
+            raise SampleError(f"wave elevation: non-finite sample {elevation_m} m at t = {time_s} s")
         if abs(elevation_m) > MAX_ELEVATION_M:
-            raise InputError(f"wave elevation: {elevation_m:g} m at t = {time_s:.3f} s is beyond "
+            raise SampleError(f"wave elevation: {elevation_m:g} m at t = {time_s:.3f} s is beyond "
                              f"+-{MAX_ELEVATION_M:g} m, not a sea surface")
         if frame_id != self.frame_id:
-            raise InputError(f"wave elevation: frame_id {frame_id!r}, expected {self.frame_id!r}")
+            raise SampleError(f"wave elevation: frame_id {frame_id!r}, expected {self.frame_id!r}")
         if math.hypot(x_m - self.x_m, y_m - self.y_m) > self.tolerance_m:
-            raise InputError(f"wave elevation: measured at ({x_m:g}, {y_m:g}) m, expected ({self.x_m:g}, "
+            raise SampleError(f"wave elevation: measured at ({x_m:g}, {y_m:g}) m, expected ({self.x_m:g}, "
                              f"{self.y_m:g}) m (the wave_point_xy parameter)")
         if self.last is not None and time_s <= self.last[0]:
             kind = "duplicated" if time_s == self.last[0] else "out of order"
-            raise InputError(f"wave elevation: {kind} sample at t = {time_s:.3f} s (last {self.last[0]:.3f} s)")
+            raise SampleError(f"wave elevation: {kind} sample at t = {time_s:.3f} s (last {self.last[0]:.3f} s)")
         if time_s > now_s + MAX_AHEAD_S:
-            raise InputError(f"wave elevation: sample at t = {time_s:.3f} s is more than {MAX_AHEAD_S:g} s "
+            raise SampleError(f"wave elevation: sample at t = {time_s:.3f} s is more than {MAX_AHEAD_S:g} s "
                              f"ahead of the simulation ({now_s:.3f} s)")
         self.gap_s = 0.0 if self.last is None else time_s - self.last[0]
         out = []
@@ -104,7 +104,7 @@ class WaveFeed:
         return bool(self._grid)
 
     def accept(self, time_s: float, x_m: float, y_m: float, elevation_m: float, frame_id: str) -> int:
-        """Check and queue one sample (InputError if refused); returns the grid samples it made."""
+        """Check and queue one sample (SampleError if refused); returns the grid samples it made."""
         samples = self.resampler.accept(time_s, x_m, y_m, elevation_m, frame_id, self.model.time_s)
         self._grid.extend(samples)
         return len(samples)

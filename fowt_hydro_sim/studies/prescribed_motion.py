@@ -9,8 +9,8 @@ are converted to angular velocity and acceleration as the driver does
 """
 from __future__ import annotations
 
-import logging
 import io
+import logging
 from pathlib import Path
 from typing import NamedTuple
 

@@ -8,14 +8,13 @@ import time
 
 
 def compile_kernels(args: argparse.Namespace) -> int:
-    import numba
-
+    from fowt_hydro_sim.physics import kernel_cache_dir
     from fowt_hydro_sim.physics.warm_up import warm_kernels
     start = time.perf_counter()
     timings = warm_kernels()
     for name, seconds in timings.items():
         sys.stdout.write(f"{name:34s}{seconds:7.1f} s\n")
-    sys.stdout.write(f"kernels ready in {time.perf_counter() - start:.1f} s, cached in {numba.config.CACHE_DIR}\n")
+    sys.stdout.write(f"kernels ready in {time.perf_counter() - start:.1f} s, cached in {kernel_cache_dir()}\n")
     return 0
 
 

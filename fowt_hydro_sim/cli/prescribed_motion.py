@@ -8,7 +8,7 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, HYDRODYN, ConfigError, HydroOptions, load_platform
-from fowt_hydro_sim.studies import loads as study
+from fowt_hydro_sim.studies import prescribed_motion as study
 from fowt_hydro_sim.studies.simulate import comp_file_waves, sea_state_waves
 
 # kinematics, stretching and surface_grid_m: prescribed motion only

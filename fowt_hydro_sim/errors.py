@@ -1,0 +1,11 @@
+"""The project's error types' common base.
+
+``InputError`` means the user's input is wrong (a file, an option, a setting, a message):
+``fowt-sim`` ends the command with one line naming the problem (exit 2). Every other
+exception is a defect and keeps its traceback.
+"""
+from __future__ import annotations
+
+
+class InputError(ValueError):
+    """The user's input cannot be used; the message names the input and the problem."""

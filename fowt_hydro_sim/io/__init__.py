@@ -1,0 +1,1 @@
+"""Readers and importers of other codes' file formats (OpenFAST HydroDyn decks)."""
