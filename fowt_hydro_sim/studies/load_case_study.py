@@ -24,6 +24,7 @@ from fowt_hydro_sim.physics.config import DRAG_MODELS, Platform, SeaState, load_
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 from fowt_hydro_sim.studies.analysis import natural_frequencies_hz
+from fowt_hydro_sim.studies.figures import pyplot
 from fowt_hydro_sim.studies.psd import BANDS_HZ, band_std, psd
 
 log = logging.getLogger(__name__)
@@ -111,10 +112,10 @@ def case_labels(platform_name: str, case: str, runs: list[CaseRun], duration_s: 
 
 def plot_case(case: str, runs: list[CaseRun], path: Path, labels: dict[str, object]) -> None:
     """Surge, heave and pitch PSDs of both drag models on log axes, the analysis bands
-    shaded, ``labels`` (``case_labels``) as title and marks."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    shaded, ``labels`` (``case_labels``) as title and marks (nothing without matplotlib)."""
+    plt = pyplot()
+    if plt is None:
+        return
 
     fig, axes = plt.subplots(3, 1, figsize=(7.5, 8.5), sharex=True)
     for ax, (name, _, unit) in zip(axes, STUDY_DOFS):

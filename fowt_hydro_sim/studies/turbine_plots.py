@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fowt_hydro_sim.studies.figures import pyplot
 from msg_adapters import topics
 
 PANELS = (  # (label, scale, unit)
@@ -43,10 +44,11 @@ def stats_rows(name: str, series: dict[str, tuple[np.ndarray, np.ndarray]], tran
     return rows
 
 
-def plot_closed_loop(name: str, series: dict[str, tuple[np.ndarray, np.ndarray]], path: Path) -> Path:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def plot_closed_loop(name: str, series: dict[str, tuple[np.ndarray, np.ndarray]], path: Path) -> Path | None:
+    """The closed loop's time series, one panel each, to ``path`` (None without matplotlib)."""
+    plt = pyplot()
+    if plt is None:
+        return None
 
     fig, axes = plt.subplots(len(PANELS), 1, figsize=(8.0, 2.0 * len(PANELS)), sharex=True)
     for ax, (label, _, unit) in zip(axes, PANELS):
