@@ -1,0 +1,1 @@
+"""Readers and writers of other codes' file formats (WAMIT's numeric output)."""
