@@ -186,3 +186,57 @@ def test_a_set_without_the_frequency_limits_is_refused(tmp_path: Path):
     (tmp_path / "set.1").write_text(" 6.283185307179586  1 1  1.5  0.25\n")
     with pytest.raises(wamit.WamitFormatError, match=r"set\.1: needs both the zero-frequency"):
         wamit.read_potential_flow(tmp_path / "set", RHO, G)
+
+
+@pytest.mark.slow
+@pytest.mark.reference
+def test_a_capytaine_heaving_cylinder_through_a_wamit_file(tmp_path: Path):
+    """A heaving truncated vertical cylinder (radius 5 m, draft 10 m, deep water) solved by
+    capytaine (a BEM the project did not write) at zero, 25 finite (0.12-3 rad/s) and infinite
+    frequency, written as a WAMIT .1 file with WAMITULEN = 5 m and read back: the file holds
+    WAMIT's nondimensional values (A / rho L^3, B / rho w L^3; read with numpy, not the reader),
+    the reader returns capytaine's A and B, and A from capytaine's B by the kernel and Ogilvie's
+    relation is capytaine's A within 1 % of A_inf (2 % at w = 0)."""
+    cpt = pytest.importorskip("capytaine")
+    import logging
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    radius, draft, rho, g = 5.0, 10.0, 1025.0, 9.81
+    mesh = cpt.mesh_vertical_cylinder(length=draft + 2.0, radius=radius, center=(0.0, 0.0, -draft / 2 + 1.0),
+                                      resolution=(4, 24, 10)).immersed_part()
+    body = cpt.FloatingBody(mesh=mesh, dofs=cpt.rigid_body_dofs(rotation_center=(0.0, 0.0, 0.0)), name="cylinder")
+    omega = np.arange(1, 26) * 0.12
+    problems = [cpt.RadiationProblem(body=body, radiating_dof="Heave", omega=w, rho=rho, g=g)
+                for w in (0.0, *omega, np.inf)]
+    results = cpt.BEMSolver().solve_all(problems, progress_bar=False)
+    a_heave = np.array([r.added_mass["Heave"] for r in results])
+    b_heave = np.array([r.radiation_damping["Heave"] for r in results])[1:-1]
+
+    def six(value: float) -> np.ndarray:
+        m = np.zeros((6, 6))
+        m[2, 2] = value
+        return m
+    source = wamit.Radiation(omega_rad_s=omega, added_mass_si=np.stack([six(a) for a in a_heave[1:-1]]),
+                             damping_si=np.stack([six(b) for b in b_heave]), added_mass_zero_si=six(a_heave[0]),
+                             added_mass_inf_si=six(a_heave[-1]))
+    wamit.write_1(tmp_path / "cylinder.1", source, rho, radius)
+
+    rows = np.loadtxt(tmp_path / "cylinder.1", usecols=(0, 1, 2, 3))
+    heave = rows[(rows[:, 1] == 3) & (rows[:, 2] == 3)]
+    assert heave[:, 0].tolist()[:2] == [-1.0, 0.0]
+    assert heave[:, 3] == pytest.approx(np.concatenate([[a_heave[0], a_heave[-1]], a_heave[1:-1]])
+                                        / (rho * radius**3), rel=1e-7)
+    lines = (tmp_path / "cylinder.1").read_text().splitlines()
+    finite = np.array([line.split() for line in lines if len(line.split()) == 5], float)  # PER I J A B
+    b_file = finite[(finite[:, 1] == 3) & (finite[:, 2] == 3), 4]
+    assert b_file == pytest.approx(b_heave / (rho * omega * radius**3), rel=1e-7, abs=1e-12)
+
+    back = wamit.read_1(tmp_path / "cylinder.1", rho, radius)
+    assert back.added_mass_si[:, 2, 2] == pytest.approx(a_heave[1:-1], rel=1e-7)
+    assert back.damping_si[:, 2, 2] == pytest.approx(b_heave, rel=1e-7, abs=1e-6 * b_heave.max())
+    assert back.added_mass_inf_si[2, 2] == pytest.approx(a_heave[-1], rel=1e-7)
+
+    kernel = radiation.retardation_kernel(back.omega_rad_s, back.damping_si[:, 2, 2], 60.0, 0.025)
+    a_ogilvie = radiation.added_mass_from_kernel(kernel.time_s, kernel.kernel_si, a_heave[-1],
+                                                 np.concatenate([[0.0], omega]))
+    assert np.abs(a_ogilvie[1:] - a_heave[1:-1]).max() < 0.01 * a_heave[-1]
+    assert a_ogilvie[0] == pytest.approx(a_heave[0], rel=0.02)
