@@ -40,8 +40,8 @@ _SMALL_PRIMES = (2, 3, 5, 7, 11, 13, 17, 19, 23)
 class RetardationKernel:
     """A retardation kernel on a uniform time grid.
 
-    ``time_s``: (N,) from 0 in steps ``dt_s``; ``kernel_si``: (N, ...) in N/m/s (force by
-    translation velocity, per second) and the matching rotational units; ``omega_rad_s`` and
+    ``time_s``: (N,) from 0 in steps ``dt_s``; ``kernel_si``: (N, ...) in N/m, N/rad, N m/m,
+    N m/rad (load per unit velocity, per second of the convolution); ``omega_rad_s`` and
     ``damping_si``: the frequency grid the transform used and the damping interpolated onto it."""
 
     time_s: np.ndarray
