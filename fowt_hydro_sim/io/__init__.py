@@ -1,1 +1,2 @@
-"""Readers and importers of other codes' file formats (OpenFAST HydroDyn decks)."""
+"""Readers, writers and importers of other codes' file formats: OpenFAST HydroDyn decks, WAMIT's
+numeric output."""

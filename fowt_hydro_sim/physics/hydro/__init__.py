@@ -1,0 +1,1 @@
+"""Potential-flow hydrodynamics from frequency-domain (WAMIT) coefficients: pure numpy functions."""
