@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from fowt_hydro_sim.studies.simulate import read_run
+from fowt_hydro_sim.testing.references import hydrodyn_case
 
 
 def fowt_sim(*args: str) -> subprocess.CompletedProcess:
@@ -37,9 +38,7 @@ def test_simulate_writes_time_series_and_summary(tmp_path: Path):
 
 
 def test_simulate_reuses_an_openfast_comp_file(tmp_path: Path):
-    comp = Path(__file__).resolve().parents[2] / "shared/reference/openfast_hydrodyn/cyl_fixed/waves_jonswap_Hs11_Tp12_g4.9.Comp"
-    if not comp.exists():
-        pytest.skip(f"{comp} is not present")
+    comp = hydrodyn_case("cyl_fixed") / "waves_jonswap_Hs11_Tp12_g4.9.Comp"
     done = fowt_sim("simulate", "--waves-comp", str(comp), "--duration", "60", "-o", str(tmp_path))
     assert done.returncode == 0, done.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
