@@ -5,11 +5,10 @@ import argparse
 import logging
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from fowt_hydro_sim.physics.config import ConfigError
-from fowt_hydro_sim.physics.model import DOF_NAMES
-from fowt_hydro_sim.studies.analysis import AnalysisSettings, analyze_bags
-from fowt_hydro_sim.studies.psd import BANDS_HZ
+if TYPE_CHECKING:  # the studies import scipy and the model: imported when the command runs
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings
 
 log = logging.getLogger("fowt_hydro_sim")
 
@@ -26,6 +25,12 @@ def _band_option(text: str) -> tuple[str | None, str, tuple[float, float]]:
 
 
 def analysis_settings(args: argparse.Namespace) -> AnalysisSettings:
+    """The analysis settings of the command's options; ConfigError names a bad option."""
+    from fowt_hydro_sim.physics.config import ConfigError
+    from fowt_hydro_sim.physics.model import DOF_NAMES
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings
+    from fowt_hydro_sim.studies.psd import BANDS_HZ
+
     unknown = [d for d in args.dofs if d not in DOF_NAMES]
     if unknown:
         raise ConfigError(f"--dofs: unknown {', '.join(unknown)} (use {', '.join(DOF_NAMES)})")
@@ -48,6 +53,7 @@ def analysis_settings(args: argparse.Namespace) -> AnalysisSettings:
 
 
 def analyze(args: argparse.Namespace) -> int:
+    from fowt_hydro_sim.studies.analysis import analyze_bags
     output = Path(args.output) if args.output else Path(args.runs[0]).with_name(Path(args.runs[0]).name + "_report")
     text, files = analyze_bags(args.runs, args.ref or [], analysis_settings(args), output)
     sys.stdout.write(text + "\n")

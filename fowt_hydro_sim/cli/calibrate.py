@@ -8,12 +8,14 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
-from fowt_hydro_sim.studies.analysis import AnalysisSettings
-from fowt_hydro_sim.studies.calibration import fit_runs, regression_report
-from fowt_hydro_sim.studies.replay import measured_run
 
 
 def calibrate_command(args: argparse.Namespace) -> int:
+    # the studies import scipy and the model: here, not at the top (fowt-sim calibrate --help)
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings
+    from fowt_hydro_sim.studies.calibration import fit_runs, regression_report
+    from fowt_hydro_sim.studies.replay import measured_run
+
     run = options.values(args, RunConfig, ("platform", "drag_model", "dt_s"))
     if args.regress:
         blind = measured_run(args.predict) if args.predict else None

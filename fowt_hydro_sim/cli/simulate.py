@@ -8,14 +8,16 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, RunConfig, load_case, load_platform, load_run_file
-from fowt_hydro_sim.studies import simulate as study
-from fowt_hydro_sim.studies.load_case_study import STUDY_CASES, run_study
+
+# the paper's study (studies.load_case_study.STUDY_CASES, imported only when it runs: it imports the model)
+STUDY_CASES = ("lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4", "lc6.1")
 
 RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",
                "initial_state", *HYDRO_OPTION_NAMES)
 
 
 def simulate(args: argparse.Namespace) -> int:
+    from fowt_hydro_sim.studies import simulate as study
     if args.config:
         spec = load_run_file(args.config)
         run, sea, case = spec.run, spec.sea_state, spec.load_case
@@ -42,6 +44,7 @@ def simulate(args: argparse.Namespace) -> int:
 
 
 def load_cases(args: argparse.Namespace) -> int:
+    from fowt_hydro_sim.studies.load_case_study import run_study
     out = Path(args.output)
     if out.exists() and any(out.iterdir()) and not args.overwrite:
         raise ValueError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
