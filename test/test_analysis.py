@@ -150,6 +150,42 @@ def test_analyze_reads_what_simulate_writes_into_a_default_report_folder(tmp_pat
     assert (tmp_path / "run1_report" / "psd_run1.png").stat().st_size > 1000
 
 
+def _printed_band_stds(simulate_out: str, analyze_out: str) -> tuple[dict, dict]:
+    """(DOF, band) -> STD as ``simulate`` prints them (its table's last two columns) and as
+    ``analyze`` prints them (one line per run, DOF and band)."""
+    simulated, analysed = {}, {}
+    for line in simulate_out.splitlines():
+        words = line.split()
+        if len(words) == 8 and words[0] in ("surge", "heave", "pitch"):
+            simulated[(words[0], "low_frequency")], simulated[(words[0], "wave")] = float(words[6]), float(words[7])
+    for line in analyze_out.splitlines():
+        words = line.split()
+        if len(words) >= 4 and words[1] in ("surge", "heave", "pitch") and words[2] in BANDS:
+            analysed[(words[1], words[2])] = float(words[3])
+    return simulated, analysed
+
+
+@pytest.mark.slow
+def test_simulate_and_analyze_drop_the_same_transient_and_print_the_same_band_stds(tmp_path):
+    """Both commands' defaults drop the same start-up, both say so, and the band STDs
+    simulate prints are those analyze prints of the same output folder."""
+    from fowt_hydro_sim.studies.psd import TRANSIENT_S
+    run = tmp_path / "run"
+    simulated = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "simulate", "--load-case", "lc5.2",
+                                "--duration", "900", "-o", str(run)], cwd=REPO, capture_output=True, text=True,
+                               timeout=300)
+    assert simulated.returncode == 0, simulated.stderr
+    analysed = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(run)], cwd=REPO,
+                              capture_output=True, text=True, timeout=300)
+    assert analysed.returncode == 0, analysed.stderr
+    assert f"statistics from t = {TRANSIENT_S:g} s (the first {TRANSIENT_S:g} s dropped" in simulated.stdout
+    assert f"each run analysed after its first {TRANSIENT_S:g} s" in analysed.stdout
+    from_simulate, from_analyze = _printed_band_stds(simulated.stdout, analysed.stdout)
+    assert len(from_simulate) == len(from_analyze) == 6, (simulated.stdout, analysed.stdout)
+    for key, value in from_simulate.items():
+        assert from_analyze[key] == pytest.approx(value, abs=1.5e-3, rel=1e-3), key
+
+
 def test_the_psd_figure_says_the_sea_the_drag_the_record_and_whether_resonance_is_resolved():
     from fowt_hydro_sim.physics.config import load_platform
     from fowt_hydro_sim.physics.model import PlatformModel

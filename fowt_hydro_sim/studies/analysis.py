@@ -27,7 +27,7 @@ import scipy.stats
 import yaml
 
 from fowt_hydro_sim.physics.model import DOF_NAMES
-from fowt_hydro_sim.studies.psd import BANDS_HZ, SEGMENT_S, band_dof, band_std, psd
+from fowt_hydro_sim.studies.psd import BANDS_HZ, SEGMENT_S, TRANSIENT_S, band_dof, band_std, psd
 
 ANGULAR = {"roll", "pitch", "yaw"}  # analysed in degrees
 MIN_BINS_BELOW_RESONANCE = 10  # a resonance at f is resolved with at least this many PSD bins below f
@@ -81,7 +81,7 @@ def unit(dof: str) -> str:
 class AnalysisSettings:
     """How runs are analysed and compared (the CLI's options)."""
 
-    transient_s: float = 600.0  # discarded at the start of each run
+    transient_s: float = TRANSIENT_S  # discarded at the start of each run (as fowt-sim simulate does)
     segment_s: float = SEGMENT_S  # Welch segment
     window: str = "hann"
     overlap: float = 0.5
@@ -123,7 +123,7 @@ def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: Analysi
     keep = time_s >= time_s[0] + settings.transient_s
     if keep.sum() < 64:
         raise ValueError(f"run {name}: {time_s[-1] - time_s[0]:.0f} s recorded, nothing left after the "
-                         f"{settings.transient_s:g} s transient")
+                         f"{settings.transient_s:g} s transient (--transient)")
     step, values = uniform(time_s[keep], motion[keep])
     analysed_s = step * len(values)
     spectra, stds, nus, intervals = {}, {}, {}, {}
@@ -271,7 +271,8 @@ def analyze_bags(runs: list[str | Path], references: list[str | Path], settings:
     reference_runs = [load(p) for p in references]
     pairs = list(zip(analysed, reference_runs * len(analysed) if len(reference_runs) == 1 else reference_runs))
     comparisons = [row for run, ref in pairs for row in compare(run, ref, settings)]
-    text = table_text(analysed, comparisons, settings)
+    text = (f"each run analysed after its first {settings.transient_s:g} s (start-up transient dropped, as "
+            f"fowt-sim simulate does; --transient)\n" + table_text(analysed, comparisons, settings))
     files = write_report(analysed, comparisons, settings, Path(output), reference_runs)
     loop_text, loop_files = closed_loop_report(runs, settings, Path(output))
     return (text + loop_text, files + loop_files)
@@ -281,9 +282,8 @@ def closed_loop_report(runs: list[str | Path], settings: AnalysisSettings, folde
     """For the runs with a turbine (a closed loop): time-series plots of rotor speed, pitch,
     power, platform pitch and surge, and their statistics after the transient."""
     from fowt_hydro_sim.rosbag.reader import Bag
-    from fowt_hydro_sim.studies import turbine_plots
-
     from fowt_hydro_sim.rosbag.writer import METADATA_FILE
+    from fowt_hydro_sim.studies import turbine_plots
     rows, files = [], []
     for path in runs:
         if not (Path(path) / METADATA_FILE).exists():  # a simulate folder: no turbine

@@ -8,6 +8,14 @@ import numpy as np
 BANDS_HZ = {"low_frequency": (0.005, 0.05), "wave": (0.05, 0.25)}
 SEGMENT_S = 2048.0  # longest Welch segment: 0.0005 Hz resolution, 10 bins below the 0.005 Hz band edge
 MIN_SEGMENTS = 4  # a record holds at least this many segment lengths (7 averaged with the overlap)
+# start-up left out of a run's statistics by default (fowt-sim simulate, analyze, load-cases, calibrate)
+TRANSIENT_S = 600.0
+
+
+def default_transient(record_s: float) -> float:
+    """The start-up left out of a record of ``record_s`` seconds when none is given:
+    ``TRANSIENT_S``, or nothing for a record not longer than that."""
+    return TRANSIENT_S if record_s > TRANSIENT_S else 0.0
 
 
 def psd(signal: np.ndarray, dt_s: float, segment_s: float = SEGMENT_S, window: str = "hann",
