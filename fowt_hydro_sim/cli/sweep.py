@@ -44,9 +44,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("sweep", help="load cases x seeds x drag models x platform variants on a Dask cluster",
                        description="Run a table of runs (load cases x seeds x drag models x platform variants) on "
                                    "a Dask cluster; runs.csv gets one row of statistics and band STDs per run as "
-                                   "it finishes, summary.csv the means over seeds with Student-t confidence "
-                                   "intervals (Parquet copies when pyarrow is installed). Rerunning into the same "
-                                   "folder skips the runs already finished there.")
+                                   "it finishes, summary.csv the means over seeds with confidence intervals "
+                                   "(Student-t; log-normal for STDs, never below zero; Parquet copies when "
+                                   "pyarrow is installed). Rerunning into the same folder skips the runs already "
+                                   "finished there.")
     p.add_argument("--config", type=Path, help="sweep file (YAML: load_cases, seeds, drag_models, variants, run, "
                                                 "transient_s); replaces the table and run options")
     table = p.add_argument_group("the table (without --config)")
