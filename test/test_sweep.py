@@ -7,9 +7,11 @@ from __future__ import annotations
 import csv
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -45,6 +47,14 @@ def fowt_sim(*args: str, **kwargs) -> subprocess.CompletedProcess:
 def read_table(path: Path) -> list[dict]:
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
+
+
+def dask_noise(stderr: str) -> list[str]:
+    """The lines of a command's stderr that are neither its progress bar, its own INFO log
+    nor its one-line error or interruption: Dask's warnings, tracebacks."""
+    lines = [line.strip() for line in stderr.replace("\r", "\n").splitlines()]
+    own = ("sweep:", "INFO fowt_hydro_sim", "fowt-sim sweep: ")
+    return [line for line in lines if line and not line.startswith(own)]
 
 
 def expected_row(summary: dict) -> dict:
@@ -186,6 +196,7 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
     path.write_text(yaml.safe_dump(spec))
     done = fowt_sim("sweep", "--config", str(path), "--workers", "1", "-o", str(tmp_path / "a"))
     assert done.returncode == 0, done.stderr
+    assert dask_noise(done.stderr) == [], done.stderr  # the cluster shut down cleanly and quietly
     rows = read_table(tmp_path / "a" / RUNS_FILE)
     assert sorted(r["seed"] for r in rows) == ["1", "2"] and {r["variant"] for r in rows} == {"stiff"}
     settings = json.loads((tmp_path / "a" / "sweep.json").read_text())
@@ -202,3 +213,40 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
         bad = fowt_sim("sweep", *args, "-o", str(tmp_path / "b"))
         assert bad.returncode == 2, bad.stderr
         assert expected in bad.stderr and "Traceback" not in bad.stderr and len(bad.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+def test_ctrl_c_ends_a_sweep_with_one_line_and_no_process_left(tmp_path: Path):
+    """Ctrl-C (SIGINT to the terminal's process group: the command and its workers) while
+    runs are under way: "interrupted", exit 130, no Dask warning or CancelledError, and
+    every process of the group gone."""
+    process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "sweep", "--seeds", "1", "2",
+                                "--duration", "20000", "--workers", "2", "-o", str(tmp_path / "s")], cwd=REPO,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    stderr: list[str] = []
+    reader = threading.Thread(target=lambda: stderr.extend(iter(lambda: process.stderr.read(1), "")), daemon=True)
+    reader.start()
+    try:
+        deadline = time.monotonic() + 180
+        while not re.search(r"sweep: +0%", "".join(stderr)) and time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.2)  # the progress bar: the cluster is up, the runs under way
+        assert process.poll() is None, "".join(stderr)
+        time.sleep(3.0)
+        os.killpg(process.pid, signal.SIGINT)
+        assert process.wait(timeout=90) == 130
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+    reader.join(timeout=10)
+    text = "".join(stderr)
+    assert dask_noise(text) == [] and "CancelledError" not in text, text
+    assert [line for line in text.splitlines() if line.startswith("fowt-sim")] == ["fowt-sim sweep: interrupted"]
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(process.pid, 0)  # any worker still alive?
+        except ProcessLookupError:
+            break
+        time.sleep(0.2)
+    else:
+        pytest.fail("worker processes outlived the interrupted sweep")
