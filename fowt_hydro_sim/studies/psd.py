@@ -31,9 +31,47 @@ def psd(signal: np.ndarray, dt_s: float, segment_s: float = SEGMENT_S, window: s
         raise ValueError(f"psd: overlap must be in [0, 1), got {overlap}")
     import scipy.signal  # here, not at the top: 0.6 s of start-up for commands that take no PSD
 
-    n = min(signal.size // MIN_SEGMENTS, int(round(segment_s / dt_s)))
+    n = segment_samples(signal.size, dt_s, segment_s)
     return scipy.signal.welch(signal, fs=1.0 / dt_s, window=window, nperseg=n, noverlap=int(overlap * n),
                               detrend="constant")
+
+
+def segment_samples(n_samples: int, dt_s: float, segment_s: float = SEGMENT_S) -> int:
+    """Samples per Welch segment of ``psd``: ``segment_s``, at most a quarter of the record."""
+    return min(n_samples // MIN_SEGMENTS, int(round(segment_s / dt_s)))
+
+
+def welch_dof(n_samples: int, dt_s: float, segment_s: float = SEGMENT_S, window: str = "hann",
+              overlap: float = 0.5) -> float:
+    """Equivalent degrees of freedom of each bin of ``psd``'s estimate: nu = 2 K /
+    (1 + 2 sum_j (1 - j/K) rho_j) over K averaged segments, rho_j the correlation of
+    segments j apart for a Gaussian record with a smooth spectrum, from the window's overlap
+    (Welch 1967; Percival and Walden, Spectral Analysis for Physical Applications, eq. 292b).
+    nu PSD / chi2(nu) is the estimate's chi-square confidence band."""
+    import scipy.signal
+
+    n = segment_samples(n_samples, dt_s, segment_s)
+    step = n - int(overlap * n)
+    segments = (n_samples - n) // step + 1
+    w = scipy.signal.get_window(window, n)
+    power = float(np.sum(w**2))
+    correlation = 0.0
+    for j in range(1, segments):
+        if j * step >= n:
+            break
+        rho = (float(np.sum(w[: n - j * step] * w[j * step:])) / power) ** 2
+        correlation += (1 - j / segments) * rho
+    return 2.0 * segments / (1.0 + 2.0 * correlation)
+
+
+def psd_interval(density: np.ndarray, nu: float, confidence: float) -> tuple[np.ndarray, np.ndarray]:
+    """The chi-square confidence band (low, high) at ``confidence`` of a PSD estimate whose
+    bins have ``nu`` equivalent degrees of freedom: nu S / chi2(1 - a/2), nu S / chi2(a/2)."""
+    import scipy.stats
+
+    alpha = 1.0 - confidence
+    return (nu * density / scipy.stats.chi2.ppf(1 - alpha / 2, nu),
+            nu * density / scipy.stats.chi2.ppf(alpha / 2, nu))
 
 
 def band_std(frequency_hz: np.ndarray, density: np.ndarray, band_hz: tuple[float, float]) -> float:
