@@ -216,6 +216,7 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
 
 
 @pytest.mark.slow
+@pytest.mark.dask
 def test_ctrl_c_ends_a_sweep_with_one_line_and_no_process_left(tmp_path: Path):
     """Ctrl-C (SIGINT to the terminal's process group: the command and its workers) while
     runs are under way: "interrupted", exit 130, no Dask warning or CancelledError, and

@@ -462,7 +462,7 @@ def summary_text(outcome: dict, statistics_shown: tuple[str, ...] = ("surge_std_
     shown = [r for r in outcome["summary"] if r["statistic"] in statistics_shown]
     level = shown[0]["confidence"] if shown else 0.95
     lines = [f"{outcome['runs']} runs ({outcome['new']} new) in {outcome['wall_s']:.1f} s; mean over seeds "
-             f"[{100 * level:g} % confidence interval]"]
+             f"[{100 * level:g} % confidence interval: Student-t, log-normal for STDs]"]
     for r in shown:
         interval = f"[{r['ci_low']:.4g}, {r['ci_high']:.4g}]" if r["n_seeds"] > 1 else "(one seed)"
         lines.append(f"{r['load_case']:8s}{r['drag_model']:10s}{r['variant']:14s}{r['statistic']:28s}"
