@@ -117,6 +117,42 @@ def test_fowt_sim_analyze_writes_the_tables_and_figures(tmp_path):
         assert (tmp_path / "report" / name).stat().st_size > 100, name
 
 
+@pytest.mark.slow
+def test_analyze_without_a_reference_draws_the_band_stds_and_the_psd_confidence_band(tmp_path):
+    """One run, no --ref: the band-STD figure (with its intervals) and the PSD figure, whose
+    legend names the confidence band's level."""
+    rng = np.random.default_rng(9)
+    write_pose_bag(tmp_path / "alone", gaussian_record(rng, 3600.0), 0.01 * gaussian_record(rng, 3600.0))
+    result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(tmp_path / "alone"),
+                             "--dofs", "surge", "pitch", "--transient", "0", "--confidence", "0.8",
+                             "-o", str(tmp_path / "report")], cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    for name in ("psd_alone.png", "band_stds_alone.png"):
+        assert (tmp_path / "report" / name).stat().st_size > 1000, name
+    assert "80 % interval" in result.stdout
+    from fowt_hydro_sim.studies.analysis import psd_labels
+    run = analyse("alone", *as_motion(gaussian_record(rng, 3600.0)), SETTINGS)
+    assert psd_labels(run, None, ("surge",), 0.8)["band"].startswith("run's 80 % confidence band (chi-square, ")
+
+
+def test_the_psd_confidence_band_covers_the_true_spectrum():
+    """Oracle: Monte Carlo on Gaussian records of a known spectrum. The 90 % chi-square band
+    of the Welch estimate (its equivalent degrees of freedom from the window's overlap)
+    holds the true PSD in about 90 % of the bins between 0.03 and 0.2 Hz."""
+    from fowt_hydro_sim.studies.psd import psd_interval
+    rng = np.random.default_rng(21)
+    inside = []
+    for _ in range(40):
+        run = analyse("r", *as_motion(gaussian_record(rng, 10800.0)), SETTINGS)
+        f = run.frequency_hz
+        low, high = psd_interval(run.psd["surge"], run.psd_nu, 0.9)
+        bins = (f > 0.03) & (f < 0.2)
+        inside.append((low[bins] <= spectrum(f[bins])) & (spectrum(f[bins]) <= high[bins]))
+    coverage = float(np.mean(inside))
+    assert 0.86 < coverage < 0.94, coverage
+    assert 10 < run.psd_nu < 20  # about 10 Hann segments at 50 % overlap in 3 hours
+
+
 @pytest.mark.parametrize("args, message", [
     (["--dofs", "surge", "swim"], "--dofs: unknown swim"),
     (["--band", "low=0.1"], "expected [DOF.]NAME=LOW:HIGH"),
@@ -148,6 +184,42 @@ def test_analyze_reads_what_simulate_writes_into_a_default_report_folder(tmp_pat
     heave = {r["band"]: r["std"] for r in report["band_stds"] if r["dof"] == "heave"}
     assert heave["wave"] == pytest.approx(band_std(f, s, BANDS["wave"]), rel=1e-9)
     assert (tmp_path / "run1_report" / "psd_run1.png").stat().st_size > 1000
+
+
+def _printed_band_stds(simulate_out: str, analyze_out: str) -> tuple[dict, dict]:
+    """(DOF, band) -> STD as ``simulate`` prints them (its table's last two columns) and as
+    ``analyze`` prints them (one line per run, DOF and band)."""
+    simulated, analysed = {}, {}
+    for line in simulate_out.splitlines():
+        words = line.split()
+        if len(words) == 8 and words[0] in ("surge", "heave", "pitch"):
+            simulated[(words[0], "low_frequency")], simulated[(words[0], "wave")] = float(words[6]), float(words[7])
+    for line in analyze_out.splitlines():
+        words = line.split()
+        if len(words) >= 4 and words[1] in ("surge", "heave", "pitch") and words[2] in BANDS:
+            analysed[(words[1], words[2])] = float(words[3])
+    return simulated, analysed
+
+
+@pytest.mark.slow
+def test_simulate_and_analyze_drop_the_same_transient_and_print_the_same_band_stds(tmp_path):
+    """Both commands' defaults drop the same start-up, both say so, and the band STDs
+    simulate prints are those analyze prints of the same output folder."""
+    from fowt_hydro_sim.studies.psd import TRANSIENT_S
+    run = tmp_path / "run"
+    simulated = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "simulate", "--load-case", "lc5.2",
+                                "--duration", "900", "-o", str(run)], cwd=REPO, capture_output=True, text=True,
+                               timeout=300)
+    assert simulated.returncode == 0, simulated.stderr
+    analysed = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(run)], cwd=REPO,
+                              capture_output=True, text=True, timeout=300)
+    assert analysed.returncode == 0, analysed.stderr
+    assert f"statistics from t = {TRANSIENT_S:g} s (the first {TRANSIENT_S:g} s dropped" in simulated.stdout
+    assert f"each run analysed after its first {TRANSIENT_S:g} s" in analysed.stdout
+    from_simulate, from_analyze = _printed_band_stds(simulated.stdout, analysed.stdout)
+    assert len(from_simulate) == len(from_analyze) == 6, (simulated.stdout, analysed.stdout)
+    for key, value in from_simulate.items():
+        assert from_analyze[key] == pytest.approx(value, abs=1.5e-3, rel=1e-3), key
 
 
 def test_the_psd_figure_says_the_sea_the_drag_the_record_and_whether_resonance_is_resolved():

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from fowt_hydro_sim.studies.simulate import read_run
+from fowt_hydro_sim.testing.references import hydrodyn_case
 
 
 def fowt_sim(*args: str) -> subprocess.CompletedProcess:
@@ -37,9 +38,7 @@ def test_simulate_writes_time_series_and_summary(tmp_path: Path):
 
 
 def test_simulate_reuses_an_openfast_comp_file(tmp_path: Path):
-    comp = Path(__file__).resolve().parents[2] / "shared/reference/openfast_hydrodyn/cyl_fixed/waves_jonswap_Hs11_Tp12_g4.9.Comp"
-    if not comp.exists():
-        pytest.skip(f"{comp} is not present")
+    comp = hydrodyn_case("cyl_fixed") / "waves_jonswap_Hs11_Tp12_g4.9.Comp"
     done = fowt_sim("simulate", "--waves-comp", str(comp), "--duration", "60", "-o", str(tmp_path))
     assert done.returncode == 0, done.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
@@ -85,18 +84,68 @@ def test_a_load_case_given_by_its_number_is_recorded_by_its_name(tmp_path: Path)
 def test_help_lists_every_command_and_every_option_says_its_default():
     import argparse
 
-    from fowt_hydro_sim.cli import parser
+    from fowt_hydro_sim.cli import command_parsers
     done = fowt_sim("--help")
     listed = {line.split()[0] for line in done.stdout.splitlines() if line.startswith("    ") and line.split()}
     assert {"simulate", "load-cases", "waves", "recover", "info", "analyze", "calibrate", "diagnose",
             "node", "controller", "play", "record"} <= listed, done.stdout
-    commands = next(a for a in parser()._actions if isinstance(a, argparse._SubParsersAction)).choices
+    commands = command_parsers()
     for name, command in commands.items():
         for action in command._actions:
             if action.option_strings and not isinstance(action, argparse._HelpAction):
                 assert re.search(r"default|required", action.help or ""), (name, action.option_strings)
     simulate_help = fowt_sim("simulate", "--help").stdout
     assert "(default: none" in simulate_help and "(default off)" in simulate_help
+
+
+def test_top_level_help_imports_no_command_module_and_lists_every_command():
+    """``fowt-sim --help`` in a fresh interpreter imports neither numba, scipy, dask nor the
+    model (the command table is static) and lists every command with its module's own help."""
+    from fowt_hydro_sim.cli import COMMAND_HELP, COMMAND_MODULES, ROS_COMMANDS
+    probe = ("import contextlib, io, json, sys\n"
+             "from fowt_hydro_sim.cli import main\n"
+             "out = io.StringIO()\n"
+             "with contextlib.redirect_stdout(out), contextlib.suppress(SystemExit):\n"
+             "    main(['--help'])\n"
+             "heavy = sorted(m for m in sys.modules if m.split('.')[0] in ('numba', 'scipy', 'dask', 'distributed')\n"
+             "               or m.startswith(('fowt_hydro_sim.physics', 'fowt_hydro_sim.studies')))\n"
+             "print(json.dumps({'help': out.getvalue(), 'heavy': heavy}))\n")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120,
+                          cwd=Path(__file__).resolve().parents[1])
+    assert done.returncode == 0, done.stderr
+    result = json.loads(done.stdout)
+    assert result["heavy"] == []
+    listed = {line.split()[0]: " ".join(line.split()[1:]) for line in result["help"].splitlines()
+              if line.startswith("    ") and line.split()}
+    assert set(COMMAND_MODULES) | set(ROS_COMMANDS) <= set(listed), result["help"]
+    assert set(COMMAND_HELP) == set(COMMAND_MODULES)
+    # the static table says what each command's module says
+    import argparse
+
+    from fowt_hydro_sim.cli import _define
+    sub = argparse.ArgumentParser().add_subparsers()
+    for module in set(COMMAND_MODULES.values()):
+        _define(sub, module)
+    assert {a.dest: a.help for a in sub._choices_actions} == COMMAND_HELP
+
+
+@pytest.mark.slow
+def test_list_defaults_are_printed_as_the_option_takes_them():
+    """``sweep --help`` says ``(default lc5.3)``, not a Python list; ``load-cases --help``
+    names the study's cases."""
+    from fowt_hydro_sim.cli.simulate import STUDY_CASES
+    from fowt_hydro_sim.studies.load_case_study import STUDY_CASES as STUDY
+    assert STUDY_CASES == STUDY
+    for command in ("sweep", "analyze", "load-cases", "calibrate"):
+        done = fowt_sim(command, "--help")
+        assert done.returncode == 0, done.stderr
+        assert "['" not in done.stdout and "[1" not in done.stdout, done.stdout
+    text = " ".join(fowt_sim("sweep", "--help").stdout.split())
+    assert "(default lc5.3)" in text and "(default surge heave pitch)" not in text
+    assert "(default 1)" in text and "(default constant)" in text
+    text = " ".join(fowt_sim("load-cases", "--help").stdout.split())
+    assert " ".join(STUDY) in text
+    assert "(default: surge heave pitch)" in " ".join(fowt_sim("analyze", "--help").stdout.split())
 
 
 def test_simulate_from_a_run_file(tmp_path: Path):

@@ -3,7 +3,7 @@ and the periodic kinematics table with its cubic time interpolation.
 
 Oracles: Airy closed forms written here with numpy cosh/sinh (and e^{kz} in deep water),
 numerical derivatives (time, x, z) for the field equations and boundary conditions, and the
-OpenFAST v5.0.0 HydroDyn driver output in /work/shared/reference/openfast_hydrodyn/cyl_fixed.
+OpenFAST v5.0.0 HydroDyn driver output in test/data/openfast_hydrodyn/cyl_fixed.
 """
 from __future__ import annotations
 
@@ -17,10 +17,10 @@ from fowt_hydro_sim.physics.config import SeaState
 from fowt_hydro_sim.physics.tables import interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents, read_comp_file, synthesize
 from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, depth_factors, point_kinematics, table_step
+from fowt_hydro_sim.testing.references import hydrodyn_case
 
 G, RHO = 9.80665, 1025.0
-SHARED = Path(__file__).resolve().parents[2] / "shared"
-CYL_FIXED = SHARED / "reference" / "openfast_hydrodyn" / "cyl_fixed"
+CYL_FIXED = hydrodyn_case("cyl_fixed")
 U_X, U_Y, U_Z, A_X, A_Y, A_Z, P = range(7)
 
 
@@ -201,8 +201,6 @@ def _read_hydrodyn_out(path: Path) -> dict[str, np.ndarray]:
 def test_against_openfast_hydrodyn_cyl_fixed() -> None:
     """Oracle: OpenFAST v5.0.0 HydroDyn driver output (Wave1Elev, FVel/FAcc/FDynP at (0,0,z)),
     same .Comp waves; relative RMS < 1e-4 on every channel."""
-    if not CYL_FIXED.is_dir():
-        pytest.skip(f"OpenFAST reference folder {CYL_FIXED} absent (shared reference data not mounted)")
     out = _read_hydrodyn_out(CYL_FIXED / "cyl_fixed.out")
     waves = read_comp_file(CYL_FIXED / "waves_jonswap_Hs11_Tp12_g4.9.Comp")
     t = out["Time"]

@@ -305,6 +305,24 @@ def test_recover_leaves_an_intact_bag_alone(wave_bag, tmp_path):
     assert {f.name: f.read_bytes() for f in bag.iterdir()} == before  # no *.damaged, nothing rewritten
 
 
+@pytest.mark.parametrize("content", [b"", bytes(range(256)) * 20], ids=["empty", "random"])
+def test_recover_refuses_a_file_that_is_not_an_mcap_recording(wave_bag, tmp_path, content):
+    """An empty or foreign .mcap in a bag: one line naming the file, exit 2, nothing
+    written or renamed; given the file itself, the same line."""
+    bag = tmp_path / "bag"
+    shutil.copytree(wave_bag, bag)
+    mcap = next(bag.glob("*.mcap"))
+    mcap.write_bytes(content)
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    for target in (bag, mcap):
+        result = run_cli("recover", str(target))
+        assert result.returncode == 2, result.stderr
+        lines = result.stderr.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith(f"fowt-sim recover: error: {mcap}: not an MCAP recording ("), \
+            result.stderr
+        assert sorted(p.name for p in tmp_path.rglob("*")) == before and mcap.read_bytes() == content
+
+
 def _bad_bags(root: Path, good: Path) -> dict[str, tuple[Path, str]]:
     truncated = root / "truncated"
     shutil.copytree(good, truncated)

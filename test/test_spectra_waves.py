@@ -3,7 +3,7 @@
 Oracles: closed-form spectral moments (scipy.integrate.quad), DNV-RP-C205's JONSWAP written
 in angular frequency, scipy.signal.welch, scipy.optimize.brentq on the dispersion relation,
 numpy's default_rng, the orthogonality of harmonics over one period, and the OpenFAST
-reference component table in /work/shared/reference.
+reference component table in test/data/openfast_hydrodyn/cyl_fixed.
 """
 from __future__ import annotations
 
@@ -26,10 +26,10 @@ from fowt_hydro_sim.physics.waves.components import (
     write_comp_file,
 )
 from fowt_hydro_sim.physics.waves.spectra import jonswap, pierson_moskowitz, spectrum
+from fowt_hydro_sim.testing.references import hydrodyn_case
 
 G = 9.80665
-SHARED = Path(__file__).resolve().parents[2] / "shared"
-CYL_FIXED = SHARED / "reference" / "openfast_hydrodyn" / "cyl_fixed"
+CYL_FIXED = hydrodyn_case("cyl_fixed")
 
 
 # --------------------------------------------------------------------------- helpers
@@ -248,14 +248,8 @@ def test_delayed_is_time_shift() -> None:
 
 
 # --------------------------------------------------------------------------- .Comp files
-def _need_reference() -> None:
-    if not CYL_FIXED.is_dir():
-        pytest.skip(f"OpenFAST reference folder {CYL_FIXED} absent (shared reference data not mounted)")
-
-
 def test_read_comp_matches_reference_csv() -> None:
     """Oracle: the reference .csv (f, omega, a, phase, k) written beside the OpenFAST .Comp deck."""
-    _need_reference()
     waves = read_comp_file(CYL_FIXED / "waves_jonswap_Hs11_Tp12_g4.9.Comp")
     rows = [ln for ln in (CYL_FIXED / "waves_jonswap_Hs11_Tp12_g4.9.csv").read_text().splitlines()
             if ln.strip() and not ln.startswith("#")]

@@ -1,14 +1,17 @@
 """``fowt-sim sweep``: a real Dask LocalCluster, real runs, real files. Each row must be what a
 single ``simulate`` run of the same settings gives; an interrupted sweep resumes without
-redoing its finished runs; the intervals over seeds are Student t's."""
+redoing its finished runs; the intervals over seeds are Student t's, log-normal (positive) for
+STDs."""
 from __future__ import annotations
 
 import csv
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -21,7 +24,16 @@ from fowt_hydro_sim.physics.config import RunConfig, SeaState, load_platform, pl
 from fowt_hydro_sim.physics.platform_edits import scaled_drag
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.studies import simulate
-from fowt_hydro_sim.studies.sweep import RUNS_FILE, SUMMARY_FILE, Sweep, Variant, metric_names, run_sweep
+from fowt_hydro_sim.studies.sweep import (
+    RUNS_FILE,
+    SUMMARY_FILE,
+    Sweep,
+    Variant,
+    confidence_interval,
+    is_positive,
+    metric_names,
+    run_sweep,
+)
 from fowt_hydro_sim.testing import REPO
 
 DOFS = (("surge", "m"), ("sway", "m"), ("heave", "m"), ("roll", "deg"), ("pitch", "deg"), ("yaw", "deg"))
@@ -37,6 +49,14 @@ def read_table(path: Path) -> list[dict]:
         return list(csv.DictReader(f))
 
 
+def dask_noise(stderr: str) -> list[str]:
+    """The lines of a command's stderr that are neither its progress bar, its own INFO log
+    nor its one-line error or interruption: Dask's warnings, tracebacks."""
+    lines = [line.strip() for line in stderr.replace("\r", "\n").splitlines()]
+    own = ("sweep:", "INFO fowt_hydro_sim", "fowt-sim sweep: ")
+    return [line for line in lines if line and not line.startswith(own)]
+
+
 def expected_row(summary: dict) -> dict:
     """A runs.csv row's statistics as ``simulate``'s summary.json gives them."""
     out = {}
@@ -48,10 +68,46 @@ def expected_row(summary: dict) -> dict:
     return out
 
 
+def cox_interval(values: np.ndarray, level: float) -> tuple[float, float]:
+    """Cox's log-normal interval of the mean with Student's t, written out here."""
+    y = np.log(values)
+    n, s2 = y.size, y.var(ddof=1)
+    half = scipy.stats.t.ppf(0.5 + level / 2, n - 1) * np.sqrt(s2 / n + s2**2 / (2 * (n - 1)))
+    return float(np.exp(y.mean() + s2 / 2 - half)), float(np.exp(y.mean() + s2 / 2 + half))
+
+
+def test_an_std_interval_over_two_seeds_is_wide_but_positive():
+    """The two seeds whose Student-t interval was [-1.71, 3.78] around an STD of 1.034:
+    the log-normal interval holds the mean and stays above zero."""
+    values = np.array([0.818, 1.250])
+    mean, _, low, high = confidence_interval(values, 0.95, positive=True)
+    assert mean == pytest.approx(1.034) and 0 < low < min(values) and high > 5 * mean
+    assert (low, high) == pytest.approx(cox_interval(values, 0.95), rel=1e-12)
+    assert confidence_interval(values, 0.95)[2] < 0  # (Student's t: below zero)
+    assert confidence_interval(np.array([0.0, 0.0]), 0.95, positive=True)[2:] == (0.0, 0.0)  # an unexcited DOF
+    assert is_positive("surge_std_low_frequency_m") and is_positive("wave_hs_4std_m")
+    assert not is_positive("surge_mean_m") and not is_positive("pitch_min_deg")
+
+
+def test_std_intervals_cover_the_mean_of_seed_to_seed_stds():
+    """Oracle: Monte Carlo. STDs of 20-sample Gaussian records (true mean of the sample STD
+    c4(20) = 0.98693), two and five seeds: 90 % intervals cover it about 90 % of the time,
+    and never go below zero."""
+    rng = np.random.default_rng(5)
+    c4 = 0.9869313
+    for n in (2, 5):
+        draws = [confidence_interval(rng.normal(size=(n, 20)).std(axis=1, ddof=1), 0.9, positive=True)
+                 for _ in range(3000)]
+        coverage = np.mean([low <= c4 <= high for _, _, low, high in draws])
+        assert 0.87 < coverage < 0.93, (n, coverage)
+        assert min(low for _, _, low, _ in draws) > 0
+
+
 def test_sweep_rows_are_single_simulate_runs_and_intervals_are_student_t(tmp_path: Path):
     """2 seeds x 2 drag models x 2 variants on a 2-worker LocalCluster, bags on; each row
     against ``simulate`` of the same settings (the Cd-scaled variant as a platform file),
-    the summary's 90 % intervals against scipy.stats.t.interval."""
+    the summary's 90 % intervals against scipy.stats.t.interval (Cox's log-normal interval
+    for the STDs)."""
     run = RunConfig(duration_s=150.0)
     sweep = Sweep(("lc5.3",), (1, 2, 3), ("constant", "filtered"), (Variant("base"), Variant("cd120", cd_scale=1.2)),
                   run, transient_s=20.0)
@@ -87,7 +143,13 @@ def test_sweep_rows_are_single_simulate_runs_and_intervals_are_student_t(tmp_pat
         assert int(s["n_seeds"]) == values.size == 3
         if np.ptp(values) == 0:
             continue  # (e.g. a band with no bin in a short record: no spread, no interval)
-        low, high = scipy.stats.t.interval(0.9, values.size - 1, loc=values.mean(), scale=scipy.stats.sem(values))
+        if is_positive(s["statistic"]) and np.all(values > 0):
+            low, high = cox_interval(values, 0.9)
+            assert s["interval"] == "lognormal_cox" and float(s["ci_low"]) > 0
+        else:
+            low, high = scipy.stats.t.interval(0.9, values.size - 1, loc=values.mean(),
+                                               scale=scipy.stats.sem(values))
+            low = max(low, 0.0) if is_positive(s["statistic"]) else low
         assert float(s["mean"]) == pytest.approx(values.mean(), rel=1e-12)
         assert (float(s["ci_low"]), float(s["ci_high"])) == pytest.approx((low, high), rel=1e-9, abs=1e-14)
 
@@ -134,6 +196,7 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
     path.write_text(yaml.safe_dump(spec))
     done = fowt_sim("sweep", "--config", str(path), "--workers", "1", "-o", str(tmp_path / "a"))
     assert done.returncode == 0, done.stderr
+    assert dask_noise(done.stderr) == [], done.stderr  # the cluster shut down cleanly and quietly
     rows = read_table(tmp_path / "a" / RUNS_FILE)
     assert sorted(r["seed"] for r in rows) == ["1", "2"] and {r["variant"] for r in rows} == {"stiff"}
     settings = json.loads((tmp_path / "a" / "sweep.json").read_text())
@@ -150,3 +213,41 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
         bad = fowt_sim("sweep", *args, "-o", str(tmp_path / "b"))
         assert bad.returncode == 2, bad.stderr
         assert expected in bad.stderr and "Traceback" not in bad.stderr and len(bad.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+@pytest.mark.dask
+def test_ctrl_c_ends_a_sweep_with_one_line_and_no_process_left(tmp_path: Path):
+    """Ctrl-C (SIGINT to the terminal's process group: the command and its workers) while
+    runs are under way: "interrupted", exit 130, no Dask warning or CancelledError, and
+    every process of the group gone."""
+    process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "sweep", "--seeds", "1", "2",
+                                "--duration", "20000", "--workers", "2", "-o", str(tmp_path / "s")], cwd=REPO,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    stderr: list[str] = []
+    reader = threading.Thread(target=lambda: stderr.extend(iter(lambda: process.stderr.read(1), "")), daemon=True)
+    reader.start()
+    try:
+        deadline = time.monotonic() + 180
+        while not re.search(r"sweep: +0%", "".join(stderr)) and time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.2)  # the progress bar: the cluster is up, the runs under way
+        assert process.poll() is None, "".join(stderr)
+        time.sleep(3.0)
+        os.killpg(process.pid, signal.SIGINT)
+        assert process.wait(timeout=90) == 130
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+    reader.join(timeout=10)
+    text = "".join(stderr)
+    assert dask_noise(text) == [] and "CancelledError" not in text, text
+    assert [line for line in text.splitlines() if line.startswith("fowt-sim")] == ["fowt-sim sweep: interrupted"]
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(process.pid, 0)  # any worker still alive?
+        except ProcessLookupError:
+            break
+        time.sleep(0.2)
+    else:
+        pytest.fail("worker processes outlived the interrupted sweep")

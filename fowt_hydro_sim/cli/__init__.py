@@ -6,11 +6,13 @@ problem (exit 2), and its traceback too with ``-v``; any other exception is a de
 the command with its traceback (exit 1).
 
 Only the chosen command's module is imported (start-up time: the modules import numba,
-scipy and the model); ``fowt-sim --help`` and an unknown command import them all.
+scipy and the model); ``fowt-sim --help`` and an unknown command import none of them: the
+top-level help comes from the static table ``COMMAND_HELP``.
 """
 from __future__ import annotations
 
 import argparse
+import copy
 import importlib
 import logging
 import sys
@@ -24,8 +26,22 @@ COMMAND_MODULES = {
     "analyze": "analyze", "calibrate": "calibrate", "diagnose": "diagnose", "diagnose-benchmark": "diagnose",
     "loads": "prescribed_motion", "platform": "platform", "sweep": "sweep", "compile": "compile",
 }
-MODULE_ORDER = ("simulate", "bags", "analyze", "calibrate", "diagnose", "prescribed_motion", "platform", "sweep",
-                "compile")
+# each subcommand's one-line help, as its module gives it (the top-level help imports no module)
+COMMAND_HELP = {
+    "simulate": "run the platform model offline and write its time series",
+    "load-cases": "the paper's load cases with both drag models: band STDs and PSDs",
+    "waves": "write a bag of /waves/elevation for a sea state or load case",
+    "recover": "rebuild a bag whose recording was killed",
+    "info": "a bag's topics, counts and run configuration",
+    "analyze": "PSDs, band STDs and errors against a reference, of recorded runs",
+    "calibrate": "fit drag coefficients to measured runs; regress and predict",
+    "diagnose": "where the sim-to-real gap lies, which effect causes it, how far it shrinks",
+    "diagnose-benchmark": "score the diagnosis on runs whose effect is withheld",
+    "loads": "loads for a prescribed motion (the HydroDyn driver's job), to CSV",
+    "platform": "platform files: import an OpenFAST HydroDyn deck",
+    "sweep": "load cases x seeds x drag models x platform variants on a Dask cluster",
+    "compile": "compile the model's kernels into the cache (set-up; first runs start fast)",
+}
 
 # commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')
 ROS_COMMANDS = {
@@ -75,17 +91,34 @@ def _ros_command(name: str, argv: list[str]) -> int:
     return record(argv)
 
 
+def _words(value: object) -> object:
+    """A list or tuple default as the option takes it (``lc5.3 lc5.4``), anything else as it is."""
+    return " ".join(map(str, value)) if isinstance(value, (list, tuple)) else value
+
+
+class HelpFormatter(argparse.HelpFormatter):
+    """Argparse's help, with list defaults (``%(default)s``) written as the option takes them."""
+
+    def _expand_help(self, action: argparse.Action) -> str:
+        if isinstance(action.default, (list, tuple)):
+            action = copy.copy(action)
+            action.default = _words(action.default)
+        return super()._expand_help(action)
+
+
 def _default_text(action: argparse.Action) -> str:
     """What an option's help says when it does not name its default itself."""
     if action.required:
         return "required"
     if isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction)):
         return "default off" if action.default is False else "default on"
-    return "default: none" if action.default is None else f"default {action.default}"
+    return "default: none" if action.default is None else f"default {_words(action.default)}"
 
 
 def say_defaults(parser: argparse.ArgumentParser) -> None:
-    """Every option's help names its default (or says it has none, or is required)."""
+    """Every option's help names its default (or says it has none, or is required), list
+    defaults written as the option takes them."""
+    parser.formatter_class = HelpFormatter
     for action in parser._actions:
         if action.option_strings and action.help not in (None, argparse.SUPPRESS) and "default" not in action.help \
                 and not isinstance(action, argparse._HelpAction):
@@ -98,19 +131,39 @@ def chosen_command(argv: list[str]) -> str | None:
     return word if word in COMMAND_MODULES else None
 
 
+def _define(sub: argparse._SubParsersAction, module: str) -> None:
+    """The subcommands of ``fowt_hydro_sim.cli.<module>``, every option's help naming its default."""
+    known = set(sub.choices)
+    importlib.import_module(f"fowt_hydro_sim.cli.{module}").add_parsers(sub)
+    for name, command in sub.choices.items():
+        if name not in known:
+            say_defaults(command)
+
+
 def parser(command: str | None = None) -> argparse.ArgumentParser:
     """The command line's parser: with ``command``, only that command's module is imported
-    and defines its subcommands; without, every command's."""
+    and defines its subcommands; without, the commands are listed from ``COMMAND_HELP``
+    and no command's module is imported (the parser parses no command's options)."""
     top = argparse.ArgumentParser(prog="fowt-sim", description="Floating offshore wind platform simulator")
     top.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for name in (COMMAND_MODULES[command],) if command else MODULE_ORDER:
-        importlib.import_module(f"fowt_hydro_sim.cli.{name}").add_parsers(sub)
-    for command in sub.choices.values():
-        say_defaults(command)
+    if command:
+        _define(sub, COMMAND_MODULES[command])
+    else:
+        for name, text in COMMAND_HELP.items():
+            sub.add_parser(name, help=text, add_help=False)
     for name, text in ROS_COMMANDS.items():
         sub.add_parser(name, help=text.split(": ", 1)[0], add_help=False)
     return top
+
+
+def command_parsers() -> dict[str, argparse.ArgumentParser]:
+    """Every command's full parser by name (imports every command's module: for the tests
+    and the reference pages, not for running a command)."""
+    sub = argparse.ArgumentParser(prog="fowt-sim").add_subparsers()
+    for module in dict.fromkeys(COMMAND_MODULES.values()):
+        _define(sub, module)
+    return dict(sub.choices)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -5,11 +5,12 @@ import argparse
 import logging
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from fowt_hydro_sim.physics.config import ConfigError
-from fowt_hydro_sim.physics.model import DOF_NAMES
-from fowt_hydro_sim.studies.analysis import AnalysisSettings, analyze_bags
-from fowt_hydro_sim.studies.psd import BANDS_HZ
+from fowt_hydro_sim.studies.psd import TRANSIENT_S
+
+if TYPE_CHECKING:  # the studies import scipy and the model: imported when the command runs
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings
 
 log = logging.getLogger("fowt_hydro_sim")
 
@@ -26,6 +27,12 @@ def _band_option(text: str) -> tuple[str | None, str, tuple[float, float]]:
 
 
 def analysis_settings(args: argparse.Namespace) -> AnalysisSettings:
+    """The analysis settings of the command's options; ConfigError names a bad option."""
+    from fowt_hydro_sim.physics.config import ConfigError
+    from fowt_hydro_sim.physics.model import DOF_NAMES
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings
+    from fowt_hydro_sim.studies.psd import BANDS_HZ
+
     unknown = [d for d in args.dofs if d not in DOF_NAMES]
     if unknown:
         raise ConfigError(f"--dofs: unknown {', '.join(unknown)} (use {', '.join(DOF_NAMES)})")
@@ -48,6 +55,7 @@ def analysis_settings(args: argparse.Namespace) -> AnalysisSettings:
 
 
 def analyze(args: argparse.Namespace) -> int:
+    from fowt_hydro_sim.studies.analysis import analyze_bags
     output = Path(args.output) if args.output else Path(args.runs[0]).with_name(Path(args.runs[0]).name + "_report")
     text, files = analyze_bags(args.runs, args.ref or [], analysis_settings(args), output)
     sys.stdout.write(text + "\n")
@@ -65,14 +73,18 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("runs", nargs="+", help="run bags or simulate output folders")
     p.add_argument("--ref", nargs="+", help="reference (measured) bags or folders: one for all runs, or one per run")
     p.add_argument("-o", "--output", help="report folder (default: RUN_report beside the first run)")
-    p.add_argument("--transient", type=float, default=600.0, help="seconds discarded at each run's start (default %(default)s)")
+    p.add_argument("--transient", type=float, default=TRANSIENT_S,
+                   help="seconds discarded at each run's start, as simulate drops (default %(default)s)")
     p.add_argument("--segment", type=float, default=2048.0, help="Welch segment [s] (default %(default)s)")
     p.add_argument("--window", default="hann", help="Welch window, a scipy.signal window name (default %(default)s)")
     p.add_argument("--overlap", type=float, default=0.5, help="Welch segment overlap fraction (default %(default)s)")
-    p.add_argument("--dofs", nargs="+", default=["surge", "heave", "pitch"], help="DOFs analysed (default: %(default)s)")
+    p.add_argument("--dofs", nargs="+", default=["surge", "heave", "pitch"],
+                   help="DOFs analysed (default: %(default)s)")
     p.add_argument("--band", type=_band_option, action="append",
                    help="band [DOF.]NAME=LOW:HIGH in Hz, repeatable (default low_frequency=0.005:0.05, "
                         "wave=0.05:0.25; with a DOF, overrides that DOF's band)")
-    p.add_argument("--threshold", type=float, default=15.0, help="pass if |STD error| <= this [%%] (default %(default)s)")
-    p.add_argument("--confidence", type=float, default=0.9, help="confidence level of the intervals (default %(default)s)")
+    p.add_argument("--threshold", type=float, default=15.0,
+                   help="pass if |STD error| <= this [%%] (default %(default)s)")
+    p.add_argument("--confidence", type=float, default=0.9,
+                   help="confidence level of the intervals (default %(default)s)")
     p.set_defaults(func=analyze)

@@ -8,12 +8,15 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
-from fowt_hydro_sim.studies.analysis import AnalysisSettings
-from fowt_hydro_sim.studies.calibration import fit_runs, regression_report
-from fowt_hydro_sim.studies.replay import measured_run
+from fowt_hydro_sim.studies.psd import TRANSIENT_S
 
 
 def calibrate_command(args: argparse.Namespace) -> int:
+    # the studies import scipy and the model: here, not at the top (fowt-sim calibrate --help)
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings
+    from fowt_hydro_sim.studies.calibration import fit_runs, regression_report
+    from fowt_hydro_sim.studies.replay import measured_run
+
     run = options.values(args, RunConfig, ("platform", "drag_model", "dt_s"))
     if args.regress:
         blind = measured_run(args.predict) if args.predict else None
@@ -46,7 +49,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--heading", type=float, default=0.0, help="wave direction of the records [deg] (default 0)")
     p.add_argument("--dofs", nargs="+", default=["surge", "heave", "pitch"],
                    help="DOFs of the metric (default: %(default)s)")
-    p.add_argument("--transient", type=float, default=600.0,
+    p.add_argument("--transient", type=float, default=TRANSIENT_S,
                    help="seconds left out at the start (default %(default)s)")
     p.add_argument("--diameter", type=float, help="D of Hs/D [m] (default: the largest column)")
     p.add_argument("--max-iterations", type=int, default=8,

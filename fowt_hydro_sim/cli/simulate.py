@@ -9,14 +9,17 @@ from pathlib import Path
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, RunConfig, load_case, load_platform, load_run_file
-from fowt_hydro_sim.studies import simulate as study
-from fowt_hydro_sim.studies.load_case_study import STUDY_CASES, run_study
+from fowt_hydro_sim.studies.psd import TRANSIENT_S
+
+# the paper's study (studies.load_case_study.STUDY_CASES, imported only when it runs: it imports the model)
+STUDY_CASES = ("lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4", "lc6.1")
 
 RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",
                "initial_state", *HYDRO_OPTION_NAMES)
 
 
 def simulate(args: argparse.Namespace) -> int:
+    from fowt_hydro_sim.studies import simulate as study
     if args.config:
         spec = load_run_file(args.config)
         run, sea, case = spec.run, spec.sea_state, spec.load_case
@@ -35,14 +38,13 @@ def simulate(args: argparse.Namespace) -> int:
                                                    platform)
     else:
         waves, info = study.sea_state_waves(sea, run.duration_s, case)
-    if args.transient < 0:
-        raise InputError(f"--transient: must not be negative, got {args.transient:g}")
     summary = study.simulate(run, waves, info, Path(args.output), args.transient, args.overwrite)
     sys.stdout.write(study.summary_text(summary, Path(args.output)) + "\n")
     return 0
 
 
 def load_cases(args: argparse.Namespace) -> int:
+    from fowt_hydro_sim.studies.load_case_study import run_study
     out = Path(args.output)
     if out.exists() and any(out.iterdir()) and not args.overwrite:
         raise InputError(f"{out}: exists and is not empty (pass --overwrite to replace its files)")
@@ -68,8 +70,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                        help="where --elevation was measured, world x y [m] (default 0 0)")
     waves.add_argument("--still-water", action="store_true", help="no waves")
     options.add(p, RunConfig, RUN_OPTIONS)
-    p.add_argument("--transient", type=float, default=0.0, help="seconds at the start left out of the "
-                                                                  "summary statistics (start-up; default %(default)s)")
+    p.add_argument("--transient", type=float, help=f"seconds at the start left out of the summary statistics "
+                                                     f"(start-up; default {TRANSIENT_S:g}, as analyze drops, or 0 "
+                                                     f"for a run not longer than that)")
     p.add_argument("-o", "--output", default="out/simulate", help="output folder (default %(default)s)")
     p.add_argument("--overwrite", action="store_true", help="replace files in a non-empty output folder")
     p.set_defaults(func=simulate)
@@ -80,7 +83,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     options.add(p, RunConfig, ("platform",))
     p.add_argument("--cases", nargs="+", default=list(STUDY_CASES), help="load cases (default: %(default)s)")
     p.add_argument("--duration", type=float, default=12000.0, help="analysed seconds per run (default %(default)s)")
-    p.add_argument("--transient", type=float, default=600.0,
+    p.add_argument("--transient", type=float, default=TRANSIENT_S,
                    help="start-up seconds simulated before them (default %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random phase seed, the same for both models "
                                                          "(default %(default)s)")

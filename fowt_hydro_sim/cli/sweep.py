@@ -5,22 +5,27 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import DEFAULT_PLATFORM, DRAG_MODELS, RunConfig
-from fowt_hydro_sim.studies import sweep as study
+
+if TYPE_CHECKING:  # the study imports scipy and the model: imported when the command runs
+    from fowt_hydro_sim.studies.sweep import Variant
 
 RUN_OPTIONS = ("duration_s", "dt_s", "wave_table_dt_s", "output_interval_s")
 
 
-def _variants(platforms: list[str], cd_scales: list[float]) -> tuple[study.Variant, ...]:
+def _variants(platforms: list[str], cd_scales: list[float]) -> tuple[Variant, ...]:
     """Every platform with every Cd scale, named ``PLATFORM`` (scale 1) or ``PLATFORM_cdSCALE``."""
-    return tuple(study.Variant(Path(p).stem + ("" if s == 1.0 else f"_cd{s:g}"), p, cd_scale=s)
+    from fowt_hydro_sim.studies.sweep import Variant
+    return tuple(Variant(Path(p).stem + ("" if s == 1.0 else f"_cd{s:g}"), p, cd_scale=s)
                  for p in platforms for s in cd_scales)
 
 
 def sweep(args: argparse.Namespace) -> int:
+    from fowt_hydro_sim.studies import sweep as study
     if args.config:
         table = study.load_sweep_file(args.config)
     else:
@@ -40,9 +45,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("sweep", help="load cases x seeds x drag models x platform variants on a Dask cluster",
                        description="Run a table of runs (load cases x seeds x drag models x platform variants) on "
                                    "a Dask cluster; runs.csv gets one row of statistics and band STDs per run as "
-                                   "it finishes, summary.csv the means over seeds with Student-t confidence "
-                                   "intervals (Parquet copies when pyarrow is installed). Rerunning into the same "
-                                   "folder skips the runs already finished there.")
+                                   "it finishes, summary.csv the means over seeds with confidence intervals "
+                                   "(Student-t; log-normal for STDs, never below zero; Parquet copies when "
+                                   "pyarrow is installed). Rerunning into the same folder skips the runs already "
+                                   "finished there.")
     p.add_argument("--config", type=Path, help="sweep file (YAML: load_cases, seeds, drag_models, variants, run, "
                                                 "transient_s); replaces the table and run options")
     table = p.add_argument_group("the table (without --config)")

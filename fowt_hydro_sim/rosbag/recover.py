@@ -17,6 +17,19 @@ from fowt_hydro_sim.rosbag.writer import METADATA_FILE, RUN_CONFIG_KEY, BagError
 
 log = logging.getLogger(__name__)
 
+MAGIC = b"\x89MCAP0\r\n"  # the first 8 bytes of every MCAP file (mcap.writer.MCAP0_MAGIC)
+
+
+def check_mcap(file: Path) -> None:
+    """BagError unless ``file`` begins as an MCAP file does: an empty or foreign file holds
+    no recording to recover."""
+    with open(file, "rb") as stream:
+        head = stream.read(len(MAGIC))
+    if head != MAGIC:
+        what = ("an empty file" if not head else f"{file.stat().st_size} bytes, starting {head[:4].hex(' ')} "
+                "instead of the MCAP magic")
+        raise BagError(f"{file}: not an MCAP recording ({what})")
+
 
 def _salvage(file: Path) -> tuple[dict, dict, list, list]:
     """Schemas, channels, metadata and messages readable from the start of an MCAP file."""
@@ -49,13 +62,19 @@ def is_intact(path: Path) -> bool:
 
 def recover(path: str | Path) -> int | None:
     """Rewrite the bag at ``path`` as a complete bag; returns the messages recovered, or None
-    for an intact bag, which is left untouched."""
+    for an intact bag, which is left untouched. BagError, with nothing written, when a file
+    of the bag is not an MCAP recording at all (empty, or another format)."""
     path = Path(path)
+    if path.is_file():
+        check_mcap(path)
+        raise BagError(f"{path}: a file; give the bag directory that holds it and its {METADATA_FILE}")
     if not (path / METADATA_FILE).is_file():
         raise BagError(f"bag {path}: no {METADATA_FILE}; not a bag this tool can recover")
     files = sorted(path.glob("*.mcap"))
     if not files:
         raise BagError(f"bag {path}: no .mcap file to recover")
+    for file in files:  # before anything is written
+        check_mcap(file)
     if is_intact(path):
         log.info(f"bag {path}: intact (every file complete with its summary); left as it is")
         return None

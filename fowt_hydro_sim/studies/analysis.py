@@ -5,7 +5,8 @@ threshold and the pass rate, as in the paper's tables.
 
 Confidence: a band variance from a record of T seconds has about ``band_dof`` degrees of
 freedom, so its STD lies in a chi-square interval, and the ratio of two runs' band
-variances in an F interval. An error whose interval excludes zero is "significant": a
+variances in an F interval; each Welch PSD bin has ``welch_dof`` degrees of freedom, and
+the PSD figure shades its chi-square band. An error whose interval excludes zero is "significant": a
 real gap rather than sampling noise.
 
 A run is a bag (recorded by the node, or measured) or the folder ``fowt-sim simulate``
@@ -28,7 +29,16 @@ import yaml
 
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.model import DOF_NAMES
-from fowt_hydro_sim.studies.psd import BANDS_HZ, SEGMENT_S, band_dof, band_std, psd
+from fowt_hydro_sim.studies.psd import (
+    BANDS_HZ,
+    SEGMENT_S,
+    TRANSIENT_S,
+    band_dof,
+    band_std,
+    psd,
+    psd_interval,
+    welch_dof,
+)
 
 ANGULAR = {"roll", "pitch", "yaw"}  # analysed in degrees
 MIN_BINS_BELOW_RESONANCE = 10  # a resonance at f is resolved with at least this many PSD bins below f
@@ -82,7 +92,7 @@ def unit(dof: str) -> str:
 class AnalysisSettings:
     """How runs are analysed and compared (the CLI's options)."""
 
-    transient_s: float = 600.0  # discarded at the start of each run
+    transient_s: float = TRANSIENT_S  # discarded at the start of each run (as fowt-sim simulate does)
     segment_s: float = SEGMENT_S  # Welch segment
     window: str = "hann"
     overlap: float = 0.5
@@ -107,6 +117,7 @@ class RunAnalysis:
     dof_nu: dict[str, dict[str, float]]  # equivalent degrees of freedom of each band variance
     std_interval: dict[str, dict[str, tuple[float, float]]]
     context: RunContext = field(default_factory=RunContext)
+    psd_nu: float = float("nan")  # equivalent degrees of freedom of each PSD bin (psd.welch_dof)
 
 
 def uniform(time_s: np.ndarray, values: np.ndarray) -> tuple[float, np.ndarray]:
@@ -124,7 +135,7 @@ def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: Analysi
     keep = time_s >= time_s[0] + settings.transient_s
     if keep.sum() < 64:
         raise InputError(f"run {name}: {time_s[-1] - time_s[0]:.0f} s recorded, nothing left after the "
-                         f"{settings.transient_s:g} s transient")
+                         f"{settings.transient_s:g} s transient (--transient)")
     step, values = uniform(time_s[keep], motion[keep])
     analysed_s = step * len(values)
     spectra, stds, nus, intervals = {}, {}, {}, {}
@@ -140,7 +151,8 @@ def analyse(name: str, time_s: np.ndarray, motion: np.ndarray, settings: Analysi
             intervals[dof][band] = (std * math.sqrt(nu / scipy.stats.chi2.ppf(1 - alpha / 2, nu)),
                                     std * math.sqrt(nu / scipy.stats.chi2.ppf(alpha / 2, nu))) if nu > 0 else \
                 (float("nan"), float("nan"))
-    return RunAnalysis(name, analysed_s, frequency, spectra, stds, nus, intervals, context)
+    nu = welch_dof(len(values), step, settings.segment_s, settings.window, settings.overlap)
+    return RunAnalysis(name, analysed_s, frequency, spectra, stds, nus, intervals, context, nu)
 
 
 def compare(run: RunAnalysis, reference: RunAnalysis, settings: AnalysisSettings) -> list[dict]:
@@ -218,9 +230,11 @@ def write_report(analyses: list[RunAnalysis], comparisons: list[dict], settings:
     pairs = _pairs(analyses, references)
     for run, reference in pairs:
         written.append(plot_psd(run, reference, settings, folder / f"psd_{_slug(run.name)}.png"))
+        figure = folder / f"band_stds_{_slug(run.name)}.png"
         if reference is not None:
-            rows = [r for r in comparisons if r["run"] == run.name]
-            written.append(plot_band_errors(rows, settings, folder / f"band_stds_{_slug(run.name)}.png"))
+            written.append(plot_band_errors([r for r in comparisons if r["run"] == run.name], settings, figure))
+        else:
+            written.append(plot_band_stds(run, settings, figure))
     return written
 
 
@@ -272,7 +286,8 @@ def analyze_bags(runs: list[str | Path], references: list[str | Path], settings:
     reference_runs = [load(p) for p in references]
     pairs = list(zip(analysed, reference_runs * len(analysed) if len(reference_runs) == 1 else reference_runs))
     comparisons = [row for run, ref in pairs for row in compare(run, ref, settings)]
-    text = table_text(analysed, comparisons, settings)
+    text = (f"each run analysed after its first {settings.transient_s:g} s (start-up transient dropped, as "
+            f"fowt-sim simulate does; --transient)\n" + table_text(analysed, comparisons, settings))
     files = write_report(analysed, comparisons, settings, Path(output), reference_runs)
     loop_text, loop_files = closed_loop_report(runs, settings, Path(output))
     return (text + loop_text, files + loop_files)
@@ -331,9 +346,10 @@ def _pyplot():
     return plt
 
 
-def psd_labels(run: RunAnalysis, reference: RunAnalysis | None, dofs: tuple[str, ...]) -> dict[str, object]:
-    """The PSD figure's title lines, legend names and marked frequencies (label: Hz) of the
-    DOFs shown."""
+def psd_labels(run: RunAnalysis, reference: RunAnalysis | None, dofs: tuple[str, ...],
+               confidence: float = 0.9) -> dict[str, object]:
+    """The PSD figure's title lines, legend names (with the run's chi-square confidence band
+    at ``confidence``) and marked frequencies (label: Hz) of the DOFs shown."""
     context = dataclasses.replace(run.context, natural_hz={d: f for d, f in run.context.natural_hz.items()
                                                            if d in dofs})
     title = [f"PSD: {run.name}" + (f" vs reference {reference.name}" if reference else ""),
@@ -344,19 +360,23 @@ def psd_labels(run: RunAnalysis, reference: RunAnalysis | None, dofs: tuple[str,
     if context.tp_s:
         marks[f"Tp {context.tp_s:g} s"] = 1.0 / context.tp_s
     return {"title": title + ([note] if note else []), "run": f"run: {run.name}",
-            "reference": f"reference: {reference.name}" if reference else None, "marks": marks}
+            "reference": f"reference: {reference.name}" if reference else None, "marks": marks,
+            "band": f"run's {100 * confidence:g} % confidence band (chi-square, {run.psd_nu:.1f} dof)"}
 
 
 def plot_psd(run: RunAnalysis, reference: RunAnalysis | None, settings: AnalysisSettings, path: Path) -> Path:
     """PSD of each DOF, the run against the reference, log axes, bands shaded, Tp and the
     natural frequencies marked; the title says the sea state, drag model and record length."""
-    labels = psd_labels(run, reference, settings.dofs)
+    labels = psd_labels(run, reference, settings.dofs, settings.confidence)
     plt = _pyplot()
     fig, axes = plt.subplots(len(settings.dofs), 1, figsize=(7.5, 2.8 * len(settings.dofs)), sharex=True,
                              squeeze=False)
     for ax, dof in zip(axes[:, 0], settings.dofs):
         for (band, (low, high)), colour in zip(settings.bands(dof).items(), ("tab:orange", "tab:blue", "tab:green")):
             ax.axvspan(low, high, color=colour, alpha=0.08, label=f"{band} band")
+        if math.isfinite(run.psd_nu):
+            low, high = psd_interval(run.psd[dof][1:], run.psd_nu, settings.confidence)
+            ax.fill_between(run.frequency_hz[1:], low, high, color="tab:blue", alpha=0.2, lw=0, label=labels["band"])
         for analysis, style, name in ((reference, "k-", labels["reference"]), (run, "-", labels["run"])):
             if analysis is not None:
                 f, s = analysis.frequency_hz, analysis.psd[dof]
@@ -374,6 +394,32 @@ def plot_psd(run: RunAnalysis, reference: RunAnalysis | None, settings: Analysis
     axes[0, 0].legend(fontsize=8, loc="lower left")
     axes[0, 0].set_title("\n".join(labels["title"]), fontsize=9, color="tab:red" if len(labels["title"]) > 2 else "k")
     axes[-1, 0].set_xlabel("frequency [Hz]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_band_stds(run: RunAnalysis, settings: AnalysisSettings, path: Path) -> Path:
+    """The run's band STDs as bars, one panel per DOF, with their chi-square confidence
+    intervals (the figure without a reference)."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, len(settings.dofs), figsize=(3.0 * len(settings.dofs) + 1.0, 3.8), squeeze=False)
+    for ax, dof in zip(axes[0], settings.dofs):
+        bands = list(settings.bands(dof))
+        std = np.array([run.std[dof][b] for b in bands])
+        low = np.array([run.std_interval[dof][b][0] for b in bands])
+        high = np.array([run.std_interval[dof][b][1] for b in bands])
+        x = np.arange(len(bands))
+        ax.bar(x, std, 0.6, color="tab:blue", yerr=[std - low, high - std], capsize=4, ecolor="0.3")
+        for i, value in enumerate(std):
+            ax.annotate(f"{value:.3g}", (i, value), ha="right", va="bottom", fontsize=8, xytext=(-6, 2),
+                        textcoords="offset points")
+        ax.set_xticks(x, bands, fontsize=8)
+        ax.set_ylabel(f"{dof} band STD [{unit(dof)}]")
+        ax.grid(alpha=0.3, axis="y")
+    fig.suptitle(f"band STDs: {run.name}, {run.analysed_s:.0f} s analysed; {100 * settings.confidence:g} % "
+                 f"confidence intervals (chi-square)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -1,28 +1,121 @@
 """Many model runs on a Dask cluster: a LocalCluster on this machine (loopback only) by
 default, or an existing cluster by its scheduler address, with no code change; a progress
-bar on stderr (the results in order, or each as soon as it is ready)."""
+bar on stderr (the results in order, or each as soon as it is ready).
+
+A local cluster's worker processes start with SIGINT blocked: Ctrl-C (which the terminal
+sends to the whole process group) is handled by this process alone, which shuts the cluster
+down (the client, then each worker, given ``WORKER_EXIT_S`` to exit, then the cluster) with
+Dask's own shutdown messages kept off the terminal; errors still show."""
 from __future__ import annotations
 
+import asyncio
 import logging
 import os
+import signal
+import threading
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
-from typing import Callable, Iterator, Sequence
+
+WORKER_EXIT_S = 30.0  # a worker process asked to close is killed only after 0.8 x this
+INTERRUPTED_EXIT_S = 5.0  # the same after Ctrl-C: a worker busy with a run is not waited for
+
+
+@contextmanager
+def _sigint_ignored() -> Iterator[None]:
+    """SIGINT ignored meanwhile (when called from the main thread): a second Ctrl-C does not
+    break a shutdown under way (bounded by its timeouts)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+@contextmanager
+def _sigint_held() -> Iterator[None]:
+    """SIGINT blocked meanwhile in the main thread: the threads and processes it starts
+    inherit it blocked (worker processes never see Ctrl-C), and a Ctrl-C meanwhile is not
+    lost but raised (KeyboardInterrupt) on leaving."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+@contextmanager
+def quiet_dask(level: int) -> Iterator[None]:
+    """Distributed's loggers (in this process) at ``level`` or above meanwhile: a shutdown's
+    routine warnings (workers killed after a timeout, connections closed, tasks cancelled)
+    are no failure of the user's."""
+    loggers = [logging.getLogger(name) for name in ("distributed", *sorted(logging.root.manager.loggerDict))
+               if name == "distributed" or name.startswith("distributed.")]
+    previous = [logger.level for logger in loggers]
+    for logger in loggers:
+        if logger.name == "distributed" or logger.level != logging.NOTSET:
+            logger.setLevel(max(level, logger.getEffectiveLevel()))
+    try:
+        yield
+    finally:
+        for logger, old in zip(loggers, previous):
+            logger.setLevel(old)
+
+
+def _close_local(client, cluster, interrupted: bool) -> None:
+    """Close the client, then every worker (given time to exit), then the cluster."""
+    timeout = INTERRUPTED_EXIT_S if interrupted else WORKER_EXIT_S
+
+    async def close_workers() -> None:
+        await asyncio.gather(*(worker.close(timeout=timeout) for worker in list(cluster.workers.values())),
+                             return_exceptions=True)
+
+    with _sigint_ignored(), quiet_dask(logging.CRITICAL if interrupted else logging.ERROR):
+        if client is not None:
+            client.close(timeout=timeout)
+        cluster.sync(close_workers)
+        cluster.close(timeout=timeout)
 
 
 @contextmanager
 def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator:
     """A ``dask.distributed.Client``: of the cluster at ``scheduler``, else of a local cluster
-    of ``workers`` single-threaded processes (default: one per core) on 127.0.0.1."""
+    of ``workers`` single-threaded processes (default: one per core) on 127.0.0.1, shut down
+    cleanly and quietly on leaving (also on Ctrl-C, which only this process receives)."""
     from dask.distributed import Client, LocalCluster
     logging.getLogger("distributed").setLevel(logging.WARNING)  # not every worker's start and stop
+    interrupted = False
     if scheduler:
-        with Client(scheduler) as client:
+        client = Client(scheduler)
+        try:
             yield client
+        except KeyboardInterrupt:
+            interrupted = True
+            raise
+        finally:
+            with _sigint_ignored(), quiet_dask(logging.CRITICAL if interrupted else logging.ERROR):
+                client.close()
         return
-    with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                      host="127.0.0.1", scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
-                      ) as cluster, Client(cluster) as client:  # (its HTTP server on loopback, no dashboard)
+    cluster = client = None
+    try:
+        with _sigint_held():  # the cluster's thread and worker processes start with SIGINT blocked
+            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                                   host="127.0.0.1", silence_logs=logging.ERROR,  # (workers' warnings: errors only)
+                                   scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"})
+            # (the scheduler's HTTP server on loopback, no dashboard)
+            client = Client(cluster)
         yield client
+    except KeyboardInterrupt:
+        interrupted = True
+        raise
+    finally:
+        if cluster is not None:
+            _close_local(client, cluster, interrupted)
 
 
 def map_with_progress(client, function: Callable, items: Sequence, description: str, position: int = 0,

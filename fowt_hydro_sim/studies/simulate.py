@@ -28,7 +28,7 @@ from fowt_hydro_sim.physics.waves.components import (
     repeat_period,
     synthesize,
 )
-from fowt_hydro_sim.studies.psd import BANDS_HZ, MIN_SEGMENTS, band_stds
+from fowt_hydro_sim.studies.psd import BANDS_HZ, MIN_SEGMENTS, TRANSIENT_S, band_stds, default_transient
 
 _AXES = ("fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm")
 _MOTION_UNITS = ("m", "m", "m", "rad", "rad", "rad")
@@ -78,7 +78,7 @@ def statistics(result: RunResult | MotionRecord, transient_s: float) -> dict:
     if not keep.any():
         raise ConfigError(f"transient {transient_s:g} s leaves nothing of the run to analyse")
     dt = float(result.time_s[1] - result.time_s[0]) if result.time_s.size > 1 else 1.0
-    stats: dict = {"analysed_from_s": float(result.time_s[keep][0]), "bands_hz": BANDS_HZ}
+    stats: dict = {"analysed_from_s": float(result.time_s[keep][0]), "transient_s": transient_s, "bands_hz": BANDS_HZ}
     for j, name in enumerate(DOF_NAMES):
         x = result.motion[keep, j] * (180 / np.pi if j >= 3 else 1.0)
         stats[name] = {"unit": "deg" if j >= 3 else "m", "mean": float(x.mean()), "std": float(x.std()),
@@ -121,10 +121,16 @@ def free_decay(result: RunResult | MotionRecord, initial_state: tuple[float, ...
 
 
 def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, output: Path,
-             transient_s: float = 0.0, overwrite: bool = False) -> dict:
+             transient_s: float | None = None, overwrite: bool = False) -> dict:
     """Run the model, write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the
-    summary. ``waves`` None is still water."""
+    summary; its statistics leave out the first ``transient_s`` seconds (None: ``TRANSIENT_S``,
+    as ``fowt-sim analyze`` does, or nothing of a run not longer than that). ``waves`` None is
+    still water."""
     output = Path(output)
+    if transient_s is None:
+        transient_s = default_transient(run.duration_s)
+    if not 0 <= transient_s < run.duration_s:
+        raise ConfigError(f"--transient: must be in [0, duration {run.duration_s:g} s), got {transient_s:g}")
     if output.exists() and any(output.iterdir()) and not overwrite:
         raise ConfigError(f"{output}: exists and is not empty (pass --overwrite to replace its files)")
     platform = load_platform(run.platform)
@@ -182,8 +188,8 @@ def summary_text(summary: dict, output: Path) -> str:
              f"({perf['real_time_factor']:.0f}x real time; set-up {perf['set_up_s']:.1f} s, which includes "
              f"compiling the kernels on a first run)"]
     stats = summary["statistics"]
-    lines.append(f"statistics from t = {stats['analysed_from_s']:g} s; band STDs over "
-                 + ", ".join(f"{b} {lo:g}-{hi:g} Hz" for b, (lo, hi) in stats["bands_hz"].items()))
+    lines.append(f"statistics from t = {stats['analysed_from_s']:g} s ({_dropped_text(stats, summary['run'])}); "
+                 "band STDs over " + ", ".join(f"{b} {lo:g}-{hi:g} Hz" for b, (lo, hi) in stats["bands_hz"].items()))
     lines.append(f"{'':16s}{'mean':>10s}{'std':>10s}{'min':>10s}{'max':>10s}{'std LF':>10s}{'std WF':>10s}")
     for name in DOF_NAMES:
         s = stats[name]
@@ -197,6 +203,17 @@ def summary_text(summary: dict, output: Path) -> str:
                      f"{fit['cycles']:.1f} cycles")
     lines.append(f"wrote {output / 'timeseries.csv'} and {output / 'summary.json'}")
     return "\n".join(lines)
+
+
+def _dropped_text(stats: dict, run: dict) -> str:
+    """What the statistics left out at the start of the run, and why."""
+    transient = stats["transient_s"]
+    if transient > 0:
+        return f"the first {transient:g} s dropped as start-up transient, as fowt-sim analyze does; --transient"
+    if run["duration_s"] <= TRANSIENT_S:
+        return (f"nothing dropped: the run is not longer than the {TRANSIENT_S:g} s default transient; "
+                "fowt-sim analyze --transient 0 gives the same")
+    return "nothing dropped: --transient 0"
 
 
 # ---------------------------------------------------------------------- files

@@ -1,10 +1,10 @@
 """Load-case sweeps (``fowt-sim sweep``): a table of runs, load cases x seeds x drag models x
 platform variants, run on a Dask cluster; each run's statistics and band STDs become one row
 of ``runs.csv``, written as the run finishes, and ``summary.csv`` gives per load case (drag
-model and variant) the mean of every statistic over the seeds with its Student-t confidence
-interval. A rerun into the same folder skips the runs already in ``runs.csv`` (resuming an
-interrupted sweep, or extending one with more seeds or cases); Parquet copies of both
-tables are written too when pyarrow can be imported.
+model and variant) the mean of every statistic over the seeds with its confidence interval
+(Student-t; log-normal for STDs, which stays positive). A rerun into the same folder skips
+the runs already in ``runs.csv`` (resuming an interrupted sweep, or extending one with more
+seeds or cases); Parquet copies of both tables are written too when pyarrow can be imported.
 
 A run is exactly ``fowt-sim simulate`` with the same settings (``studies.simulate.run_model``
 and ``statistics``); a platform variant is a platform (packaged name or YAML file) with
@@ -20,13 +20,13 @@ import logging
 import math
 import os
 import time
+from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field, replace
 from itertools import product
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 import numpy as np
-import scipy.stats
 import yaml
 
 from fowt_hydro_sim.physics.config import (
@@ -341,30 +341,60 @@ def prepare_output(folder: Path, sweep: Sweep, overwrite: bool) -> list[dict]:
 
 
 # ---------------------------------------------------------------------- means over seeds
-def confidence_interval(values: np.ndarray, level: float) -> tuple[float, float, float]:
-    """Mean, sample standard deviation and the half-width of the Student-t confidence
-    interval of the mean at ``level`` (NaN for fewer than two values)."""
+STUDENT_T = "student_t"  # interval of the mean of any statistic
+LOGNORMAL = "lognormal_cox"  # interval of the mean of a positive one (an STD, Hs)
+
+
+def is_positive(metric: str) -> bool:
+    """Whether a statistic of ``metric_names`` can only be positive (an STD or Hs = 4 STD)."""
+    return "_std_" in metric or metric.endswith("_4std_m")
+
+
+def confidence_interval(values: np.ndarray, level: float, positive: bool = False) -> tuple[float, float, float, float]:
+    """Mean, sample standard deviation and the confidence interval (low, high) at ``level``
+    of the mean of ``values`` over seeds (NaN interval for fewer than two values).
+
+    Any statistic: the Student-t interval, mean +- t s / sqrt(n). A ``positive`` one (an
+    STD): the log-normal interval of the mean by Cox's method with Student's t (Olsson,
+    J. Stat. Educ. 13(1), 2005): with y = ln(values), mean ybar and variance s^2,
+    exp(ybar + s^2/2 +- t sqrt(s^2/n + s^4/(2(n-1)))). It never goes below zero; with two
+    seeds it is wide (t has one degree of freedom) but positive. Values of exactly zero (a
+    DOF the waves do not excite) have no logarithm: then the Student-t interval, its lower
+    end clipped at zero."""
+    import scipy.stats  # here: 2 s of start-up for the commands that build no summary
+
     values = np.asarray(values, dtype=float)
     n = values.size
     mean = float(values.mean())
     if n < 2:
-        return mean, float("nan"), float("nan")
+        return mean, float("nan"), float("nan"), float("nan")
     std = float(values.std(ddof=1))
-    return mean, std, float(scipy.stats.t.ppf(0.5 + level / 2, n - 1) * std / math.sqrt(n))
+    t = float(scipy.stats.t.ppf(0.5 + level / 2, n - 1))
+    if positive and np.all(values > 0):
+        logs = np.log(values)
+        variance = float(logs.var(ddof=1))
+        centre = float(logs.mean()) + variance / 2
+        half = t * math.sqrt(variance / n + variance**2 / (2 * (n - 1)))
+        return mean, std, math.exp(centre - half), math.exp(centre + half)
+    half = t * std / math.sqrt(n)
+    return mean, std, max(mean - half, 0.0) if positive else mean - half, mean + half
 
 
 def summarise(rows: list[dict], level: float = 0.95) -> list[dict]:
     """Per load case, drag model and variant (in the rows' order), every statistic's mean
-    over the seeds with its confidence interval: one row per statistic."""
+    over the seeds with its confidence interval (``confidence_interval``: log-normal for
+    STDs, Student-t for the others, named in the row's ``interval``): one row per statistic."""
     groups: dict[tuple, list[dict]] = {}
     for row in rows:
         groups.setdefault(tuple(row[g] for g in GROUP), []).append(row)
     out = []
     for group, members in groups.items():
         for metric in metric_names():
-            mean, std, half = confidence_interval(np.array([r[metric] for r in members]), level)
+            positive = is_positive(metric)
+            mean, std, low, high = confidence_interval(np.array([r[metric] for r in members]), level, positive)
             out.append({**dict(zip(GROUP, group)), "statistic": metric, "n_seeds": len(members), "mean": mean,
-                        "std_over_seeds": std, "ci_low": mean - half, "ci_high": mean + half, "confidence": level})
+                        "std_over_seeds": std, "ci_low": low, "ci_high": high, "confidence": level,
+                        "interval": LOGNORMAL if positive else STUDENT_T})
     return out
 
 
@@ -433,7 +463,7 @@ def summary_text(outcome: dict, statistics_shown: tuple[str, ...] = ("surge_std_
     shown = [r for r in outcome["summary"] if r["statistic"] in statistics_shown]
     level = shown[0]["confidence"] if shown else 0.95
     lines = [f"{outcome['runs']} runs ({outcome['new']} new) in {outcome['wall_s']:.1f} s; mean over seeds "
-             f"[{100 * level:g} % confidence interval]"]
+             f"[{100 * level:g} % confidence interval: Student-t, log-normal for STDs]"]
     for r in shown:
         interval = f"[{r['ci_low']:.4g}, {r['ci_high']:.4g}]" if r["n_seeds"] > 1 else "(one seed)"
         lines.append(f"{r['load_case']:8s}{r['drag_model']:10s}{r['variant']:14s}{r['statistic']:28s}"
