@@ -4,8 +4,6 @@ against a reference, and ``fowt-sim analyze`` on real bags."""
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -13,7 +11,7 @@ import pytest
 from fowt_hydro_sim.physics.waves.spectra import jonswap
 from fowt_hydro_sim.rosbag.writer import BagWriter
 from fowt_hydro_sim.studies.analysis import AnalysisSettings, analyse, compare, pass_rate
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import fowt_sim
 from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds
 
@@ -102,10 +100,9 @@ def test_fowt_sim_analyze_writes_the_tables_and_figures(tmp_path):
     x, y = gaussian_record(rng, 7200.0), gaussian_record(rng, 7200.0)
     write_pose_bag(tmp_path / "measured", x, 0.01 * y)
     write_pose_bag(tmp_path / "model", 1.25 * x, 0.01 * y)  # surge 25 % too large, pitch right
-    result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(tmp_path / "model"),
-                             "--ref", str(tmp_path / "measured"), "--dofs", "surge", "pitch", "--transient", "100",
-                             "--band", "pitch.wave=0.05:0.3", "-o", str(tmp_path / "report")],
-                            cwd=REPO, capture_output=True, text=True, timeout=120)
+    result = fowt_sim("analyze", str(tmp_path / "model"), "--ref", str(tmp_path / "measured"), "--dofs", "surge",
+                      "pitch", "--transient", "100", "--band", "pitch.wave=0.05:0.3", "-o", str(tmp_path / "report"),
+                      timeout=120)
     assert result.returncode == 0, result.stderr
     assert "pass rate: 50 % of 4 band metrics" in result.stdout
     report = json.loads((tmp_path / "report" / "analysis.json").read_text())
@@ -123,9 +120,8 @@ def test_analyze_without_a_reference_draws_the_band_stds_and_the_psd_confidence_
     legend names the confidence band's level."""
     rng = np.random.default_rng(9)
     write_pose_bag(tmp_path / "alone", gaussian_record(rng, 3600.0), 0.01 * gaussian_record(rng, 3600.0))
-    result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(tmp_path / "alone"),
-                             "--dofs", "surge", "pitch", "--transient", "0", "--confidence", "0.8",
-                             "-o", str(tmp_path / "report")], cwd=REPO, capture_output=True, text=True, timeout=120)
+    result = fowt_sim("analyze", str(tmp_path / "alone"), "--dofs", "surge", "pitch", "--transient", "0",
+                      "--confidence", "0.8", "-o", str(tmp_path / "report"), timeout=120)
     assert result.returncode == 0, result.stderr
     for name in ("psd_alone.png", "band_stds_alone.png"):
         assert (tmp_path / "report" / name).stat().st_size > 1000, name
@@ -160,20 +156,16 @@ def test_the_psd_confidence_band_covers_the_true_spectrum():
 ])
 def test_analyze_refuses_bad_options_in_one_line(tmp_path, args, message):
     write_pose_bag(tmp_path / "run", np.zeros(400), np.zeros(400))
-    result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(tmp_path / "run"), *args,
-                             "-o", str(tmp_path / "out")], cwd=REPO, capture_output=True, text=True, timeout=60)
+    result = fowt_sim("analyze", str(tmp_path / "run"), *args, "-o", str(tmp_path / "out"), timeout=60)
     assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr
 
 
 def test_analyze_reads_what_simulate_writes_into_a_default_report_folder(tmp_path):
     """An offline run is analysed like a recorded one; without -o the report goes beside it."""
     run = tmp_path / "run1"
-    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "simulate", "--load-case", "lc5.2",
-                           "--duration", "900", "-o", str(run)], cwd=REPO, capture_output=True, text=True,
-                          timeout=300)
+    done = fowt_sim("simulate", "--load-case", "lc5.2", "--duration", "900", "-o", str(run), timeout=300)
     assert done.returncode == 0, done.stderr
-    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(run), "--transient", "100"],
-                          cwd=REPO, capture_output=True, text=True, timeout=300)
+    done = fowt_sim("analyze", str(run), "--transient", "100", timeout=300)
     assert done.returncode == 0, done.stderr
     report = json.loads((tmp_path / "run1_report" / "analysis.json").read_text())
     from fowt_hydro_sim.studies.psd import band_std, psd
@@ -207,12 +199,9 @@ def test_simulate_and_analyze_drop_the_same_transient_and_print_the_same_band_st
     simulate prints are those analyze prints of the same output folder."""
     from fowt_hydro_sim.studies.psd import TRANSIENT_S
     run = tmp_path / "run"
-    simulated = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "simulate", "--load-case", "lc5.2",
-                                "--duration", "900", "-o", str(run)], cwd=REPO, capture_output=True, text=True,
-                               timeout=300)
+    simulated = fowt_sim("simulate", "--load-case", "lc5.2", "--duration", "900", "-o", str(run), timeout=300)
     assert simulated.returncode == 0, simulated.stderr
-    analysed = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "analyze", str(run)], cwd=REPO,
-                              capture_output=True, text=True, timeout=300)
+    analysed = fowt_sim("analyze", str(run), timeout=300)
     assert analysed.returncode == 0, analysed.stderr
     assert f"statistics from t = {TRANSIENT_S:g} s (the first {TRANSIENT_S:g} s dropped" in simulated.stdout
     assert f"each run analysed after its first {TRANSIENT_S:g} s" in analysed.stdout

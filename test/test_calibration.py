@@ -4,8 +4,6 @@ through ``fowt-sim calibrate``, and the Hs/D regression with the blind predictio
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -17,7 +15,7 @@ from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.studies.analysis import AnalysisSettings
 from fowt_hydro_sim.studies.calibration import calibrate, predict, regress, replay
 from fowt_hydro_sim.studies.replay import MeasuredRun, measured_run
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import REPO, fowt_sim
 
 LF_COLUMNS = "column*.submerged.cd.low_frequency"
 RECORD_S = 1500.0
@@ -70,16 +68,14 @@ def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, platform):
 
 def test_fowt_sim_calibrate_on_a_local_dask_cluster_then_regress_and_predict(measured, tmp_path):
     out = tmp_path / "cal"
-    result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "calibrate", "--measured", str(measured),
-                             "--params", LF_COLUMNS, "--dofs", "surge", "--transient", "300", "--workers", "2",
-                             "-o", str(out)], cwd=REPO, capture_output=True, text=True, timeout=600)
+    result = fowt_sim("calibrate", "--measured", str(measured), "--params", LF_COLUMNS, "--dofs", "surge",
+                      "--transient", "300", "--workers", "2", "-o", str(out), timeout=600)
     assert result.returncode == 0, result.stderr
     calibration = json.loads((out / "calibration.json").read_text())
     fitted = calibration["runs"][0]["parameters"][LF_COLUMNS]
     assert abs(fitted / 0.8 - 1) < 0.04 and "errors after" in result.stdout
-    regression = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "calibrate", "--regress",
-                                 str(out / "calibration.json"), "--predict", str(measured), "-o", str(out)],
-                                cwd=REPO, capture_output=True, text=True, timeout=120)
+    regression = fowt_sim("calibrate", "--regress", str(out / "calibration.json"), "--predict", str(measured), "-o",
+                          str(out), timeout=120)
     assert regression.returncode == 0, regression.stderr
     predicted = load_platform(out / "platform_predicted.yaml")
     assert abs(coefficient(predicted, LF_COLUMNS) - fitted) < 1e-9  # one run: a constant

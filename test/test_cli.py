@@ -14,12 +14,8 @@ import numpy as np
 import pytest
 
 from fowt_hydro_sim.studies.simulate import read_run
+from fowt_hydro_sim.testing import REPO, fowt_sim
 from fowt_hydro_sim.testing.references import hydrodyn_case
-
-
-def fowt_sim(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", *args], capture_output=True,
-                          text=True, timeout=300, cwd=Path(__file__).resolve().parents[1])
 
 
 def test_simulate_writes_time_series_and_summary(tmp_path: Path):
@@ -261,11 +257,11 @@ def test_a_free_decay_run_reports_its_fitted_period_and_damping(tmp_path: Path, 
     """Still water and an initial offset: the fitted period is the linearised model's natural
     period (within 1 %), and the damping ratio agrees with the log decrement of the record's
     peaks over the same first cycles (within 10 %)."""
-    from fowt_hydro_sim.studies.simulate import DECAY_CYCLES
     import scipy.signal
 
     from fowt_hydro_sim.physics.config import load_platform
     from fowt_hydro_sim.physics.model import PlatformModel
+    from fowt_hydro_sim.studies.simulate import DECAY_CYCLES
     initial = ["0"] * 6
     initial[j] = str(offset)
     done = fowt_sim("simulate", "--still-water", "--initial", *initial, "--duration", "600", "--output-interval",
@@ -299,3 +295,42 @@ def test_node_help_lists_every_parameter_with_its_default():
     assert set(listed) == set(described(NodeSettings))
     assert "(default 'stop'; one of stop, continue)" in listed["record_failure"]
     assert all("(default " in line for line in listed.values())
+
+
+WITHOUT = """
+import sys
+
+class Absent:
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in sys.argv[1].split(","):
+            raise ModuleNotFoundError(f"No module named {name!r}")
+
+sys.meta_path.insert(0, Absent())
+from fowt_hydro_sim.cli import main
+sys.exit(main(sys.argv[2:]))
+"""
+
+
+def fowt_sim_without(packages: str, *args: object) -> subprocess.CompletedProcess:
+    """``fowt-sim ARGS`` in a child process where ``packages`` (comma-separated) cannot be imported."""
+    return subprocess.run([sys.executable, "-c", WITHOUT, packages, *map(str, args)], cwd=REPO,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_without_matplotlib_analyze_writes_its_tables_and_says_the_figures_are_not_drawn(tmp_path: Path):
+    run = tmp_path / "run"
+    assert fowt_sim("simulate", "--load-case", "lc5.2", "--duration", "200", "-o", run).returncode == 0
+    done = fowt_sim_without("matplotlib", "analyze", run, "--transient", "0", "-o", tmp_path / "report")
+    assert done.returncode == 0, done.stderr
+    said = [line for line in done.stderr.splitlines() if "not installed" in line]
+    assert len(said) == 1 and "figures not drawn: matplotlib" in said[0] and "[plots]" in said[0], done.stderr
+    assert "Traceback" not in done.stderr and "surge" in done.stdout
+    assert (tmp_path / "report" / "table.txt").exists() and not list((tmp_path / "report").glob("*.png"))
+
+
+def test_without_dask_a_sweep_is_refused_in_one_line_naming_the_extra(tmp_path: Path):
+    done = fowt_sim_without("dask,distributed", "sweep", "--duration", "60", "--seeds", "1", "-o", tmp_path / "s")
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+    assert [line for line in done.stderr.splitlines() if "error" in line] == [
+        "fowt-sim sweep: error: this command runs on a Dask cluster, and Dask is not installed: "
+        "pip install 'fowt_hydro_sim[cluster]'"], done.stderr

@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import re
 import signal
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -18,7 +16,7 @@ from rosgraph_msgs.msg import Clock  # noqa: E402
 
 from fowt_hydro_sim.ros import closed_loop  # noqa: E402
 from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
-from fowt_hydro_sim.testing import REPO, rosco_oracle  # noqa: E402
+from fowt_hydro_sim.testing import fowt_sim, rosco_oracle  # noqa: E402
 from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
 from fowt_hydro_sim.turbine.description import load_turbine, turbine_path  # noqa: E402
 from msg_adapters import topics  # noqa: E402
@@ -152,8 +150,7 @@ def test_a_silent_controller_is_given_up_after_its_timeouts_in_a_row():
 @pytest.mark.parametrize("bad, named", [(["--wind-speed", "100"], "--wind-speed"), (["--duration", "0"], "--duration"),
                                         (["--turbine", "nope"], "turbine 'nope'"), (["--wind", "file"], "wind_file")])
 def test_closed_loop_refuses_bad_input_in_one_line(tmp_path, bad, named):
-    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "closed-loop", "-o", str(tmp_path / "b"), *bad],
-                          cwd=REPO, capture_output=True, text=True, timeout=120)
+    done = fowt_sim("closed-loop", "-o", str(tmp_path / "b"), *bad, timeout=120)
     assert done.returncode == 2
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and named in lines[0] and "Traceback" not in done.stderr

@@ -30,16 +30,11 @@ from fowt_hydro_sim.physics.wave_feed import run_with_elevation
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, message_index
 from fowt_hydro_sim.studies.wave_bags import write_wave_bag
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import REPO, fowt_sim
 from fowt_hydro_sim.testing.ros import Listener, finish, start
 from msg_adapters import cdr, topics
 
 OUTPUT_TOPICS = [topic for topic, _ in topics.outputs(PUBLISHED).values()]
-
-
-def run_cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", *args], cwd=REPO, capture_output=True,
-                          text=True, timeout=120)
 
 
 def published_count(log: str) -> int:
@@ -122,7 +117,7 @@ def test_the_run_configuration_in_the_bag_reproduces_the_run(recorded_run, tmp_p
     assert config["software"]["fowt_hydro_sim"] and config["parameters"]["seed"] == 1
     assert config["sea_state"]["hs_m"] == 11.0 and "members" in yaml.safe_load(config["platform_yaml"])
     params = tmp_path / "rerun.yaml"
-    result = run_cli("info", str(bag), "--params-file", str(params))
+    result = fowt_sim("info", str(bag), "--params-file", str(params))
     assert result.returncode == 0 and "/platform/pose" in result.stdout, result.stderr
     args = [sys.executable, "-m", "fowt_hydro_sim.cli", "node", "--ros-args", "--params-file", str(params),
             "-p", f"record:={tmp_path / 'again'}"]
@@ -186,7 +181,7 @@ def test_a_batch_written_as_arrays_is_the_same_bag_as_message_by_message(tmp_pat
 @pytest.fixture(scope="module")
 def wave_bag(tmp_path_factory) -> Path:
     path = tmp_path_factory.mktemp("waves") / "lc53"
-    result = run_cli("waves", "--load-case", "lc5.3", "--duration", "200", "--seed", "3", "-o", str(path))
+    result = fowt_sim("waves", "--load-case", "lc5.3", "--duration", "200", "--seed", "3", "-o", str(path))
     assert result.returncode == 0, result.stderr
     return path
 
@@ -285,7 +280,7 @@ def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
     finish(process)
     with pytest.raises(BagError, match="truncated.*fowt-sim recover"):
         Bag(bag)
-    result = run_cli("recover", str(bag))
+    result = fowt_sim("recover", str(bag))
     assert result.returncode == 0, result.stderr
     recovered = Bag(bag)
     assert recovered.topics[topics.POSE].message_count > 50  # ~5 s at 10x, chunks closed every wall second
@@ -299,7 +294,7 @@ def test_recover_leaves_an_intact_bag_alone(wave_bag, tmp_path):
     bag = tmp_path / "intact"
     shutil.copytree(wave_bag, bag)
     before = {f.name: f.read_bytes() for f in bag.iterdir()}
-    result = run_cli("recover", str(bag))
+    result = fowt_sim("recover", str(bag))
     assert result.returncode == 0, result.stderr
     assert "intact" in result.stderr and "recovered" not in result.stderr
     assert {f.name: f.read_bytes() for f in bag.iterdir()} == before  # no *.damaged, nothing rewritten
@@ -315,7 +310,7 @@ def test_recover_refuses_a_file_that_is_not_an_mcap_recording(wave_bag, tmp_path
     mcap.write_bytes(content)
     before = sorted(p.name for p in tmp_path.rglob("*"))
     for target in (bag, mcap):
-        result = run_cli("recover", str(target))
+        result = fowt_sim("recover", str(target))
         assert result.returncode == 2, result.stderr
         lines = result.stderr.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith(f"fowt-sim recover: error: {mcap}: not an MCAP recording ("), \
@@ -347,7 +342,7 @@ def test_bad_bags_give_a_clear_error(wave_bag, tmp_path):
     for name, (path, message) in _bad_bags(tmp_path, wave_bag).items():
         with pytest.raises(BagError, match=message):
             Bag(path)
-        result = run_cli("info", str(path))
+        result = fowt_sim("info", str(path))
         assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr, name
 
 
@@ -420,9 +415,7 @@ def test_a_wave_bag_played_on_the_topic_is_recorded_again_bit_for_bit(wave_bag, 
         try:
             # the player waits for the node's subscription (the node's first /clock, at t = 0 before any
             # wave, may be published before the listener is matched: it is no sign of life to wait for)
-            player = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(wave_bag), "--rate",
-                                     "0", "--wait-for-subscribers", "1"], cwd=REPO, capture_output=True, text=True,
-                                    timeout=180)
+            player = fowt_sim("play", str(wave_bag), "--rate", "0", "--wait-for-subscribers", "1", timeout=180)
             assert player.returncode == 0, player.stderr
             # the node has taken every sample once its simulated time is past the last one
             assert listener.wait_for(lambda: simulated_s() > last_sample_s, 180.0), simulated_s()

@@ -34,14 +34,10 @@ from fowt_hydro_sim.studies.sweep import (
     metric_names,
     run_sweep,
 )
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import REPO, fowt_sim
 
 DOFS = (("surge", "m"), ("sway", "m"), ("heave", "m"), ("roll", "deg"), ("pitch", "deg"), ("yaw", "deg"))
 
-
-def fowt_sim(*args: str, **kwargs) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", *args], capture_output=True, text=True,
-                          timeout=600, cwd=REPO, **kwargs)
 
 
 def read_table(path: Path) -> list[dict]:

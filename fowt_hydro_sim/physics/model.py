@@ -22,6 +22,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.frames import rotation_matrix as rotation_matrices
 from fowt_hydro_sim.physics import dynamics
 from fowt_hydro_sim.physics import free_surface_hydrostatics as free_surface
@@ -174,7 +175,7 @@ class PlatformModel:
                 table = np.asarray(kinematics.values, dtype=np.float64)  # the kernel's one table type
             else:
                 if not wave_block_s > 0:
-                    raise ValueError(f"wave block: must be > 0 s, got {wave_block_s}")
+                    raise InputError(f"wave block: must be > 0 s, got {wave_block_s}")
                 block_rows = max(8, int(np.ceil(wave_block_s / step)))
                 period_rows = int(round(waves.period_s / step))
                 depth = (env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
@@ -356,7 +357,7 @@ class PlatformModel:
         """The user force's wrench at time t and state y, checked."""
         wrench = np.asarray(self.user_force(t, y[0:6].copy(), y[6:12].copy()), dtype=float)
         if wrench.shape != (6,) or not np.all(np.isfinite(wrench)):
-            raise ValueError(f"user force at t = {t:g} s: must return 6 finite numbers, got {wrench.tolist()!r}")
+            raise InputError(f"user force at t = {t:g} s: must return 6 finite numbers, got {wrench.tolist()!r}")
         return wrench
 
     def set_external_wrench(self, wrench: np.ndarray, frame: str = "world") -> None:
@@ -377,7 +378,7 @@ class PlatformModel:
         written. Rows from the current time to 2 steps past the next step end must be written
         before stepping; a row is reused ``n_rows`` steps later."""
         if n_rows < 8 or step_s <= 0:
-            raise ValueError(f"streamed waves: need step_s > 0 and n_rows >= 8, got {step_s}, {n_rows}")
+            raise InputError(f"streamed waves: need step_s > 0 and n_rows >= 8, got {step_s}, {n_rows}")
         table = np.zeros((n_rows, len(self.geometry.points_m), 7))
         self._data = self._data._replace(waves=WaveTable(table, float(step_s)))
         self._elevation = np.zeros((n_rows, 1, 1))
@@ -490,7 +491,7 @@ class PlatformModel:
             if part < n_steps - done:
                 part -= part % every
             if part <= 0:
-                raise ValueError(f"output interval {every * self.dt_s:g} s: longer than the wave table's "
+                raise InputError(f"output interval {every * self.dt_s:g} s: longer than the wave table's "
                                  f"blocks hold; use a longer wave_block_s")
             outputs = (self._history, self._newest, out_t[written:], out_y[written:], out_acc[written:],
                        out_loads[written:])
@@ -516,7 +517,7 @@ class PlatformModel:
         shapes = {"motion": motion, "velocity": velocity, "acceleration": acceleration}
         for name, arr in shapes.items():
             if np.shape(arr) != (n, 6):
-                raise ValueError(f"prescribed motion: {name} must have shape ({n}, 6), got {np.shape(arr)}")
+                raise InputError(f"prescribed motion: {name} must have shape ({n}, 6), got {np.shape(arr)}")
         states = np.ascontiguousarray(np.hstack([motion, velocity]), dtype=float)
         acceleration = np.ascontiguousarray(acceleration, dtype=float)
         motion = np.asarray(motion, dtype=float)

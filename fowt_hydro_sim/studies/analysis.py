@@ -29,6 +29,7 @@ import yaml
 
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.model import DOF_NAMES
+from fowt_hydro_sim.studies.figures import pyplot
 from fowt_hydro_sim.studies.psd import (
     BANDS_HZ,
     SEGMENT_S,
@@ -235,7 +236,7 @@ def write_report(analyses: list[RunAnalysis], comparisons: list[dict], settings:
             written.append(plot_band_errors([r for r in comparisons if r["run"] == run.name], settings, figure))
         else:
             written.append(plot_band_stds(run, settings, figure))
-    return written
+    return [path for path in written if path is not None]  # figures: None without matplotlib
 
 
 def load_run(path: str | Path) -> tuple[np.ndarray, np.ndarray, RunContext]:
@@ -312,6 +313,7 @@ def closed_loop_report(runs: list[str | Path], settings: AnalysisSettings, folde
         files.append(turbine_plots.plot_closed_loop(name, series, folder / f"closed_loop_{_slug(name)}.png"))
     if not rows:
         return "", []
+    files = [path for path in files if path is not None]  # figures: None without matplotlib
     files.append(_csv(folder / "closed_loop.csv", rows))
     lines = ["", f"closed loop (after {settings.transient_s:g} s):"]
     lines += [f"  {r['run']:<16} {r['quantity']:<16} mean {r['mean']:10.4g} std {r['std']:9.3g} "
@@ -339,13 +341,6 @@ def _csv(path: Path, rows: list[dict]) -> Path:
     return path
 
 
-def _pyplot():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
-
-
 def psd_labels(run: RunAnalysis, reference: RunAnalysis | None, dofs: tuple[str, ...],
                confidence: float = 0.9) -> dict[str, object]:
     """The PSD figure's title lines, legend names (with the run's chi-square confidence band
@@ -364,11 +359,13 @@ def psd_labels(run: RunAnalysis, reference: RunAnalysis | None, dofs: tuple[str,
             "band": f"run's {100 * confidence:g} % confidence band (chi-square, {run.psd_nu:.1f} dof)"}
 
 
-def plot_psd(run: RunAnalysis, reference: RunAnalysis | None, settings: AnalysisSettings, path: Path) -> Path:
+def plot_psd(run: RunAnalysis, reference: RunAnalysis | None, settings: AnalysisSettings, path: Path) -> Path | None:
     """PSD of each DOF, the run against the reference, log axes, bands shaded, Tp and the
     natural frequencies marked; the title says the sea state, drag model and record length."""
     labels = psd_labels(run, reference, settings.dofs, settings.confidence)
-    plt = _pyplot()
+    plt = pyplot()
+    if plt is None:
+        return None
     fig, axes = plt.subplots(len(settings.dofs), 1, figsize=(7.5, 2.8 * len(settings.dofs)), sharex=True,
                              squeeze=False)
     for ax, dof in zip(axes[:, 0], settings.dofs):
@@ -400,10 +397,12 @@ def plot_psd(run: RunAnalysis, reference: RunAnalysis | None, settings: Analysis
     return path
 
 
-def plot_band_stds(run: RunAnalysis, settings: AnalysisSettings, path: Path) -> Path:
+def plot_band_stds(run: RunAnalysis, settings: AnalysisSettings, path: Path) -> Path | None:
     """The run's band STDs as bars, one panel per DOF, with their chi-square confidence
     intervals (the figure without a reference)."""
-    plt = _pyplot()
+    plt = pyplot()
+    if plt is None:
+        return None
     fig, axes = plt.subplots(1, len(settings.dofs), figsize=(3.0 * len(settings.dofs) + 1.0, 3.8), squeeze=False)
     for ax, dof in zip(axes[0], settings.dofs):
         bands = list(settings.bands(dof))
@@ -426,9 +425,11 @@ def plot_band_stds(run: RunAnalysis, settings: AnalysisSettings, path: Path) -> 
     return path
 
 
-def plot_band_errors(rows: list[dict], settings: AnalysisSettings, path: Path) -> Path:
+def plot_band_errors(rows: list[dict], settings: AnalysisSettings, path: Path) -> Path | None:
     """Band STDs of run and reference as bars, the error and its interval annotated."""
-    plt = _pyplot()
+    plt = pyplot()
+    if plt is None:
+        return None
     fig, ax = plt.subplots(figsize=(max(6.0, 1.1 * len(rows)), 3.8))
     x = np.arange(len(rows))
     ratio_ref = np.ones(len(rows))

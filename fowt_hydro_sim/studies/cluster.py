@@ -16,6 +16,8 @@ import threading
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 
+from fowt_hydro_sim.errors import InputError
+
 WORKER_EXIT_S = 30.0  # a worker process asked to close is killed only after 0.8 x this
 INTERRUPTED_EXIT_S = 5.0  # the same after Ctrl-C: a worker busy with a run is not waited for
 
@@ -86,8 +88,13 @@ def _close_local(client, cluster, interrupted: bool) -> None:
 def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator:
     """A ``dask.distributed.Client``: of the cluster at ``scheduler``, else of a local cluster
     of ``workers`` single-threaded processes (default: one per core) on 127.0.0.1, shut down
-    cleanly and quietly on leaving (also on Ctrl-C, which only this process receives)."""
-    from dask.distributed import Client, LocalCluster
+    cleanly and quietly on leaving (also on Ctrl-C, which only this process receives).
+    InputError if Dask (the ``cluster`` extra) is not installed."""
+    try:
+        from dask.distributed import Client, LocalCluster
+    except ImportError:
+        raise InputError("this command runs on a Dask cluster, and Dask is not installed: "
+                         "pip install 'fowt_hydro_sim[cluster]'") from None
     logging.getLogger("distributed").setLevel(logging.WARNING)  # not every worker's start and stop
     interrupted = False
     if scheduler:
