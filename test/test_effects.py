@@ -18,8 +18,14 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_added_mass
-from fowt_hydro_sim.studies.diagnosis.effects import (CATALOGUE, base, kc_drag, mooring_stiffness, quadratic_damping,
-                                                     slow_drift)
+from fowt_hydro_sim.studies.diagnosis.effects import (
+    CATALOGUE,
+    base,
+    kc_dependent_drag,
+    mooring_stiffness,
+    quadratic_damping,
+    slow_drift,
+)
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, block_lag_s, gap
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
@@ -209,7 +215,7 @@ def test_band_split_and_coefficient_scaling(platform):
     t = np.arange(0.0, 100.0, 0.1)
     run = MeasuredRun("r", t, 1.5 * np.sin(2 * np.pi * 0.1 * t), (0.0, 0.0), t, np.zeros((t.size, 6)))
     assert run.hs_m == pytest.approx(4 * 1.5 / math.sqrt(2))
-    kc = kc_drag.keulegan_carpenter(run.hs_m, platform)
+    kc = kc_dependent_drag.keulegan_carpenter(run.hs_m, platform)
     assert kc == pytest.approx(math.pi * run.hs_m / 15.0)
     varied = CATALOGUE["kc_dependent_drag"].apply(Variant(platform), run, {"kc_exponent": 0.5})
     assert varied.platform.members[0].zones[0].cd[0].constant == pytest.approx(0.8 * math.sqrt(kc))
