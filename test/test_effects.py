@@ -6,6 +6,7 @@ metrics against known scalings, shifts and noise."""
 from __future__ import annotations
 
 import math
+import types
 from pathlib import Path
 
 import numpy as np
@@ -20,10 +21,13 @@ from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_added_mass
 from fowt_hydro_sim.studies.diagnosis.effects import (
     CATALOGUE,
+    EFFECT_MODULES,
+    IndependentInjection,
     base,
     kc_dependent_drag,
     mooring_stiffness,
     quadratic_damping,
+    registered,
     slow_drift,
 )
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, block_lag_s, gap
@@ -222,12 +226,12 @@ def test_band_split_and_coefficient_scaling(platform):
 
 
 def test_every_effect_module_is_registered_and_off_means_off(platform):
-    """Each module of effects/ has one catalogue entry; at its ``off`` values an effect
-    leaves the variant as the plain model (frequency-dependent drag: the filtered model
-    with every band at the constant Cd)."""
+    """Each module of effects/ is the catalogue entry of its name; at its ``off`` values an
+    effect leaves the variant as the plain model (frequency-dependent drag: the filtered
+    model with every band at the constant Cd)."""
     folder = Path(base.__file__).parent
     modules = {p.stem for p in folder.glob("*.py")} - {"__init__", "base"}
-    assert len(modules) == len(CATALOGUE) >= 7
+    assert modules == set(CATALOGUE) and len(CATALOGUE) >= 7
     t = np.arange(0.0, 100.0, 0.1)
     run = MeasuredRun("r", t, np.sin(t), (0.0, 0.0), t, np.zeros((t.size, 6)))
     for effect in CATALOGUE.values():
@@ -241,6 +245,45 @@ def test_every_effect_module_is_registered_and_off_means_off(platform):
             assert varied.drag_model == "constant"
             assert varied.platform == platform, effect.name
 
+
+
+def test_every_catalogue_effect_has_benchmark_scenarios():
+    """Each catalogue effect is injected by the twin at its module's strengths (at least one,
+    in the catalogue's order), and says whether the independent basin has a form of it: its
+    own, or None; every independent form's right answers are catalogue effects."""
+    from fowt_hydro_sim.studies.diagnosis import benchmark
+    twin = benchmark.scenarios(nulls=0, out_of_catalogue=0)
+    assert [s.effect for s in twin] == [name for name in CATALOGUE for _ in EFFECT_MODULES[name].TWIN_INJECTIONS]
+    assert all(EFFECT_MODULES[name].TWIN_INJECTIONS for name in CATALOGUE)
+    independent = benchmark.independent_scenarios(nulls=0, out_of_catalogue=0, strengths=2)
+    for name, module in EFFECT_MODULES.items():
+        own = module.INDEPENDENT_INJECTION
+        assert own is None or len([s for s in independent if s.effect == own.form]) == len(own.strengths), name
+    assert {s.effect for s in independent} == set(benchmark.INDEPENDENT_INJECTIONS)
+    assert all(set(s.right_answers) <= set(CATALOGUE) for s in independent)
+
+
+def test_an_effect_module_without_its_benchmark_injections_is_refused():
+    """A module registered without twin injections, without a word on the independent
+    basin, or with its effect named otherwise, is refused with one line naming it (no
+    effect gets no benchmark scenario silently)."""
+    def module(**attributes) -> types.ModuleType:
+        made = types.ModuleType("fowt_hydro_sim.studies.diagnosis.effects.added_mass_error")
+        made.__dict__.update(attributes)
+        return made
+    effect = CATALOGUE["added_mass_error"]
+    complete = {"EFFECT": effect, "TWIN_INJECTIONS": ({"added_mass_scale": 0.7},), "INDEPENDENT_INJECTION": None}
+    assert registered("added_mass_error", module(**complete)).EFFECT is effect
+    cases = [({k: v for k, v in complete.items() if k != "TWIN_INJECTIONS"}, "needs TWIN_INJECTIONS"),
+             ({**complete, "TWIN_INJECTIONS": ()}, "needs TWIN_INJECTIONS"),
+             ({**complete, "TWIN_INJECTIONS": ({"added_mass": 0.7},)}, "sets added_mass, not parameters"),
+             ({k: v for k, v in complete.items() if k != "INDEPENDENT_INJECTION"}, "needs INDEPENDENT_INJECTION"),
+             ({**complete, "INDEPENDENT_INJECTION": IndependentInjection("form", ("slow_drift",), ({},))},
+              "accepts added_mass_error"),
+             ({**complete, "EFFECT": CATALOGUE["slow_drift"]}, "an Effect named 'added_mass_error'")]
+    for attributes, words in cases:
+        with pytest.raises(ValueError, match="effect module added_mass_error: .*" + words):
+            registered("added_mass_error", module(**attributes))
 
 # ---------------------------------------------------------------------- gap metrics
 def record(seed: int, duration_s: float = 1800.0, step: float = 0.25) -> tuple[np.ndarray, np.ndarray]:

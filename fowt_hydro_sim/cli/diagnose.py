@@ -9,6 +9,7 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, SeaState, load_platform
+from fowt_hydro_sim.studies.diagnosis.benchmark import INDEPENDENT_INJECTIONS
 from fowt_hydro_sim.studies.diagnosis.diagnose import FIT_WINDOW_S, REPLAY_DT_S
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
 
@@ -90,8 +91,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     b.add_argument("--source", choices=("twin", "independent"), default="twin",
                    help="simulator of the 'measured' runs (default %(default)s)")
     b.add_argument("--inject", nargs="+", help="effects to inject (default: all; twin: catalogue effects; "
-                                               "independent: frequency_dependent_drift, mixed_damping, "
-                                               "catenary_mooring)")
+                                               f"independent: {', '.join(INDEPENDENT_INJECTIONS)})")
     b.add_argument("--strengths", type=int, default=2, choices=(0, 1, 2),
                    help="strengths per injected effect (default %(default)s)")
     b.add_argument("--nulls", type=int, default=10, help="null scenarios, noise and property errors only "
