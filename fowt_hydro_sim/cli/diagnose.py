@@ -10,8 +10,9 @@ from pathlib import Path
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, SeaState, load_platform
 from fowt_hydro_sim.studies.diagnosis.benchmark import INDEPENDENT_INJECTIONS
-from fowt_hydro_sim.studies.diagnosis.diagnose import FIT_WINDOW_S, REPLAY_DT_S
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
+from fowt_hydro_sim.studies.diagnosis.method import FIT_WINDOW_S
+from fowt_hydro_sim.studies.diagnosis.runner import REPLAY_DT_S
 
 
 def _effects(names: list[str] | None) -> dict[str, Effect]:
@@ -33,7 +34,7 @@ def _common(args: argparse.Namespace):
 
 
 def diagnose_command(args: argparse.Namespace) -> int:
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose_bags
+    from fowt_hydro_sim.studies.diagnosis.runner import diagnose_bags
     platform, settings, effects, dt_s = _common(args)
     lines = diagnose_bags(args.measured, args.blind or [], platform, settings, effects, args.output, args.heading,
                           args.max_evaluations, dt_s, args.scheduler, args.workers, args.fit_window)

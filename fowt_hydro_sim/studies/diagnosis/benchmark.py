@@ -16,7 +16,11 @@ with the plain model (``MODEL_OPTIONS`` of the source) and scored:
 """
 from __future__ import annotations
 
+import importlib.util
+import json
+import logging
 import statistics
+import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -27,9 +31,13 @@ from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import scaled_added_mass, scaled_drag, scaled_mooring_stiffness
 from fowt_hydro_sim.physics.waves.components import synthesize
-from fowt_hydro_sim.studies.diagnosis.diagnose import REPLAY_DT_S, Diagnosis
+from fowt_hydro_sim.studies.cluster import dask_client, map_with_progress
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, EFFECT_MODULES, Effect, IndependentInjection, Parameter
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, gap
+from fowt_hydro_sim.studies.diagnosis.independent.basin import basin_run
+from fowt_hydro_sim.studies.diagnosis.method import Diagnosis, diagnose
+from fowt_hydro_sim.studies.diagnosis.report import write_report
+from fowt_hydro_sim.studies.diagnosis.runner import REPLAY_DT_S, Progress, cluster_evaluate
 from fowt_hydro_sim.studies.replay import OUTPUT_INTERVAL_S, PREROLL_S, MeasuredRun, Variant
 
 TUNING_CASES = ("lc5.1", "lc5.2", "lc5.3")
@@ -256,7 +264,6 @@ def _truth_task(job: tuple[Scenario, str, bool], platform: Platform, duration_s:
                 cache: Path | None = None) -> MeasuredRun:
     scenario, case, with_effect = job
     if source == "independent":
-        from fowt_hydro_sim.studies.diagnosis.independent.basin import basin_run
         return basin_run(f"{scenario.name}/{case}", scenario.effect, scenario.values, scenario.seed, case, platform,
                          duration_s, with_effect, cache=cache)
     return truth_run(scenario, case, platform, duration_s, with_effect)
@@ -270,10 +277,6 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     the effect; independent: the Cummins/BEM simulator, cached in ``cache``), diagnose each
     with the plain model (``MODEL_OPTIONS[source]``), score it; ``report(score)`` is called as each
     scenario ends; each diagnosis's report is written to ``reports/SCENARIO`` if given."""
-    import time
-
-    from fowt_hydro_sim.studies.cluster import map_with_progress
-    from fowt_hydro_sim.studies.diagnosis.diagnose import cluster_evaluate, diagnose
     cases = TUNING_CASES + BLIND_CASES
     jobs = [(s, c, True) for s in chosen for c in cases]
     jobs += [(s, c, False) for s in chosen if s.kind == "injected" for c in TUNING_CASES]
@@ -287,9 +290,8 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
         blind = [made[scenario.name, c, True] for c in BLIND_CASES]
         evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s,
                                     MODEL_OPTIONS[source])
-        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations)
+        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations, progress=Progress())
         if reports is not None:
-            from fowt_hydro_sim.studies.diagnosis.report import write_report
             write_report(diagnosis, reports / scenario.name.replace("#", "_"))
         cells = (footprint(tuning, [made[scenario.name, c, False] for c in TUNING_CASES], settings)
                  if scenario.kind == "injected" else [])
@@ -309,10 +311,6 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     diagnosis written to ``reports/SCENARIO``; the independent source's runs cached in
     ``output/runs``); ``first_seed`` (default 1000 twin, 2000 independent) sets the scenarios'
     realisations; returns the report's lines (one per scenario, then the summary)."""
-    import json
-    import logging
-
-    from fowt_hydro_sim.studies.cluster import dask_client
     if source not in SOURCES:
         raise ValueError(f"--source: must be one of {', '.join(SOURCES)}, got {source!r}")
     known = INJECTIONS if source == "twin" else INDEPENDENT_INJECTIONS
@@ -324,7 +322,6 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     seed = {} if first_seed is None else {"first_seed": first_seed}  # else each source's own default
     if source == "independent":
         chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
-        import importlib.util
         if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
             raise ValueError("--source independent: the catenary_mooring scenario needs moorpy "
                              "(pip install '.[benchmark]'), or leave it out with --inject")
