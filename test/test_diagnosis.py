@@ -131,23 +131,23 @@ def test_a_replay_is_past_its_start_up_transient_when_the_record_begins(platform
     assert error["default"] < 0.1 < error["from rest"], error
 
 
+@pytest.mark.slow
 def test_the_method_is_apart_from_its_runner_and_no_module_imports_the_package_late():
     """The method (method.py) loads neither the runner, the report, the cluster nor the bag
     reader; the report loads the method, not the runner; no module of the diagnosis
     package imports one of the project's modules inside a function (as a cycle would
     force)."""
-    code = ("import sys, importlib; importlib.import_module(sys.argv[1]); "
-            "print(' '.join(m for m in sys.modules if m.startswith(('fowt_hydro_sim', 'dask'))))")
-    loaded = {}
-    for module in ("method", "report"):
-        result = subprocess.run([sys.executable, "-c", code, f"fowt_hydro_sim.studies.diagnosis.{module}"], cwd=REPO,
-                                capture_output=True, text=True, timeout=120)
-        assert result.returncode == 0, result.stderr
-        loaded[module] = set(result.stdout.split())
+    code = ("import sys, importlib\n"
+            "for name in ('method', 'report'):\n"
+            "    importlib.import_module('fowt_hydro_sim.studies.diagnosis.' + name)\n"
+            "    print(' '.join(m for m in sys.modules if m.startswith(('fowt_hydro_sim', 'dask'))))\n")
+    result = subprocess.run([sys.executable, "-c", code], cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    method, report = (set(line.split()) for line in result.stdout.splitlines())
     runner = {"fowt_hydro_sim.studies.diagnosis.runner", "fowt_hydro_sim.studies.cluster", "fowt_hydro_sim.rosbag",
               "dask", "fowt_hydro_sim.studies.diagnosis.benchmark"}
-    assert not loaded["method"] & (runner | {"fowt_hydro_sim.studies.diagnosis.report"}), loaded["method"]
-    assert "fowt_hydro_sim.studies.diagnosis.method" in loaded["report"] and not loaded["report"] & runner
+    assert not method & (runner | {"fowt_hydro_sim.studies.diagnosis.report"}), method
+    assert "fowt_hydro_sim.studies.diagnosis.method" in method and not report & runner, report
     package = Path(REPO, "fowt_hydro_sim", "studies", "diagnosis")
     late = []
     for path in sorted(package.rglob("*.py")):
