@@ -336,20 +336,14 @@ def forcing(database: HydroDatabase, platform: Platform, hull: Strips, waves: Wa
 
 
 def drag_wrench(hull: Strips, rho: float, velocity: np.ndarray, fluid: np.ndarray) -> np.ndarray:
-    """Quadratic drag on the relative velocity at the undisplaced strips; force and moment about (0,0,0)."""
-    points = hull.points_m
-    relative = fluid - (velocity[:3] + np.cross(velocity[3:], points))
-    p, q = len(hull.circular_point_m), len(hull.box_point_m)
-    u = relative[:p]
-    normal = u - np.sum(u * hull.circular_axis, axis=1)[:, None] * hull.circular_axis
-    f_circ = 0.5 * rho * (hull.circular_cda_m2 * np.linalg.norm(normal, axis=1))[:, None] * normal
-    along = np.einsum("qdk,qk->qd", hull.box_direction, relative[p:p + q])
-    f_box = np.einsum("qd,qdk->qk", 0.5 * rho * hull.box_cda_m2 * np.abs(along) * along, hull.box_direction)
-    w = relative[p + q:, 2]
-    f_plate = np.zeros((w.size, 3))
-    f_plate[:, 2] = 0.25 * rho * hull.plate_cda_m2 * np.abs(w) * w
-    forces = np.vstack([f_circ, f_box, f_plate])
-    return np.concatenate([forces.sum(axis=0), np.cross(points, forces).sum(axis=0)])
+    """Quadratic drag on the relative velocity at the undisplaced strips (``fluid``: (n, 3) at
+    ``hull.points_m``); force and moment about (0,0,0): the time stepping's own drag."""
+    out = np.zeros(6)
+    fluid = np.asarray(fluid, float)
+    time_stepping._drag(np.asarray(velocity, float), fluid, fluid, 0.0, hull.points_m, len(hull.circular_point_m),
+                        len(hull.box_point_m), hull.circular_axis, hull.circular_cda_m2, hull.box_direction,
+                        hull.box_cda_m2, hull.plate_cda_m2, rho, out)
+    return out
 
 
 @dataclass(frozen=True)
