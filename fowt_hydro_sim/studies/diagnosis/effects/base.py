@@ -3,8 +3,9 @@ effect is off, and a pure function that turns a model variant into one with the 
 and how the benchmark injects it into the independent simulator's runs."""
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 
