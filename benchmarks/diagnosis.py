@@ -27,9 +27,9 @@ from pathlib import Path
 from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.studies.cluster import dask_client, map_with_progress
 from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
-from fowt_hydro_sim.studies.diagnosis.diagnose import (FIT_WINDOW_S, REPLAY_DT_S, cluster_evaluate, diagnose,
-                                                       job_duration_s, job_s, replay_job)
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
+from fowt_hydro_sim.studies.diagnosis.method import FIT_WINDOW_S, diagnose, job_duration_s, job_s
+from fowt_hydro_sim.studies.diagnosis.runner import REPLAY_DT_S, Progress, cluster_evaluate, replay_job
 from fowt_hydro_sim.studies.replay import PREROLL_S, Variant, replay
 
 TUNING = ("lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4")
@@ -178,7 +178,7 @@ def diagnosis(runs: list, platform, workers: int, window_s: float) -> Recorder:
     with dask_client(None, workers) as client:
         recorder = Recorder(cluster_evaluate(client, runs, platform, settings), runs)
         start = time.perf_counter()
-        result = diagnose(tuning, blind, recorder, settings, fit_window_s=window_s)
+        result = diagnose(tuning, blind, recorder, settings, fit_window_s=window_s, progress=Progress())
         wall = time.perf_counter() - start
     print(f"  wall {wall / 60:.1f} min (load after {os.getloadavg()[0]:.1f}); verdict {result.verdict}: "
           f"{result.chosen} {result.reason}")

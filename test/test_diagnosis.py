@@ -2,12 +2,14 @@
 bags made with slow drift switched on are diagnosed by ``fowt-sim diagnose`` on a real
 Dask LocalCluster (the effect is named, its coefficient recovered, the gap closed on a
 blind sea state without refitting); a null run raises no alarm; a small
-``fowt-sim diagnose-benchmark``; bad input gets one line."""
+``fowt-sim diagnose-benchmark``; bad input gets one line; the method apart from its runner."""
 from __future__ import annotations
 
+import ast
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,8 +17,9 @@ import pytest
 from fowt_hydro_sim.physics.config import Platform, load_platform
 from fowt_hydro_sim.rosbag.measured import write_measured_bag
 from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
-from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, in_process
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
+from fowt_hydro_sim.studies.diagnosis.method import diagnose
+from fowt_hydro_sim.studies.diagnosis.runner import in_process
 from fowt_hydro_sim.testing import REPO
 
 RECORD_S = 1800.0  # the benchmark's length: shorter records flag real but small property errors
@@ -126,3 +129,32 @@ def test_a_replay_is_past_its_start_up_transient_when_the_record_begins(platform
     low = {k: band_passed(v, (0.005, 0.05))[first] for k, v in surge.items()}
     error = {k: np.std(low[k] - low["steady"]) / np.std(low["steady"]) for k in ("default", "from rest")}
     assert error["default"] < 0.1 < error["from rest"], error
+
+
+@pytest.mark.slow
+def test_the_method_is_apart_from_its_runner_and_no_module_imports_the_package_late():
+    """The method (method.py) loads neither the runner, the report, the cluster nor the bag
+    reader; the report loads the method, not the runner; no module of the diagnosis
+    package imports one of the project's modules inside a function (as a cycle would
+    force)."""
+    code = ("import sys, importlib\n"
+            "for name in ('method', 'report'):\n"
+            "    importlib.import_module('fowt_hydro_sim.studies.diagnosis.' + name)\n"
+            "    print(' '.join(m for m in sys.modules if m.startswith(('fowt_hydro_sim', 'dask'))))\n")
+    result = subprocess.run([sys.executable, "-c", code], cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    method, report = (set(line.split()) for line in result.stdout.splitlines())
+    runner = {"fowt_hydro_sim.studies.diagnosis.runner", "fowt_hydro_sim.studies.cluster", "fowt_hydro_sim.rosbag",
+              "dask", "fowt_hydro_sim.studies.diagnosis.benchmark"}
+    assert not method & (runner | {"fowt_hydro_sim.studies.diagnosis.report"}), method
+    assert "fowt_hydro_sim.studies.diagnosis.method" in method and not report & runner, report
+    package = Path(REPO, "fowt_hydro_sim", "studies", "diagnosis")
+    late = []
+    for path in sorted(package.rglob("*.py")):
+        for function in ast.walk(ast.parse(path.read_text())):
+            if isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                late += [f"{path.relative_to(package)}:{node.lineno}" for node in ast.walk(function)
+                         if (isinstance(node, ast.ImportFrom) and (node.module or "").startswith("fowt_hydro_sim"))
+                         or (isinstance(node, ast.Import) and any(a.name.startswith("fowt_hydro_sim")
+                                                                  for a in node.names))]
+    assert late == []

@@ -18,10 +18,11 @@ from fowt_hydro_sim.physics.waves.kinematics import table_step
 from fowt_hydro_sim.rosbag.measured import write_measured_bag
 from fowt_hydro_sim.studies import replay as replay_module
 from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
-from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, in_process
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
+from fowt_hydro_sim.studies.diagnosis.method import diagnose
 from fowt_hydro_sim.studies.diagnosis.report import summary_lines
+from fowt_hydro_sim.studies.diagnosis.runner import Progress, in_process
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant, fast_table_step, replay
 from fowt_hydro_sim.testing import REPO
 
@@ -51,8 +52,8 @@ def test_long_records_fitted_on_their_first_part_name_the_effect(platform, caplo
         return evaluate(batch, description)
 
     effects = {name: CATALOGUE[name] for name in ("slow_drift", "wave_measurement_delay")}
-    with caplog.at_level(logging.INFO, logger="fowt_hydro_sim.studies.diagnosis.diagnose"):
-        diagnosis = diagnose(runs, [], recording, settings, effects, fit_window_s=WINDOW_S)
+    with caplog.at_level(logging.INFO, logger="fowt_hydro_sim.studies.diagnosis.runner"):
+        diagnosis = diagnose(runs, [], recording, settings, effects, fit_window_s=WINDOW_S, progress=Progress())
     assert diagnosis.verdict == "explained" and diagnosis.chosen == "slow_drift", diagnosis.reason
     drift = diagnosis.candidate("slow_drift")
     assert drift.values["drift_coefficient_n_m2"] == pytest.approx(DRIFT_N_M2, rel=0.3)

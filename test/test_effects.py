@@ -6,6 +6,7 @@ metrics against known scalings, shifts and noise."""
 from __future__ import annotations
 
 import math
+import types
 from pathlib import Path
 
 import numpy as np
@@ -18,8 +19,17 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_added_mass
-from fowt_hydro_sim.studies.diagnosis.effects import (CATALOGUE, base, kc_drag, mooring_stiffness, quadratic_damping,
-                                                     slow_drift)
+from fowt_hydro_sim.studies.diagnosis.effects import (
+    CATALOGUE,
+    EFFECT_MODULES,
+    IndependentInjection,
+    base,
+    kc_dependent_drag,
+    mooring_stiffness,
+    quadratic_damping,
+    registered,
+    slow_drift,
+)
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, block_lag_s, gap
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
@@ -209,19 +219,19 @@ def test_band_split_and_coefficient_scaling(platform):
     t = np.arange(0.0, 100.0, 0.1)
     run = MeasuredRun("r", t, 1.5 * np.sin(2 * np.pi * 0.1 * t), (0.0, 0.0), t, np.zeros((t.size, 6)))
     assert run.hs_m == pytest.approx(4 * 1.5 / math.sqrt(2))
-    kc = kc_drag.keulegan_carpenter(run.hs_m, platform)
+    kc = kc_dependent_drag.keulegan_carpenter(run.hs_m, platform)
     assert kc == pytest.approx(math.pi * run.hs_m / 15.0)
     varied = CATALOGUE["kc_dependent_drag"].apply(Variant(platform), run, {"kc_exponent": 0.5})
     assert varied.platform.members[0].zones[0].cd[0].constant == pytest.approx(0.8 * math.sqrt(kc))
 
 
 def test_every_effect_module_is_registered_and_off_means_off(platform):
-    """Each module of effects/ has one catalogue entry; at its ``off`` values an effect
-    leaves the variant as the plain model (frequency-dependent drag: the filtered model
-    with every band at the constant Cd)."""
+    """Each module of effects/ is the catalogue entry of its name; at its ``off`` values an
+    effect leaves the variant as the plain model (frequency-dependent drag: the filtered
+    model with every band at the constant Cd)."""
     folder = Path(base.__file__).parent
     modules = {p.stem for p in folder.glob("*.py")} - {"__init__", "base"}
-    assert len(modules) == len(CATALOGUE) >= 7
+    assert modules == set(CATALOGUE) and len(CATALOGUE) >= 7
     t = np.arange(0.0, 100.0, 0.1)
     run = MeasuredRun("r", t, np.sin(t), (0.0, 0.0), t, np.zeros((t.size, 6)))
     for effect in CATALOGUE.values():
@@ -235,6 +245,45 @@ def test_every_effect_module_is_registered_and_off_means_off(platform):
             assert varied.drag_model == "constant"
             assert varied.platform == platform, effect.name
 
+
+
+def test_every_catalogue_effect_has_benchmark_scenarios():
+    """Each catalogue effect is injected by the twin at its module's strengths (at least one,
+    in the catalogue's order), and says whether the independent basin has a form of it: its
+    own, or None; every independent form's right answers are catalogue effects."""
+    from fowt_hydro_sim.studies.diagnosis import benchmark
+    twin = benchmark.scenarios(nulls=0, out_of_catalogue=0)
+    assert [s.effect for s in twin] == [name for name in CATALOGUE for _ in EFFECT_MODULES[name].TWIN_INJECTIONS]
+    assert all(EFFECT_MODULES[name].TWIN_INJECTIONS for name in CATALOGUE)
+    independent = benchmark.independent_scenarios(nulls=0, out_of_catalogue=0, strengths=2)
+    for name, module in EFFECT_MODULES.items():
+        own = module.INDEPENDENT_INJECTION
+        assert own is None or len([s for s in independent if s.effect == own.form]) == len(own.strengths), name
+    assert {s.effect for s in independent} == set(benchmark.INDEPENDENT_INJECTIONS)
+    assert all(set(s.right_answers) <= set(CATALOGUE) for s in independent)
+
+
+def test_an_effect_module_without_its_benchmark_injections_is_refused():
+    """A module registered without twin injections, without a word on the independent
+    basin, or with its effect named otherwise, is refused with one line naming it (no
+    effect gets no benchmark scenario silently)."""
+    def module(**attributes) -> types.ModuleType:
+        made = types.ModuleType("fowt_hydro_sim.studies.diagnosis.effects.added_mass_error")
+        made.__dict__.update(attributes)
+        return made
+    effect = CATALOGUE["added_mass_error"]
+    complete = {"EFFECT": effect, "TWIN_INJECTIONS": ({"added_mass_scale": 0.7},), "INDEPENDENT_INJECTION": None}
+    assert registered("added_mass_error", module(**complete)).EFFECT is effect
+    cases = [({k: v for k, v in complete.items() if k != "TWIN_INJECTIONS"}, "needs TWIN_INJECTIONS"),
+             ({**complete, "TWIN_INJECTIONS": ()}, "needs TWIN_INJECTIONS"),
+             ({**complete, "TWIN_INJECTIONS": ({"added_mass": 0.7},)}, "sets added_mass, not parameters"),
+             ({k: v for k, v in complete.items() if k != "INDEPENDENT_INJECTION"}, "needs INDEPENDENT_INJECTION"),
+             ({**complete, "INDEPENDENT_INJECTION": IndependentInjection("form", ("slow_drift",), ({},))},
+              "accepts added_mass_error"),
+             ({**complete, "EFFECT": CATALOGUE["slow_drift"]}, "an Effect named 'added_mass_error'")]
+    for attributes, words in cases:
+        with pytest.raises(ValueError, match="effect module added_mass_error: .*" + words):
+            registered("added_mass_error", module(**attributes))
 
 # ---------------------------------------------------------------------- gap metrics
 def record(seed: int, duration_s: float = 1800.0, step: float = 0.25) -> tuple[np.ndarray, np.ndarray]:
@@ -342,14 +391,14 @@ def _gap(settings, run: str, values: dict[tuple[str, str], float]):
 def _tuning_runs(settings) -> tuple[list[MeasuredRun], list[dict]]:
     """Three 1200 s tuning runs (one motion record, elevations of growing amplitude) and
     their measured spectra, for diagnoses whose model runs are given gaps."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import measured_spectra
+    from fowt_hydro_sim.studies.diagnosis.method import measured_spectra
     t, x = record(3, duration_s=1200.0)
     runs = [MeasuredRun(f"tune{k}", t, (1 + k) * np.sin(0.6 * t), (0.0, 0.0), t, x) for k in range(3)]
     return runs, [measured_spectra(r, settings) for r in runs]
 
 
 def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
-    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    from fowt_hydro_sim.studies.diagnosis.method import concerns
     settings = GapSettings()
     before = [_gap(settings, "r", {("surge", "frequency.low_frequency"): -0.2})]
     mooring = CATALOGUE["mooring_stiffness"]
@@ -367,7 +416,7 @@ def test_an_effect_off_in_one_of_its_terms_is_no_concern():
     """Extra damping found in surge and pitch and none in heave (0, the bound where that term
     is off: damping cannot be negative) is a legitimate answer, not a fit at the edge of its
     range; likewise no slow drift at all."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    from fowt_hydro_sim.studies.diagnosis.method import concerns
     settings = GapSettings()
     before = [_gap(settings, "r", {("surge", "std.low_frequency"): 0.6})]
     for name, values in (("quadratic_damping", {"surge_ratio_at_1m": 0.0199, "heave_ratio_at_1m": 0.0,
@@ -380,7 +429,7 @@ def test_an_effect_off_in_one_of_its_terms_is_no_concern():
 def test_an_effect_that_moves_the_model_the_wrong_way_is_a_concern():
     """The model's low-frequency surge 11 times the measured one: more slow drift can only
     raise it (wrong way); damping lowers it (right way)."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import concerns
+    from fowt_hydro_sim.studies.diagnosis.method import concerns
     settings = GapSettings()
     before = [_gap(settings, r, {("surge", "std.low_frequency"): 10.0}) for r in ("a", "b")]
     drift = concerns(CATALOGUE["slow_drift"], {"drift_coefficient_n_m2": 2e5, "frequency_exponent": 1.0}, before,
@@ -397,7 +446,7 @@ def test_an_effect_that_closes_the_tuning_gap_but_not_the_blind_one_is_not_named
     """Two candidates close the tuning gap alike (the one-parameter one scores better); on the
     blind run it closes nothing: it is demoted, with the reason, and the other, which closes
     the blind gap, is named."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose, measured_spectra
+    from fowt_hydro_sim.studies.diagnosis.method import diagnose, measured_spectra
     settings = GapSettings(transient_s=0.0)
     t, x = record(2, duration_s=1200.0)
     runs = [MeasuredRun(name, t, np.sin(0.6 * t), (0.0, 0.0), t, x) for name in ("tune1", "tune2", "blind")]
@@ -423,7 +472,7 @@ def test_a_mismatch_in_every_run_is_reported_as_the_baselines_before_any_effect(
     """The model's low-frequency surge 11 times the measured one in every tuning run, which
     no candidate closes, and a pitch frequency gap that added mass closes: the verdict is a
     baseline mismatch naming the surge cell, with added mass 'additionally'."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
+    from fowt_hydro_sim.studies.diagnosis.method import diagnose
     settings = GapSettings(transient_s=0.0)
     runs, spectra = _tuning_runs(settings)
     surge, pitch = ("surge", "std.low_frequency"), ("pitch", "frequency.low_frequency")
@@ -455,7 +504,7 @@ def test_a_mismatch_an_effect_takes_most_of_the_way_is_explained_by_it():
     the mean offset with it; heave in the wave band 15 % low, which nothing closes. Slow
     drift explains the surge mismatch and is named; only the heave mismatch is left as the
     baseline's."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
+    from fowt_hydro_sim.studies.diagnosis.method import diagnose
     settings = GapSettings(transient_s=0.0)
     runs, spectra = _tuning_runs(settings)
     surge, offset, heave = ("surge", "std.low_frequency"), ("surge", "offset"), ("heave", "std.wave")
@@ -486,7 +535,7 @@ def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_th
     squared gap. The lag is not a consistent mismatch, yet no effect explains it: it is set
     aside as the baseline's and said, and damping, closing what remains, is named and
     explains the surge mismatch."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
+    from fowt_hydro_sim.studies.diagnosis.method import diagnose
     settings = GapSettings(transient_s=0.0)
     runs, spectra = _tuning_runs(settings)
     surge, lag = ("surge", "std.low_frequency"), ("heave", "lag")
@@ -514,7 +563,7 @@ def test_an_effect_is_charged_for_moving_the_cells_set_aside_as_the_baselines():
     stiffness at 1.2 closes it and leaves heave alone. With one parameter against three,
     added mass would score better on the surge cell alone: it is charged for moving the
     set-aside cell, and the mooring is named."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
+    from fowt_hydro_sim.studies.diagnosis.method import diagnose
     settings = GapSettings(transient_s=0.0)
     runs, spectra = _tuning_runs(settings)
     surge, heave = ("surge", "frequency.low_frequency"), ("heave", "frequency.wave")
@@ -541,7 +590,7 @@ def test_a_candidate_screened_in_the_fit_window_is_compared_with_the_plain_model
     that window keeps the window's gaps: at its off value, moving nothing, it closes none of
     the cell against the window's plain model, and the cell is set aside as the baseline's;
     against the whole records it would seem to close 75 % of it and keep the cell in."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import CandidateFit, cell_closure, unexplained_cells
+    from fowt_hydro_sim.studies.diagnosis.method import CandidateFit, cell_closure, unexplained_cells
     settings = GapSettings()
     cell = ("pitch", "std.low_frequency")
     i = settings.cells().index(cell)
@@ -560,7 +609,7 @@ def test_a_cell_closed_by_a_fit_worse_than_the_plain_model_is_not_explained():
     Slow drift fitted to every cell halves the pitch gap but takes surge's to 3x: over the
     flagged cells it is worse than the plain model, so it explains neither and both are the
     baseline's. The same pitch closure from a fit that leaves surge alone explains pitch."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import CandidateFit, closure, unexplained_cells
+    from fowt_hydro_sim.studies.diagnosis.method import CandidateFit, closure, unexplained_cells
     settings = GapSettings()
     pitch, surge = ("pitch", "std.low_frequency"), ("surge", "std.low_frequency")
     i = settings.cells().index(pitch)
@@ -580,8 +629,8 @@ def test_a_response_the_waves_do_not_drive_is_told_from_a_transfer_function_of_a
     and heave measured 25 % above the model's (a transfer function of another form): both
     set aside, both flagged. Only pitch's wave band holds a response the waves do not drive
     (its coherent share well below the model's); heave's stays linear in the waves."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import undriven_cells
     from fowt_hydro_sim.studies.diagnosis.gap import spectra
+    from fowt_hydro_sim.studies.diagnosis.method import undriven_cells
     settings = GapSettings(transient_s=0.0)
     rng = np.random.default_rng(3)
     t = np.arange(0.0, 1200.0, 0.25)
@@ -610,7 +659,7 @@ def test_differences_no_effect_moves_alone_are_the_baselines_not_unexplained():
     sign are flagged, linear in the waves, and no candidate moves them: the verdict is a
     baseline mismatch listing them, not "unexplained" (which the scoring counts as a false
     alarm on a null)."""
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose
+    from fowt_hydro_sim.studies.diagnosis.method import diagnose
     settings = GapSettings(transient_s=0.0)
     runs, spectra = _tuning_runs(settings)
     cells = {("heave", "lag"): (-0.3, 0.2, -8.8), ("pitch", "std.wave"): (-0.15, -0.12, 0.3)}
@@ -630,7 +679,7 @@ def test_an_out_of_catalogue_case_is_right_only_when_unexplained():
     """Nothing named and a baseline mismatch is a null's right answer; for an effect outside
     the catalogue it is not (the figure could not tell the two apart): only "unexplained" is."""
     from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, score_scenario
-    from fowt_hydro_sim.studies.diagnosis.diagnose import Diagnosis
+    from fowt_hydro_sim.studies.diagnosis.method import Diagnosis
     settings = GapSettings()
     gaps = [_gap(settings, f"run{k}", {("heave", "std.wave"): -0.2}) for k in range(3)]
     rotor = Scenario("rotor_1p", "out_of_catalogue", "rotor_1p", {}, 0)

@@ -97,7 +97,7 @@ def test_the_catenary_scenarios_stiffness_at_rest_is_within_the_catalogues_plaus
 
     spring = stiffness(lambda x: cummins.mooring_wrench(PLATFORM, np.array([x, 0, 0, 0, 0, 0]))[0], 0.0)
     ratios = []
-    for values in INDEPENDENT_INJECTIONS["catenary_mooring"][2]:
+    for values in INDEPENDENT_INJECTIONS["catenary_mooring"].strengths:
         lines = catenary.ChainLines(values["anchor_distance_m"], values["length_m"], values["weight_n_m"])
         chain = lambda x: catenary.surge_force_n(PLATFORM, lines, x)  # noqa: E731
         ratios.append(stiffness(chain, 0.0) / spring)
@@ -117,7 +117,7 @@ def test_the_catenary_scenarios_curves_have_the_mooring_candidates_form_at_plaus
     d = mooring_stiffness.REFERENCE_OFFSET_M
     k11 = base.linear_modes(PLATFORM)[1][0]
     x = np.linspace(-10.0, 10.0, 21)
-    for values in INDEPENDENT_INJECTIONS["catenary_mooring"][2]:
+    for values in INDEPENDENT_INJECTIONS["catenary_mooring"].strengths:
         lines = catenary.ChainLines(values["anchor_distance_m"], values["length_m"], values["weight_n_m"])
         restoring = -np.array([catenary.surge_force_n(PLATFORM, lines, v) for v in x])
         restoring -= -catenary.surge_force_n(PLATFORM, lines, 0.0)

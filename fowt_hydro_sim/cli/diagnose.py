@@ -9,8 +9,10 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, SeaState, load_platform
-from fowt_hydro_sim.studies.diagnosis.diagnose import FIT_WINDOW_S, REPLAY_DT_S
+from fowt_hydro_sim.studies.diagnosis.benchmark import INDEPENDENT_INJECTIONS
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
+from fowt_hydro_sim.studies.diagnosis.method import FIT_WINDOW_S
+from fowt_hydro_sim.studies.diagnosis.runner import REPLAY_DT_S
 
 
 def _effects(names: list[str] | None) -> dict[str, Effect]:
@@ -32,7 +34,7 @@ def _common(args: argparse.Namespace):
 
 
 def diagnose_command(args: argparse.Namespace) -> int:
-    from fowt_hydro_sim.studies.diagnosis.diagnose import diagnose_bags
+    from fowt_hydro_sim.studies.diagnosis.runner import diagnose_bags
     platform, settings, effects, dt_s = _common(args)
     lines = diagnose_bags(args.measured, args.blind or [], platform, settings, effects, args.output, args.heading,
                           args.max_evaluations, dt_s, args.scheduler, args.workers, args.fit_window)
@@ -90,8 +92,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     b.add_argument("--source", choices=("twin", "independent"), default="twin",
                    help="simulator of the 'measured' runs (default %(default)s)")
     b.add_argument("--inject", nargs="+", help="effects to inject (default: all; twin: catalogue effects; "
-                                               "independent: frequency_dependent_drift, mixed_damping, "
-                                               "catenary_mooring)")
+                                               f"independent: {', '.join(INDEPENDENT_INJECTIONS)})")
     b.add_argument("--strengths", type=int, default=2, choices=(0, 1, 2),
                    help="strengths per injected effect (default %(default)s)")
     b.add_argument("--nulls", type=int, default=10, help="null scenarios, noise and property errors only "

@@ -16,7 +16,11 @@ with the plain model (``MODEL_OPTIONS`` of the source) and scored:
 """
 from __future__ import annotations
 
+import importlib.util
+import json
+import logging
 import statistics
+import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -27,9 +31,13 @@ from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import scaled_added_mass, scaled_drag, scaled_mooring_stiffness
 from fowt_hydro_sim.physics.waves.components import synthesize
-from fowt_hydro_sim.studies.diagnosis.diagnose import REPLAY_DT_S, Diagnosis
-from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
+from fowt_hydro_sim.studies.cluster import dask_client, map_with_progress
+from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, EFFECT_MODULES, Effect, IndependentInjection, Parameter
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, gap
+from fowt_hydro_sim.studies.diagnosis.independent.basin import basin_run
+from fowt_hydro_sim.studies.diagnosis.method import Diagnosis, diagnose
+from fowt_hydro_sim.studies.diagnosis.report import write_report
+from fowt_hydro_sim.studies.diagnosis.runner import REPLAY_DT_S, Progress, cluster_evaluate
 from fowt_hydro_sim.studies.replay import OUTPUT_INTERVAL_S, PREROLL_S, MeasuredRun, Variant
 
 TUNING_CASES = ("lc5.1", "lc5.2", "lc5.3")
@@ -75,39 +83,27 @@ OUT_OF_CATALOGUE = (
 )
 OUT_OF_CATALOGUE_EFFECTS = {effect.name: effect for effect, _ in OUT_OF_CATALOGUE}
 
-# two strengths of each catalogue effect
-INJECTIONS: dict[str, tuple[dict[str, float], ...]] = {
-    "frequency_dependent_drag": ({"low_frequency_cd_ratio": 0.5}, {"low_frequency_cd_ratio": 0.3}),
-    "slow_drift": ({"drift_coefficient_n_m2": 1.0e5}, {"drift_coefficient_n_m2": 3.0e5}),
-    "linear_damping": ({"surge_damping_ratio": 0.04, "heave_damping_ratio": 0.0, "pitch_damping_ratio": 0.03},
-                       {"surge_damping_ratio": 0.10, "heave_damping_ratio": 0.0, "pitch_damping_ratio": 0.08}),
-    "quadratic_damping": ({"surge_ratio_at_1m": 0.1, "heave_ratio_at_1m": 0.0, "pitch_ratio_at_1deg": 0.1},
-                          {"surge_ratio_at_1m": 0.3, "heave_ratio_at_1m": 0.0, "pitch_ratio_at_1deg": 0.3}),
-    "mooring_stiffness": ({"line_stiffness_scale": 1.4, "hardening": 0.0, "asymmetry": 0.0},
-                          {"line_stiffness_scale": 0.7, "hardening": 1.0, "asymmetry": 0.0}),
-    "added_mass_error": ({"added_mass_scale": 0.7}, {"added_mass_scale": 1.35}),
-    "kc_dependent_drag": ({"kc_exponent": 0.5}, {"kc_exponent": -0.5}),
-    "wave_measurement_delay": ({"delay_s": 1.0}, {"delay_s": 2.5}),
-}
+# each catalogue effect's strengths (its module's TWIN_INJECTIONS), in the catalogue's order
+INJECTIONS: dict[str, tuple[dict[str, float], ...]] = {name: module.TWIN_INJECTIONS
+                                                        for name, module in EFFECT_MODULES.items()}
 
-
-# the independent benchmark's injections: (form, catalogue effects that are a right answer,
-# values) in independent/basin.py's forms; critical damping is about 2.8e6 N s/m in surge
-# and 1.4e10 N m s in pitch
-INDEPENDENT_INJECTIONS: dict[str, tuple[str, tuple[str, ...], tuple[dict[str, float], ...]]] = {
-    "frequency_dependent_drift": ("frequency_dependent_drift", ("slow_drift",), ({"scale": 1.0}, {"scale": 2.5})),
-    "mixed_damping": ("mixed_damping", ("linear_damping", "quadratic_damping"),
-                      ({"surge_linear_n_s_m": 1.4e5, "surge_quadratic_n_s2_m2": 7.0e5,
-                        "pitch_linear_n_m_s": 5.6e8, "pitch_quadratic_n_m_s2": 1.1e11},
-                       {"surge_linear_n_s_m": 2.8e5, "surge_quadratic_n_s2_m2": 1.4e6,
-                        "pitch_linear_n_m_s": 1.1e9, "pitch_quadratic_n_m_s2": 2.2e11})),
-    # chain lines whose zero-offset surge stiffness is the spring lines' (the model's mooring
-    # as a designer would linearise them: what differs is the catenary's hardening, 1.3x at
-    # +5 m) and 20 % above it (within the catalogue's plausible 30 %)
-    "catenary_mooring": ("catenary_mooring", ("mooring_stiffness",),
+# forms only the independent basin has (independent/basin.py), not an effect module's
+# INDEPENDENT_INJECTION: chain lines whose zero-offset surge stiffness is the spring lines'
+# (the model's mooring as a designer would linearise them: what differs is the catenary's
+# hardening, 1.3x at +5 m) and 20 % above it (within the catalogue's plausible 30 %); they
+# need MoorPy (an optional dependency)
+INDEPENDENT_ONLY = (
+    IndependentInjection("catenary_mooring", ("mooring_stiffness",),
                          ({"anchor_distance_m": 800.0, "length_m": 828.8, "weight_n_m": 1500.0},
                           {"anchor_distance_m": 800.0, "length_m": 826.8, "weight_n_m": 1500.0})),
-}
+)
+# the independent benchmark's injections by form: the effect modules' (catalogue order), then
+# the independent-only ones
+INDEPENDENT_INJECTIONS: dict[str, IndependentInjection] = {
+    injection.form: injection
+    for injection in [m.INDEPENDENT_INJECTION for m in EFFECT_MODULES.values() if m.INDEPENDENT_INJECTION]
+    + list(INDEPENDENT_ONLY)}
+# the rotor's 1P pitch moment, out of the catalogue, in basin.py's form
 INDEPENDENT_OUT_OF_CATALOGUE = (("rotor_1p", {"amplitude_n_m": 6.0e7, "frequency_hz": 0.12}),)
 
 
@@ -147,9 +143,9 @@ def independent_scenarios(effects: list[str] | None = None, strengths: int = 1, 
     runs have seeds ``first_seed + 17 i`` onwards."""
     out = []
     for name in effects or list(INDEPENDENT_INJECTIONS):
-        form, accepted, strengths_values = INDEPENDENT_INJECTIONS[name]
-        for k, values in enumerate(strengths_values[:strengths]):
-            out.append(Scenario(f"{name}#{k + 1}", "injected", form, values, 0, accepted))
+        injection = INDEPENDENT_INJECTIONS[name]
+        for k, values in enumerate(injection.strengths[:strengths]):
+            out.append(Scenario(f"{name}#{k + 1}", "injected", injection.form, values, 0, injection.accepted))
     out += [Scenario(f"null#{k + 1}", "null", None, {}, 0) for k in range(nulls)]
     out += [Scenario(name, "out_of_catalogue", name, values, 0)
             for name, values in INDEPENDENT_OUT_OF_CATALOGUE[:out_of_catalogue]]
@@ -268,7 +264,6 @@ def _truth_task(job: tuple[Scenario, str, bool], platform: Platform, duration_s:
                 cache: Path | None = None) -> MeasuredRun:
     scenario, case, with_effect = job
     if source == "independent":
-        from fowt_hydro_sim.studies.diagnosis.independent.basin import basin_run
         return basin_run(f"{scenario.name}/{case}", scenario.effect, scenario.values, scenario.seed, case, platform,
                          duration_s, with_effect, cache=cache)
     return truth_run(scenario, case, platform, duration_s, with_effect)
@@ -282,10 +277,6 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     the effect; independent: the Cummins/BEM simulator, cached in ``cache``), diagnose each
     with the plain model (``MODEL_OPTIONS[source]``), score it; ``report(score)`` is called as each
     scenario ends; each diagnosis's report is written to ``reports/SCENARIO`` if given."""
-    import time
-
-    from fowt_hydro_sim.studies.cluster import map_with_progress
-    from fowt_hydro_sim.studies.diagnosis.diagnose import cluster_evaluate, diagnose
     cases = TUNING_CASES + BLIND_CASES
     jobs = [(s, c, True) for s in chosen for c in cases]
     jobs += [(s, c, False) for s in chosen if s.kind == "injected" for c in TUNING_CASES]
@@ -299,9 +290,8 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
         blind = [made[scenario.name, c, True] for c in BLIND_CASES]
         evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s,
                                     MODEL_OPTIONS[source])
-        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations)
+        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations, progress=Progress())
         if reports is not None:
-            from fowt_hydro_sim.studies.diagnosis.report import write_report
             write_report(diagnosis, reports / scenario.name.replace("#", "_"))
         cells = (footprint(tuning, [made[scenario.name, c, False] for c in TUNING_CASES], settings)
                  if scenario.kind == "injected" else [])
@@ -321,10 +311,6 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     diagnosis written to ``reports/SCENARIO``; the independent source's runs cached in
     ``output/runs``); ``first_seed`` (default 1000 twin, 2000 independent) sets the scenarios'
     realisations; returns the report's lines (one per scenario, then the summary)."""
-    import json
-    import logging
-
-    from fowt_hydro_sim.studies.cluster import dask_client
     if source not in SOURCES:
         raise ValueError(f"--source: must be one of {', '.join(SOURCES)}, got {source!r}")
     known = INJECTIONS if source == "twin" else INDEPENDENT_INJECTIONS
@@ -336,7 +322,6 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     seed = {} if first_seed is None else {"first_seed": first_seed}  # else each source's own default
     if source == "independent":
         chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
-        import importlib.util
         if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
             raise ValueError("--source independent: the catenary_mooring scenario needs moorpy "
                              "(pip install '.[benchmark]'), or leave it out with --inject")

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fowt_hydro_sim.studies.diagnosis.diagnose import COHERENCE_DEFICIT, Diagnosis
 from fowt_hydro_sim.studies.diagnosis.gap import GROSS_RATIO, Gap
+from fowt_hydro_sim.studies.diagnosis.method import COHERENCE_DEFICIT, Diagnosis
 
 SPECTRA_F_MAX_HZ = 0.3  # the figures' and JSON's frequency range
 

@@ -1,9 +1,11 @@
 """What a candidate unmodelled effect is: named parameters with a value at which the
-effect is off, and a pure function that turns a model variant into one with the effect."""
+effect is off, and a pure function that turns a model variant into one with the effect;
+and how the benchmark injects it into the independent simulator's runs."""
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import NamedTuple
 
 import numpy as np
 
@@ -58,7 +60,19 @@ class Effect:
     signature: dict[str, int] = field(default_factory=dict)
 
     def values(self, which: str = "start") -> dict[str, float]:
+        """Every parameter's ``start``, ``low``, ``high`` or ``off`` value, by name."""
         return {p.name: getattr(p, which) for p in self.parameters}
+
+
+class IndependentInjection(NamedTuple):
+    """An effect in the independent benchmark's basin (``independent/basin.py``): the
+    ``form`` the basin injects (a name its ``effects`` knows; the scenarios are named after
+    it), the catalogue effects that are a right answer to it, and the values of each strength
+    in the form's own parameters."""
+
+    form: str
+    accepted: tuple[str, ...]
+    strengths: tuple[dict[str, float], ...]
 
 
 # ---------------------------------------------------------------------- helpers for effects

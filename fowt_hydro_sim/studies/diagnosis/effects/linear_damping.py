@@ -7,8 +7,15 @@ from dataclasses import replace
 import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.studies.diagnosis.effects.base import (DAMPED, Effect, Parameter, critical_damping, linear_modes,
-                                                          per_dof)
+from fowt_hydro_sim.studies.diagnosis.effects.base import (
+    DAMPED,
+    Effect,
+    IndependentInjection,
+    Parameter,
+    critical_damping,
+    linear_modes,
+    per_dof,
+)
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 NAMES = ("surge_damping_ratio", "heave_damping_ratio", "pitch_damping_ratio")
@@ -32,3 +39,16 @@ EFFECT = Effect(
     tuple(Parameter(name, "of critical", start=0.02, low=0.0, high=0.5, plausible=(0.0, 0.1),
                     why=WHY) for name in NAMES),
     apply, signature=DAMPED)
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"surge_damping_ratio": 0.04, "heave_damping_ratio": 0.0, "pitch_damping_ratio": 0.03},
+                   {"surge_damping_ratio": 0.10, "heave_damping_ratio": 0.0, "pitch_damping_ratio": 0.08})
+# in the independent basin: damping part linear, part quadratic in surge and pitch, which
+# linear or quadratic damping both answer rightly (critical damping is about 2.8e6 N s/m in
+# surge and 1.4e10 N m s in pitch)
+INDEPENDENT_INJECTION = IndependentInjection(
+    "mixed_damping", ("linear_damping", "quadratic_damping"),
+    ({"surge_linear_n_s_m": 1.4e5, "surge_quadratic_n_s2_m2": 7.0e5,
+      "pitch_linear_n_m_s": 5.6e8, "pitch_quadratic_n_m_s2": 1.1e11},
+     {"surge_linear_n_s_m": 2.8e5, "surge_quadratic_n_s2_m2": 1.4e6,
+      "pitch_linear_n_m_s": 1.1e9, "pitch_quadratic_n_m_s2": 2.2e11}))

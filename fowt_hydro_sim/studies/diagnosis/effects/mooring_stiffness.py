@@ -48,3 +48,10 @@ EFFECT = Effect(
                    "pair's: 0.09 to 0.17 for chain lines 0.4x to 3.7x the spring lines' stiffness in 200 m of "
                    "water (fitted over +-10 m), the sign the layout's")),
     apply)
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"line_stiffness_scale": 1.4, "hardening": 0.0, "asymmetry": 0.0},
+                   {"line_stiffness_scale": 0.7, "hardening": 1.0, "asymmetry": 0.0})
+# none here: its independent form, chain lines' catenary curve (MoorPy, an optional
+# dependency), is an independent-only form of the benchmark (benchmark.INDEPENDENT_ONLY)
+INDEPENDENT_INJECTION = None

@@ -8,8 +8,14 @@ from dataclasses import replace
 import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.studies.diagnosis.effects.base import (DAMPED, Effect, Parameter, critical_damping, linear_modes,
-                                                          per_dof)
+from fowt_hydro_sim.studies.diagnosis.effects.base import (
+    DAMPED,
+    Effect,
+    Parameter,
+    critical_damping,
+    linear_modes,
+    per_dof,
+)
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 NAMES = ("surge_ratio_at_1m", "heave_ratio_at_1m", "pitch_ratio_at_1deg")
@@ -36,3 +42,10 @@ EFFECT = Effect(
     tuple(Parameter(name, "of critical", start=0.05, low=0.0, high=2.0, plausible=(0.0, 0.5),
                     why=WHY) for name in NAMES),
     apply, signature=DAMPED)
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"surge_ratio_at_1m": 0.1, "heave_ratio_at_1m": 0.0, "pitch_ratio_at_1deg": 0.1},
+                   {"surge_ratio_at_1m": 0.3, "heave_ratio_at_1m": 0.0, "pitch_ratio_at_1deg": 0.3})
+# none of its own in the independent basin: the basin's mixed damping (linear_damping's
+# INDEPENDENT_INJECTION) is part quadratic, and this effect a right answer to it
+INDEPENDENT_INJECTION = None

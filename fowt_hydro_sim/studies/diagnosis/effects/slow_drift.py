@@ -14,7 +14,7 @@ from dataclasses import replace
 import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, IndependentInjection, Parameter
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 CUTOFF_HZ = 0.05  # difference frequencies kept
@@ -64,3 +64,10 @@ EFFECT = Effect(
                    "(a small body in long waves), and falls only past a resonance")),
     apply, wave_coherent=False,
     signature={"surge.std.low_frequency": +1, "surge.offset": +1})
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"drift_coefficient_n_m2": 1.0e5}, {"drift_coefficient_n_m2": 3.0e5})
+# in the independent basin: a Newman drift table steeper in frequency than the baseline's,
+# times ``scale`` (basin.INJECTED_DRIFT)
+INDEPENDENT_INJECTION = IndependentInjection("frequency_dependent_drift", ("slow_drift",),
+                                             ({"scale": 1.0}, {"scale": 2.5}))

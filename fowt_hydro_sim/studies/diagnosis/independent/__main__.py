@@ -3,8 +3,8 @@ or the mean drift table."""
 from __future__ import annotations
 
 import argparse
-import math
 import logging
+import math
 import sys
 
 from fowt_hydro_sim.physics.config import ConfigError, load_platform

@@ -13,6 +13,7 @@ import numpy as np
 
 from fowt_hydro_sim.physics.config import Platform, load_case
 from fowt_hydro_sim.studies.diagnosis.independent import bem, cummins, drift, drift_study
+from fowt_hydro_sim.studies.diagnosis.independent.catenary import ChainLines, surge_curve
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
 
 VERSION = 1  # bump when the simulator's results change: the cache keys change with it
@@ -54,7 +55,6 @@ def effects(form: str | None, values: dict[str, float], platform: Platform) -> c
         quadratic = (values["surge_quadratic_n_s2_m2"], 0.0, 0.0, 0.0, values["pitch_quadratic_n_m_s2"], 0.0)
         return cummins.Effects(linear_damping=linear, quadratic_damping=quadratic)
     if form == "catenary_mooring":
-        from fowt_hydro_sim.studies.diagnosis.independent.catenary import ChainLines, surge_curve
         lines = ChainLines(values["anchor_distance_m"], values["length_m"], values["weight_n_m"])
         return cummins.Effects(mooring_curve_n=surge_curve(platform, lines))
     if form == "rotor_1p":

@@ -7,7 +7,7 @@ the excitation X(w) from the capytaine database (bem.py), its own wave synthesis
 by FFT over the sea's repeat period), quadratic Morison drag at the undisplaced strip points,
 the mooring's spring lines evaluated on the displaced fairleads, and a fixed-step RK4 whose
 memory term is the trapezoidal convolution over the velocity history, extrapolated linearly
-within a step (kernel.py, numba). Runs may start a pre-roll before the record, in the sea's
+within a step (time_stepping.py, numba). Runs may start a pre-roll before the record, in the sea's
 periodic extension (a basin runs before it records). Injectable effects (in forms the
 diagnosis catalogue does not use): extra damping, linear plus quadratic per DOF; a slow
 surge drift force from a frequency-dependent mean-drift coefficient by Newman's
@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fowt_hydro_sim.physics.config import Platform
-from fowt_hydro_sim.studies.diagnosis.independent import kernel as kernel_module
+from fowt_hydro_sim.studies.diagnosis.independent import time_stepping
 from fowt_hydro_sim.studies.diagnosis.independent.bem import (
     FREQUENCIES_HZ,
     HydroDatabase,
@@ -336,20 +336,14 @@ def forcing(database: HydroDatabase, platform: Platform, hull: Strips, waves: Wa
 
 
 def drag_wrench(hull: Strips, rho: float, velocity: np.ndarray, fluid: np.ndarray) -> np.ndarray:
-    """Quadratic drag on the relative velocity at the undisplaced strips; force and moment about (0,0,0)."""
-    points = hull.points_m
-    relative = fluid - (velocity[:3] + np.cross(velocity[3:], points))
-    p, q = len(hull.circular_point_m), len(hull.box_point_m)
-    u = relative[:p]
-    normal = u - np.sum(u * hull.circular_axis, axis=1)[:, None] * hull.circular_axis
-    f_circ = 0.5 * rho * (hull.circular_cda_m2 * np.linalg.norm(normal, axis=1))[:, None] * normal
-    along = np.einsum("qdk,qk->qd", hull.box_direction, relative[p:p + q])
-    f_box = np.einsum("qd,qdk->qk", 0.5 * rho * hull.box_cda_m2 * np.abs(along) * along, hull.box_direction)
-    w = relative[p + q:, 2]
-    f_plate = np.zeros((w.size, 3))
-    f_plate[:, 2] = 0.25 * rho * hull.plate_cda_m2 * np.abs(w) * w
-    forces = np.vstack([f_circ, f_box, f_plate])
-    return np.concatenate([forces.sum(axis=0), np.cross(points, forces).sum(axis=0)])
+    """Quadratic drag on the relative velocity at the undisplaced strips (``fluid``: (n, 3) at
+    ``hull.points_m``); force and moment about (0,0,0): the time stepping's own drag."""
+    out = np.zeros(6)
+    fluid = np.asarray(fluid, float)
+    time_stepping._drag(np.asarray(velocity, float), fluid, fluid, 0.0, hull.points_m, len(hull.circular_point_m),
+                        len(hull.box_point_m), hull.circular_axis, hull.circular_cda_m2, hull.box_direction,
+                        hull.box_cda_m2, hull.plate_cda_m2, rho, out)
+    return out
 
 
 @dataclass(frozen=True)
@@ -373,7 +367,7 @@ def _forcing_grid(waves: Waves, start_s: float, end_s: float) -> tuple[np.ndarra
 def integrate(platform: Platform, database: HydroDatabase, waves: Waves | None, duration_s: float,
               dt_s: float = 0.05, baseline: Baseline = Baseline(), effects: Effects = Effects(),
               initial: np.ndarray | None = None, preroll_s: float = 0.0) -> Trajectory:
-    """RK4 at dt_s of the Cummins equation (kernel.py), from ``-preroll_s`` (in the waves'
+    """RK4 at dt_s of the Cummins equation (time_stepping.py), from ``-preroll_s`` (in the waves'
     periodic extension) to ``duration_s``; the trajectory from 0."""
     env = platform.environment
     steps = round((duration_s + preroll_s) / dt_s)
@@ -390,7 +384,7 @@ def integrate(platform: Platform, database: HydroDatabase, waves: Waves | None, 
     anchor = np.array([line.anchor_m for line in mooring.lines], float).reshape(-1, 3)
     curve = np.asarray(effects.mooring_curve_n, float).reshape(-1, 2)
     x0 = np.zeros(6) if initial is None else np.asarray(initial, float)
-    positions, velocities = kernel_module.integrate(
+    positions, velocities = time_stepping.integrate(
         steps, dt_s, -preroll_s, x0, float(grid[0]), FORCING_STEP_S, periodic, force.excitation,
         force.fluid_velocity_m_s, np.linalg.inv(mass), database.hydrostatic_stiffness,
         kernel * weights[:, None, None], np.asarray(effects.linear_damping, float),

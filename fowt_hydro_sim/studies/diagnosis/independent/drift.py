@@ -181,11 +181,6 @@ def mooring_stiffness(platform: Platform, step: float = 1e-4) -> np.ndarray:
     return stiffness
 
 
-def _matrix(result_set, name: str) -> np.ndarray:
-    """capytaine's {dof: value} of a result as a (6,) array."""
-    return np.array([result_set[name][dof] for dof in DOFS])
-
-
 def rao(omega_rad_s: float, mass: np.ndarray, damping: np.ndarray, restoring: np.ndarray,
         excitation: np.ndarray, damping_ratio: float) -> np.ndarray:
     """xi (6,) per unit amplitude, capytaine's e^{-i w t}: (-w^2 M - i w (B + B_v) + C) xi = X,
@@ -263,11 +258,3 @@ def newman_force_spectrum(waves: cummins.Waves, coefficient_n_m2, mu_rad_s: np.n
         shifted = np.interp(fine + mu, omega, density, right=0.0)
         out[i] = 8.0 * np.sum(s_fine * shifted * coefficient_n_m2(fine + 0.5 * mu) ** 2) * step
     return out
-
-
-def surge_response_std_m(force_spectrum: np.ndarray, mu_rad_s: np.ndarray, mass_kg: float, stiffness_n_m: float,
-                         damping_ratio: float) -> float:
-    """STD of a 1-DOF oscillator (m, k, zeta) driven by the one-sided force spectrum on mu."""
-    damping = 2.0 * damping_ratio * math.sqrt(mass_kg * stiffness_n_m)
-    gain = 1.0 / np.abs(stiffness_n_m - mass_kg * mu_rad_s ** 2 + 1j * damping * mu_rad_s) ** 2
-    return float(math.sqrt(np.trapezoid(force_spectrum * gain, mu_rad_s)))

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from fowt_hydro_sim.physics.config import Platform, load_case
+from fowt_hydro_sim.physics.config import Platform, load_case, load_platform
 from fowt_hydro_sim.studies.diagnosis.independent import bem, cummins, drift
 from fowt_hydro_sim.studies.psd import BANDS_HZ, band_std, psd
 
@@ -74,8 +74,6 @@ def natural_period_s(platform: Platform, database: bem.HydroDatabase) -> float:
 
 
 if __name__ == "__main__":  # python -m fowt_hydro_sim.studies.diagnosis.independent.drift_study
-    from fowt_hydro_sim.physics.config import load_platform
-
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     hull, bem_database, drift_table = load_platform("windmoor12"), bem.load_database(), drift.load_table()
     LOG.info("surge stiffness %.0f N/m, natural period %.1f s", surge_stiffness_n_m(hull),

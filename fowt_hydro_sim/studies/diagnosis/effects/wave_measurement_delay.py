@@ -19,3 +19,8 @@ EFFECT = Effect(
     (Parameter("delay_s", "s", start=0.5, low=-10.0, high=10.0, plausible=(-3.0, 3.0),
                why="a wave probe's and a motion tracker's clocks agree to a few seconds"),),
     apply)
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"delay_s": 1.0}, {"delay_s": 2.5})
+# none in the independent basin, whose wave probe's stamps are right
+INDEPENDENT_INJECTION = None

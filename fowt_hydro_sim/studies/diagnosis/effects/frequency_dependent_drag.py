@@ -20,3 +20,8 @@ EFFECT = Effect(
     (Parameter("low_frequency_cd_ratio", "-", start=0.6, low=0.05, high=4.0, off=1.0, plausible=(0.2, 2.0),
                why="the seed paper's tuned low-frequency Cds are 0.3 to 1.5 times the wave-band ones"),),
     apply)
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"low_frequency_cd_ratio": 0.5}, {"low_frequency_cd_ratio": 0.3})
+# none in the independent basin, whose strips have one Cd at every frequency
+INDEPENDENT_INJECTION = None

@@ -30,3 +30,8 @@ EFFECT = Effect(
     (Parameter("kc_exponent", "-", start=0.3, low=-2.0, high=2.0, plausible=(-1.0, 1.0),
                why="measured Cd(KC) of cylinders varies at most about as KC to the power +-1 over these seas"),),
     apply)
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"kc_exponent": 0.5}, {"kc_exponent": -0.5})
+# none in the independent basin, whose Cds do not change with the sea state
+INDEPENDENT_INJECTION = None

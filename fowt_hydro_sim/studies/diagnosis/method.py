@@ -24,37 +24,33 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
 
-Model runs go through ``evaluate(jobs) -> results`` (in process, or on a Dask cluster);
-each candidate's fit runs in its own thread so that every candidate's runs are in flight
-together. Records longer than the fit window are fitted on their first ``FIT_WINDOW_S``
-(the replays of the least-squares steps and Jacobians are short); the fitted values are
-then replayed over the whole records, which score and judge the candidate. A candidate
-that closes less than ``SCREEN_CLOSURE`` of the gap in the fit window cannot be named and is
-not replayed at full length (it keeps its fit-window figures). Progress (model runs done
-of those expected, time left) is logged as single lines.
+This module is the method alone: it reads no files and starts no cluster. Model runs go
+through ``evaluate(jobs, description) -> results``, which the caller gives (runner.py: in
+process, or on a Dask cluster; a job is ``Job``); each candidate's fit runs in its own
+thread so that every candidate's runs are in flight together. Records longer than the fit
+window are fitted on their first ``FIT_WINDOW_S`` (the replays of the least-squares steps
+and Jacobians are short); the fitted values are then replayed over the whole records,
+which score and judge the candidate. A candidate that closes less than ``SCREEN_CLOSURE``
+of the gap in the fit window cannot be named and is not replayed at full length (it keeps
+its fit-window figures). The model runs done and still expected are counted in a ``Work``
+(runner.Progress logs them).
 """
 from __future__ import annotations
 
-import logging
 import math
 import threading
-import time
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 import scipy.optimize
+import scipy.signal
 
-from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
-from fowt_hydro_sim.studies.diagnosis.gap import (Gap, GapSettings, band_mean, coherent_share, consistent, gap,
-                                                   spectra)
-from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun, Variant, replay
+from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, coherent_share, consistent, spectra
+from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
 
-log = logging.getLogger(__name__)
-
-REPLAY_DT_S = 0.1  # the replays' step (a basin's motion at 4 Hz needs no finer one)
 FLOOR = 0.25  # residual floor in tolerance units: fits closer than this are not told apart
 MIN_EVIDENCE = 6.0  # BIC improvement over the plain model to name an effect ("strong")
 MIN_CLOSURE = 0.5  # share of the gap an effect must close to be named
@@ -66,33 +62,8 @@ EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) 
 BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
 FIT_WINDOW_S = 1800.0  # longer tuning records are fitted on their first FIT_WINDOW_S, then replayed whole
 SCREEN_CLOSURE = 0.25  # closing less than this in the fit window: not replayed at full length
-PROGRESS_EVERY_S = 10.0  # at most one progress line this often
 
 Job = tuple  # (effect name or None, parameter values, run index, with spectra[, duration [s]: a part of the record])
-
-
-def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
-               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S,
-               options: HydroOptions | None = None) -> tuple[Gap, dict | None]:
-    """One model run (a cluster task): run ``index`` replayed by the plain model (with
-    ``options``) or with an effect at the given values (over the whole record, or its first
-    ``duration`` seconds); its gap, and its spectra if asked."""
-    name, values, index, with_spectra = job[:4]
-    duration_s = job_duration_s(job)
-    run = runs[index]
-    variant = Variant(platform, options=options)
-    if name is not None:
-        variant = (effects or CATALOGUE)[name].apply(variant, run, values)
-    time_s, motion = replay(variant, run, dt_s, duration_s)
-    result = gap(run.name, (run.motion_time_s, run.motion), (time_s, motion), settings)
-    return result, spectra((run.elevation_time_s, run.elevation_m), (time_s, motion), settings) if with_spectra else None
-
-
-def in_process(runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
-               effects: dict[str, Effect] | None = None, dt_s: float = REPLAY_DT_S,
-               options: HydroOptions | None = None) -> Callable[[list[Job], str], list]:
-    """``evaluate`` that runs every job here, one after another."""
-    return lambda jobs, description="": [replay_job(j, runs, platform, settings, effects, dt_s, options) for j in jobs]
 
 
 def record_s(run: MeasuredRun) -> float:
@@ -105,53 +76,39 @@ def fit_window(runs: list[MeasuredRun], window_s: float | None) -> float | None:
     return window_s if window_s and all(record_s(r) > window_s for r in runs) else None
 
 
-class Progress:
-    """Model runs done of those expected and the time left at the pace so far (in replayed
-    seconds, pre-roll included), logged as one line at most every ``every_s``. The expected
-    runs are each phase's most; ``expect`` with a negative count gives back what a phase
-    did not use."""
+class Work:
+    """Model runs done of those expected, and the same in replayed seconds (pre-roll
+    included). The expected runs are each phase's most; ``expect`` with a negative count
+    gives back what a phase did not use. ``reported`` is called after each ``done`` (here it
+    does nothing; runner.Progress logs a line)."""
 
-    def __init__(self, every_s: float = PROGRESS_EVERY_S):
-        self.every_s = every_s
+    def __init__(self) -> None:
         self.runs_done = self.runs_expected = 0
         self.work_done_s = self.work_expected_s = 0.0
-        self.start = time.monotonic()
-        self._last = -math.inf
         self._lock = threading.Lock()
 
     def expect(self, runs: int, work_s: float) -> None:
+        """Add ``runs`` (of ``work_s`` replayed seconds) to those expected."""
         with self._lock:
             self.runs_expected += runs
             self.work_expected_s += work_s
 
     def done(self, runs: int, work_s: float, final: bool = False) -> None:
+        """Count ``runs`` (of ``work_s`` replayed seconds) done; ``final``: the diagnosis ends."""
         with self._lock:
             self.runs_done += runs
             self.work_done_s += work_s
-            now = time.monotonic()
-            if final or now - self._last >= self.every_s:
-                self._last = now
-                log.info(self.line())
+            self.reported(final)
 
-    def seconds_left(self) -> float:
-        elapsed = time.monotonic() - self.start
-        if not self.work_done_s:
-            return math.nan
-        return elapsed * max(0.0, self.work_expected_s - self.work_done_s) / self.work_done_s
-
-    def line(self) -> str:
-        left = self.seconds_left()
-        share = self.work_done_s / self.work_expected_s if self.work_expected_s else 1.0
-        return (f"diagnosis: {self.runs_done}/{self.runs_expected} model runs "
-                f"({min(1.0, share):.0%} of the replayed time), "
-                + ("time left unknown" if math.isnan(left) else f"{left / 60:.1f} min left"))
+    def reported(self, final: bool) -> None:
+        """Called (under the lock) after each ``done``."""
 
 
-def tracked(evaluate: Callable, runs: list[MeasuredRun], progress: Progress) -> Callable:
-    """``evaluate`` that counts its finished jobs in ``progress``."""
+def tracked(evaluate: Callable, runs: list[MeasuredRun], work: Work) -> Callable:
+    """``evaluate`` that counts its finished jobs in ``work``."""
     def run(jobs: list[Job], description: str = "") -> list:
         results = evaluate(jobs, description)
-        progress.done(len(jobs), sum(job_s(j, runs) for j in jobs))
+        work.done(len(jobs), sum(job_s(j, runs) for j in jobs))
         return results
     return run
 
@@ -494,7 +451,6 @@ class Diagnosis:
 
 def peak_period_s(run: MeasuredRun) -> float:
     """Tp of a run's elevation record: the period of its spectral peak (Welch, 10 min segments)."""
-    import scipy.signal
     step = run.elevation_step_s
     f, psd = scipy.signal.welch(run.elevation_m, fs=1.0 / step, nperseg=min(run.elevation_m.size, int(600 / step)))
     return float(1.0 / f[1:][np.argmax(psd[1:])])
@@ -580,18 +536,19 @@ def fit_budget(effect: Effect, max_evaluations: int) -> int:
 
 def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Callable, settings: GapSettings,
              effects: dict[str, Effect] | None = None, max_evaluations: int = 4,
-             fit_window_s: float | None = FIT_WINDOW_S) -> Diagnosis:
+             fit_window_s: float | None = FIT_WINDOW_S, progress: Work | None = None) -> Diagnosis:
     """Diagnose the gap between the model and the measured runs. ``evaluate(jobs,
-    description)`` runs replay jobs (``replay_job``) over ``tuning + blind`` in that order.
-    Tuning records longer than ``fit_window_s`` are fitted on their first ``fit_window_s``
-    (None or 0: whole records)."""
+    description)`` runs replay jobs (``Job``, e.g. runner.replay_job) over ``tuning +
+    blind`` in that order. Tuning records longer than ``fit_window_s`` are fitted on their
+    first ``fit_window_s`` (None or 0: whole records). The model runs are counted in
+    ``progress`` (e.g. a runner.Progress, which logs them)."""
     check_runs(tuning + blind, settings)
     check_window(fit_window_s, settings)
     effects = effects or CATALOGUE
     n_tuning = len(tuning)
     runs = tuning + blind
     window = fit_window(tuning, fit_window_s)
-    progress = Progress()
+    progress = progress if progress is not None else Work()
     evaluate = tracked(evaluate, runs, progress)
     whole_s = [PREROLL_S + record_s(r) for r in runs]
     fit_run_s = [PREROLL_S + (window if window else record_s(r)) for r in tuning]
@@ -764,37 +721,3 @@ def _choose(fitting: list[CandidateFit], effects: dict[str, Effect], deficit: fl
         else:
             reason += f"; also fit: {', '.join(c.effect for c in tied if c is not chosen)}"
     return chosen, reason
-
-
-def cluster_evaluate(client, runs: list[MeasuredRun], platform: Platform, settings: GapSettings,
-                     effects: dict[str, Effect] | None = None,
-                     dt_s: float = REPLAY_DT_S, options: HydroOptions | None = None) -> Callable[[list[Job], str], list]:
-    """``evaluate`` that sends the jobs to a Dask cluster (the runs and platform sent once;
-    the diagnosis logs the progress of all candidates' runs together)."""
-    from fowt_hydro_sim.studies.cluster import scatter
-    shared = {"runs": scatter(client, runs), "platform": scatter(client, platform),
-              "settings": scatter(client, settings), "effects": scatter(client, effects), "dt_s": dt_s,
-              "options": options}
-
-    def evaluate(jobs: list[Job], description: str = "") -> list:
-        return client.gather(client.map(replay_job, jobs, pure=False, **shared))
-    return evaluate
-
-
-def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, settings: GapSettings,
-                  effects: dict[str, Effect], output: str, heading_deg: float = 0.0, max_evaluations: int = 4,
-                  dt_s: float = REPLAY_DT_S, scheduler: str | None = None, workers: int | None = None,
-                  fit_window_s: float | None = FIT_WINDOW_S) -> list[str]:
-    """``fowt-sim diagnose``: measured bags diagnosed on a Dask cluster, the report written to
-    ``output``; returns the summary's lines."""
-    from fowt_hydro_sim.studies.cluster import dask_client
-    from fowt_hydro_sim.studies.diagnosis.report import summary_lines, write_report
-    from fowt_hydro_sim.studies.replay import measured_run
-    tuning_runs = [measured_run(p, heading_deg) for p in tuning]
-    blind_runs = [measured_run(p, heading_deg) for p in blind]
-    check_runs(tuning_runs + blind_runs, settings)  # before any cluster starts
-    check_window(fit_window_s, settings)
-    with dask_client(scheduler, workers) as client:
-        evaluate = cluster_evaluate(client, tuning_runs + blind_runs, platform, settings, effects, dt_s)
-        diagnosis = diagnose(tuning_runs, blind_runs, evaluate, settings, effects, max_evaluations, fit_window_s)
-    return summary_lines(diagnosis) + [f"report: {write_report(diagnosis, output)}"]

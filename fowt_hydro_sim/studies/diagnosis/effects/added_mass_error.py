@@ -19,3 +19,8 @@ EFFECT = Effect(
     (Parameter("added_mass_scale", "-", start=1.1, low=0.3, high=2.0, off=1.0, plausible=(0.7, 1.3),
                why="strip-theory Ca of columns and pontoons lies within about 30 % of a BEM added mass"),),
     apply)
+
+# the benchmark's twin injects it at these values (one scenario each)
+TWIN_INJECTIONS = ({"added_mass_scale": 0.7}, {"added_mass_scale": 1.35})
+# none in the independent basin (its added mass is the BEM's, scaled only by the baseline spread)
+INDEPENDENT_INJECTION = None
