@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import HydroOptions, Platform, load_case
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
@@ -312,18 +313,18 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     ``output/runs``); ``first_seed`` (default 1000 twin, 2000 independent) sets the scenarios'
     realisations; returns the report's lines (one per scenario, then the summary)."""
     if source not in SOURCES:
-        raise ValueError(f"--source: must be one of {', '.join(SOURCES)}, got {source!r}")
+        raise InputError(f"--source: must be one of {', '.join(SOURCES)}, got {source!r}")
     known = INJECTIONS if source == "twin" else INDEPENDENT_INJECTIONS
     unknown = [n for n in inject or [] if n not in known]
     if unknown:
-        raise ValueError(f"--inject: unknown {', '.join(unknown)} (for {source}: {', '.join(known)})")
+        raise InputError(f"--inject: unknown {', '.join(unknown)} (for {source}: {', '.join(known)})")
     if duration_s < settings.transient_s + 600:
-        raise ValueError(f"--duration: need at least the transient plus 600 s, got {duration_s:g} s")
+        raise InputError(f"--duration: need at least the transient plus 600 s, got {duration_s:g} s")
     seed = {} if first_seed is None else {"first_seed": first_seed}  # else each source's own default
     if source == "independent":
         chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
         if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
-            raise ValueError("--source independent: the catenary_mooring scenario needs moorpy "
+            raise InputError("--source independent: the catenary_mooring scenario needs moorpy "
                              "(pip install '.[benchmark]'), or leave it out with --inject")
     else:
         chosen = scenarios(inject, strengths, nulls, out_of_catalogue, **seed)

@@ -27,6 +27,7 @@ import numpy as np
 import scipy.signal
 import scipy.stats
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.model import DOF_NAMES
 from fowt_hydro_sim.studies.psd import BANDS_HZ
 
@@ -131,7 +132,7 @@ def common_grid(measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndarray
     start = max(measured[0][0], model[0][0]) + transient_s
     end = min(measured[0][-1], model[0][-1])
     if end - start < 256 * GRID_STEP_S:
-        raise ValueError(f"gap: the runs overlap for {max(0.0, end - start + transient_s):.0f} s, too little "
+        raise InputError(f"gap: the runs overlap for {max(0.0, end - start + transient_s):.0f} s, too little "
                          f"after the {transient_s:g} s transient")
     grid = np.arange(start, end, GRID_STEP_S)
     return tuple(np.column_stack([np.interp(grid, t, column) for column in x.T]) for t, x in (measured, model))

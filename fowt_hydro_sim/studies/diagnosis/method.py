@@ -47,6 +47,7 @@ import numpy as np
 import scipy.optimize
 import scipy.signal
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, coherent_share, consistent, spectra
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
@@ -507,25 +508,25 @@ def measured_spectra(run: MeasuredRun, settings: GapSettings) -> dict:
 
 
 def check_runs(runs: list[MeasuredRun], settings: GapSettings) -> None:
-    """ValueError naming a run that cannot be diagnosed: too short for the transient, or
+    """InputError naming a run that cannot be diagnosed: too short for the transient, or
     motion outside its elevation record."""
     if not runs:
-        raise ValueError("diagnosis: no measured run")
+        raise InputError("diagnosis: no measured run")
     for run in runs:
         span = float(run.motion_time_s[-1] - run.motion_time_s[0]) if run.motion_time_s.size else 0.0
         if span < settings.transient_s + 300.0:
-            raise ValueError(f"run {run.name}: {span:.0f} s of motion; the diagnosis needs the {settings.transient_s:g} s "
+            raise InputError(f"run {run.name}: {span:.0f} s of motion; the diagnosis needs the {settings.transient_s:g} s "
                              f"transient plus at least 300 s")
         if run.motion_time_s[0] < run.elevation_time_s[0] - 60.0 or run.motion_time_s[-1] > run.elevation_time_s[-1] + 60.0:
-            raise ValueError(f"run {run.name}: the motion ({run.motion_time_s[0]:.0f}-{run.motion_time_s[-1]:.0f} s) is "
+            raise InputError(f"run {run.name}: the motion ({run.motion_time_s[0]:.0f}-{run.motion_time_s[-1]:.0f} s) is "
                              f"not within the wave elevation record ({run.elevation_time_s[0]:.0f}-"
                              f"{run.elevation_time_s[-1]:.0f} s)")
 
 
 def check_window(fit_window_s: float | None, settings: GapSettings) -> None:
-    """ValueError if the fit window is too short to measure a gap in."""
+    """InputError if the fit window is too short to measure a gap in."""
     if fit_window_s and fit_window_s < settings.transient_s + 300.0:
-        raise ValueError(f"fit window {fit_window_s:g} s: needs the {settings.transient_s:g} s transient plus at "
+        raise InputError(f"fit window {fit_window_s:g} s: needs the {settings.transient_s:g} s transient plus at "
                          "least 300 s (or 0: fit on whole records)")
 
 
