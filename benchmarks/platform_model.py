@@ -35,13 +35,19 @@ from fowt_hydro_sim.physics.drag_filters import band_velocities, filter_inputs, 
 from fowt_hydro_sim.physics.dynamics import N_BODY_STATES, derivative
 from fowt_hydro_sim.physics.loads import component_loads
 from fowt_hydro_sim.physics.model import PlatformModel
-from fowt_hydro_sim.physics.morison import (added_mass_from_moments, centripetal_from_moments, end_plate_loads,
-                                            lever_arms, relative_velocities, rotated_moments, strip_loads)
+from fowt_hydro_sim.physics.morison import (
+    added_mass_from_moments,
+    centripetal_from_moments,
+    end_plate_loads,
+    lever_arms,
+    relative_velocities,
+    rotated_moments,
+    strip_loads,
+)
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.tables import interpolate_into
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable
-
 
 # floating-point operations per right-hand side of the filtered model (2 bands, 6 filter
 # states, 10 non-zero A entries, 2 non-zero C entries), counted from the kernels (sqrt as one):

@@ -38,8 +38,9 @@ def test_short_waves_on_a_large_cylinder_tend_to_total_reflection():
 
 def test_capytaine_kochin_drift_of_a_bottom_mounted_cylinder():
     cpt = pytest.importorskip("capytaine")
-    from capytaine.post_pro.kochin import compute_kochin
     import logging
+
+    from capytaine.post_pro.kochin import compute_kochin
     logging.getLogger("capytaine").setLevel(logging.ERROR)
     radius, depth = 5.0, 20.0
     mesh = cpt.mesh_vertical_cylinder(length=depth + 2.0, radius=radius, center=(0.0, 0.0, -depth / 2 + 1.0),

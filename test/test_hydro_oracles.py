@@ -171,8 +171,13 @@ def test_centripetal_added_mass_wrench_from_moments_is_the_sum_over_strips(angle
     moments as their 6x6 added mass, equals -sum L A w x (w x r) and its moment r x f about
     the reference point, summed strip by strip with numpy at lever arms r = R c (fixed
     directions) for an angular velocity with all three components."""
-    from fowt_hydro_sim.physics.morison import (added_mass_moments, added_mass_tensors, centripetal_from_moments,
-                                                rotated_moments, wetted_fractions)
+    from fowt_hydro_sim.physics.morison import (
+        added_mass_moments,
+        added_mass_tensors,
+        centripetal_from_moments,
+        rotated_moments,
+        wetted_fractions,
+    )
     from fowt_hydro_sim.physics.strips import discretise
     geometry = discretise(load_platform("windmoor12"))
     s = geometry.strips

@@ -18,10 +18,16 @@ import yaml
 from scipy import integrate
 
 from fowt_hydro_sim.cli import main
-from fowt_hydro_sim.physics import free_surface_hydrostatics as fsh
 from fowt_hydro_sim.frames import rotation_matrix
-from fowt_hydro_sim.physics.config import (HYDRODYN, ConfigError, EndPlate, load_platform, platform_document,
-                                           platform_from_dict)
+from fowt_hydro_sim.physics import free_surface_hydrostatics as fsh
+from fowt_hydro_sim.physics.config import (
+    HYDRODYN,
+    ConfigError,
+    EndPlate,
+    load_platform,
+    platform_document,
+    platform_from_dict,
+)
 from fowt_hydro_sim.physics.loads import ROW
 from fowt_hydro_sim.physics.loads.hydrostatic import hydrostatics
 from fowt_hydro_sim.physics.model import PlatformModel

@@ -413,10 +413,10 @@ class _Fields:
         """Every setting of the dataclass ``cls`` (but ``skip``) from this mapping."""
         return {name: self.setting(item) for name, item in described(cls).items() if name not in skip}
 
-    def sub(self, name: str, default: Any = None) -> "_Fields":
+    def sub(self, name: str, default: Any = None) -> _Fields:
         return _Fields(self._raw(name, _REQUIRED if default is None else default), self.at(name), False)
 
-    def items(self, name: str) -> list["_Fields"]:
+    def items(self, name: str) -> list[_Fields]:
         value = self._raw(name, _REQUIRED)
         if not isinstance(value, list) or not value:
             raise ConfigError(f"{self.at(name)}: must be a non-empty list")

@@ -11,8 +11,8 @@ bands), ``column*.submerged.cd.constant`` (the constant-Cd model's value), or
 from __future__ import annotations
 
 import fnmatch
+from collections.abc import Callable
 from dataclasses import replace
-from typing import Callable
 
 from fowt_hydro_sim.physics.config import ConfigError, DragCoefficients, EndPlate, Member, Platform, Zone
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 import re
 import sys
-from functools import lru_cache
+from functools import cache
 from importlib import resources
 from pathlib import Path
 
@@ -41,7 +41,7 @@ def _search_roots() -> list[Path]:
     return [Path(p) / "share" for p in prefixes] + [Path(str(resources.files("fowt_hydro_sim.rosbag") / "msg"))]
 
 
-@lru_cache(maxsize=None)
+@cache
 def definition_text(package: str, name: str) -> str:
     """The text of ``package/msg/name.msg``."""
     for root in _search_roots():
@@ -69,7 +69,7 @@ def dependencies(package: str, text: str) -> list[tuple[str, str]]:
     return found
 
 
-@lru_cache(maxsize=None)
+@cache
 def schema(type_name: str) -> str:
     """The ``ros2msg`` schema of ``type_name``: its definition, then each dependency (depth
     first, once) after a separator line and ``MSG: package/Type``."""

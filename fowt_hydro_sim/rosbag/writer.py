@@ -27,8 +27,8 @@ import threading
 import time
 import zlib
 from collections import defaultdict
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Iterable
 
 import numpy as np
 import yaml

@@ -95,7 +95,7 @@ class WaveComponents:
         np.add.at(spectrum, self.harmonic, self.amplitude_m * np.exp(1j * (self.phase_rad - k * s)) * n / 2.0)
         return np.fft.irfft(spectrum, n)
 
-    def delayed(self, delay_s: float) -> "WaveComponents":
+    def delayed(self, delay_s: float) -> WaveComponents:
         """The same sea, arriving ``delay_s`` later (a phase shift of -w delay)."""
         return WaveComponents(self.frequency_hz, self.amplitude_m,
                               self.phase_rad - 2 * np.pi * self.frequency_hz * delay_s,

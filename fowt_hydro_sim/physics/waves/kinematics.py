@@ -58,7 +58,7 @@ class _Components(NamedTuple):
     sin_b: np.ndarray
 
     @classmethod
-    def of(cls, waves: WaveComponents, depth_m: float, gravity_m_s2: float) -> "_Components":
+    def of(cls, waves: WaveComponents, depth_m: float, gravity_m_s2: float) -> _Components:
         omega = 2 * np.pi * waves.frequency_hz
         return cls(waves.amplitude_m, waves.phase_rad, omega, wavenumber(omega, depth_m, gravity_m_s2),
                    np.cos(waves.direction_rad), np.sin(waves.direction_rad))
@@ -182,7 +182,7 @@ class KinematicsTable:
 
     @classmethod
     def build(cls, waves: WaveComponents, points_m: np.ndarray, step_s: float, depth_m: float,
-              gravity_m_s2: float, density_kg_m3: float) -> "KinematicsTable":
+              gravity_m_s2: float, density_kg_m3: float) -> KinematicsTable:
         points = np.atleast_2d(np.asarray(points_m, dtype=float))
         n_samples = int(round(waves.period_s / step_s))
         if abs(n_samples * step_s - waves.period_s) > 1e-6 * waves.period_s:
