@@ -53,9 +53,9 @@ def test_prescribed_motion_in_still_water_matches_hydrodyn(tmp_path):
     assert np.allclose(parts, table["HydroFxi"], rtol=1e-8, atol=1e-3)
 
 
-def test_todays_choices_differ_from_hydrodyn_as_the_issue_measured():
+def test_the_earlier_choices_differ_from_hydrodyn_as_measured_before():
     """The model's earlier choices (displaced wetted length, rotating directions, linear
-    hydrostatics) stay reachable and reproduce the issue's still-water errors."""
+    hydrostatics) stay reachable and reproduce their measured still-water errors."""
     ref = read_hydrodyn_out(hydrodyn_case(CASE) / "wm12_prescribed_still.out")
     m = motion_from_columns(reference_motion())
     loads = PlatformModel(hydrodyn_hull(), options=EARLIER).prescribed_motion_loads(*m)

@@ -1,4 +1,4 @@
-"""The independent Cummins simulator (issue 15) checked before it is trusted: hydrostatics
+"""The independent Cummins simulator checked before it is trusted: hydrostatics
 against the spec, the radiation kernel against the BEM, free decay and regular-wave RAOs
 against frequency-domain closed forms, the drag against a hand sum, and the excitation on
 the fixed hull against the OpenFAST HydroDyn reference in a band where strip theory holds."""
