@@ -188,8 +188,9 @@ def diagnosis(runs: list, platform, workers: int, window_s: float) -> Recorder:
     for c in result.candidates:
         print(f"  {c.effect:<26} score {c.score:8.1f} closure {c.closure:6.0%} runs {c.model_runs:4d} "
               f"{'screened' if c.window_s else ''} {'; '.join(c.concerns)}")
-    print(f"  replays: {recorder.whole} whole records + {recorder.window} fit windows = {recorder.whole + recorder.window} "
-          f"({result.model_runs} counted by the diagnosis), {recorder.replayed_s / 3600:.0f} h replayed, "
+    print(f"  replays: {recorder.whole} whole records + {recorder.window} fit windows = "
+          f"{recorder.whole + recorder.window} ({result.model_runs} counted by the diagnosis), "
+          f"{recorder.replayed_s / 3600:.0f} h replayed, "
           f"{recorder.replayed_s / wall:.0f} x real time")
     recorder.wall_s = wall
     return recorder

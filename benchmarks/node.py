@@ -81,7 +81,7 @@ def subscribe(seconds: float, out: str) -> None:
 def accelerated(duration_s: float, drag: str, repeats: int) -> None:
     print(f"as fast as possible, {len(TOPICS)} topics at 20 Hz simulated, drag {drag}, {duration_s:g} s:")
     with tempfile.TemporaryDirectory() as folder:
-        for i in range(repeats):  # interleaved, so drifts in machine load hit both
+        for _ in range(repeats):  # interleaved, so drifts in machine load hit both
             for record in (None, Path(folder) / "run"):
                 before = load()
                 sim, wall, cpu = node_run(duration_s, drag, record)

@@ -8,7 +8,8 @@ from importlib import import_module
 
 _MODULE_OF = {
     "accel_msg": "motion", "acceleration_from_accel": "motion", "motion_from_pose": "motion",
-    "body_twist_from_odometry": "motion", "odometry_msg": "motion", "quantity_msg": "turbine", "pose_msg": "motion", "state_from_odometry": "motion", "twist_msg": "motion",
+    "body_twist_from_odometry": "motion", "odometry_msg": "motion", "quantity_msg": "turbine", "pose_msg": "motion",
+    "state_from_odometry": "motion", "twist_msg": "motion",
     "velocity_from_twist": "motion", "clock_msg": "stamps", "seconds": "stamps", "stamp": "stamps",
     "elevation_from_msg": "waves", "elevation_msg": "waves", "wrench_from_msg": "wrench", "wrench_msg": "wrench",
 }

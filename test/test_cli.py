@@ -174,7 +174,8 @@ def test_filtered_simulate_and_the_load_case_study_agree(tmp_path: Path):
     assert summary["drag_model"] == "filtered" and summary["statistics"]["analysed_from_s"] == 100.0
     columns = read_run(sim)
     keep = columns["time_s"] >= 100.0
-    assert summary["statistics"]["heave"]["band_std"] == pytest.approx(band_stds(columns["heave_m"][keep], 0.25), rel=1e-6)
+    assert summary["statistics"]["heave"]["band_std"] == pytest.approx(band_stds(columns["heave_m"][keep], 0.25),
+                                                                       rel=1e-6)
 
     study = tmp_path / "study"
     done = fowt_sim("load-cases", "--cases", "lc5.0", "--duration", "600", "--transient", "100", "--seed", "4",

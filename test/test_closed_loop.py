@@ -38,7 +38,7 @@ def test_600_s_of_lc5_2_waves_and_13_m_s_wind(tmp_path):
     speed = bag.scalar("/turbine/rotor_speed")
     assert speed.time_s[-1] >= 599.9
     assert np.all(np.abs(speed.values[:, 0] / rated - 1.0) < 0.10), (speed.values.min(), speed.values.max())
-    for topic, kind in topics.TURBINE.values():
+    for topic, _kind in topics.TURBINE.values():
         assert np.all(np.isfinite(bag.scalar(topic).values)), topic
     for topic in PLATFORM_TOPICS[1:]:
         assert np.all(np.isfinite(bag.series(topic).values)), topic

@@ -141,7 +141,8 @@ def test_effective_drag_coefficient_of_the_papers_bank(frequency_hz: float):
         u = np.cos(2 * np.pi * frequency_hz * result.time_s + 0.3)  # the wave velocity's phase at x = 0
         work[drag_model] = np.mean((result.loads[:, DRAG, 0] * u)[1:])
     measured = work["filtered"] / work["constant"]
-    predicted = effective_drag_coefficient(band_cd, frequency_response(bank_state_space(PAPER_BANDS), [frequency_hz]))[0]
+    predicted = effective_drag_coefficient(band_cd,
+                                           frequency_response(bank_state_space(PAPER_BANDS), [frequency_hz]))[0]
     assert measured == pytest.approx(predicted, abs=0.005), (measured, predicted)
 
 
@@ -258,7 +259,8 @@ def test_band_cds_act_on_their_bands_in_lc53():
                            ("wave", with_cds(p, lambda c: scaled_cd(c, 2.0, band=1)))):
         result = PlatformModel(platform, waves, drag_model="filtered").run(3900.0, output_interval_s=0.25)
         keep = result.time_s >= 300.0
-        stds[name] = {dof: band_stds(result.motion[keep, j], 0.25) for dof, j in (("surge", 0), ("heave", 2), ("pitch", 4))}
+        stds[name] = {dof: band_stds(result.motion[keep, j], 0.25)
+                      for dof, j in (("surge", 0), ("heave", 2), ("pitch", 4))}
 
     def change(case: str, dof: str, band: str) -> float:
         return stds[case][dof][band] / stds["base"][dof][band] - 1.0

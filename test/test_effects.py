@@ -109,8 +109,8 @@ def test_cubic_stiffness_equilibrium(platform):
     force[:, HEAVE] = 1.5 * k
     damping = np.zeros((6, 6))
     damping[HEAVE, HEAVE] = 2 * 0.7 * math.sqrt(k * model.mass_matrix()[HEAVE, HEAVE])
-    result = PlatformModel(platform, None, dt_s=0.1,
-                           extension=Extension(force_n=force, cubic_stiffness=k3, linear_damping=damping)).run(300.0, 1.0)
+    result = PlatformModel(platform, None, dt_s=0.1, extension=Extension(
+        force_n=force, cubic_stiffness=k3, linear_damping=damping)).run(300.0, 1.0)
     x = scipy.optimize.brentq(lambda x: k * x + k3[HEAVE] * x ** 3 - 1.5 * k, 0, 2)
     assert result.motion[-1, HEAVE] == pytest.approx(x, rel=0.01)
 
@@ -129,7 +129,7 @@ def test_quadratic_stiffness_is_stiffer_on_one_side(platform):
         force[:, HEAVE] = sign * 0.5 * k
         result = PlatformModel(platform, None, dt_s=0.1, extension=Extension(
             force_n=force, quadratic_stiffness=k2, linear_damping=damping)).run(300.0, 1.0)
-        x = scipy.optimize.brentq(lambda x: k * x + k2[HEAVE] * x ** 2 - sign * 0.5 * k, -1.5, 1.5)
+        x = scipy.optimize.brentq(lambda x, sign=sign: k * x + k2[HEAVE] * x ** 2 - sign * 0.5 * k, -1.5, 1.5)
         assert result.motion[-1, HEAVE] == pytest.approx(x, rel=0.01)
     assert abs(x) > 0.5  # the soft side gives way more than the linear spring (0.5 m)
 
@@ -158,8 +158,9 @@ def test_the_mooring_candidates_surge_restoring_at_plus_and_minus_5_m(platform):
         extension = variant.extension.plus(Extension(force_n=np.tile(force, (4, 1)), linear_damping=damping))
         settled = PlatformModel(variant.platform, None, dt_s=0.1, extension=extension).run(1500.0, 1.0).motion[-1]
         dofs = [0, 2, 4]
-        q = scipy.optimize.fsolve(lambda q: k[np.ix_(dofs, dofs)] @ q + np.array([k2[0] * q[0] ** 2 + k3[0] * q[0] ** 3,
-                                                                                 0, 0]) - force[dofs], np.zeros(3))
+        q = scipy.optimize.fsolve(lambda q, dofs=dofs, force=force: k[np.ix_(dofs, dofs)] @ q
+                                  + np.array([k2[0] * q[0] ** 2 + k3[0] * q[0] ** 3, 0, 0]) - force[dofs],
+                                  np.zeros(3))
         assert settled[0] == pytest.approx(q[0], rel=0.02)
 
 
@@ -291,8 +292,10 @@ def record(seed: int, duration_s: float = 1800.0, step: float = 0.25) -> tuple[n
     rng = np.random.default_rng(seed)
     t = np.arange(0, duration_s, step)
     motion = np.zeros((t.size, 6))
-    for dof, (lf, wf) in enumerate([(1.0, 0.5), (0.1, 0.1), (0.05, 0.4), (0.001, 0.001), (0.01, 0.005), (0.001, 0.001)]):
-        for f, a in [(f, lf) for f in np.arange(0.008, 0.045, 0.0011)] + [(f, wf) for f in np.arange(0.06, 0.2, 0.0023)]:
+    for dof, (lf, wf) in enumerate([(1.0, 0.5), (0.1, 0.1), (0.05, 0.4), (0.001, 0.001), (0.01, 0.005),
+                                    (0.001, 0.001)]):
+        for f, a in ([(f, lf) for f in np.arange(0.008, 0.045, 0.0011)]
+                     + [(f, wf) for f in np.arange(0.06, 0.2, 0.0023)]):
             motion[:, dof] += a * 0.3 * np.cos(2 * np.pi * f * t + rng.uniform(0, 2 * np.pi))
     return t, motion
 
@@ -405,7 +408,8 @@ def test_a_fit_outside_its_plausible_range_or_at_its_edge_is_a_concern():
     assert concerns(mooring, {"line_stiffness_scale": 1.1, "hardening": 0.3, "asymmetry": 0.1}, before, settings) == []
     stiff = concerns(mooring, {"line_stiffness_scale": 1.52, "hardening": 0.3, "asymmetry": 0.1}, before, settings)
     assert len(stiff) == 1 and "line_stiffness_scale = 1.52 lies outside its plausible 0.7 to 1.3" in stiff[0]
-    moment = base.Effect("pitch_moment", "a constant pitch moment", (base.Parameter("moment_n_m", "N m", 1e6, -1e8, 1e8),),
+    moment = base.Effect("pitch_moment", "a constant pitch moment",
+                         (base.Parameter("moment_n_m", "N m", 1e6, -1e8, 1e8),),
                          lambda variant, run, values: variant)  # no plausible range: the fit's bounds
     edge = concerns(moment, {"moment_n_m": 1e8}, before, settings)
     assert len(edge) == 1 and "moment_n_m = 1e+08 sits at the edge of the fitted range" in edge[0]
@@ -455,7 +459,7 @@ def test_an_effect_that_closes_the_tuning_gap_but_not_the_blind_one_is_not_named
 
     def evaluate(jobs, description=""):
         out = []
-        for name, values, index, with_spectra in jobs:
+        for name, _values, index, with_spectra in jobs:
             closes = name is not None and (index < 2 or name == "mooring_stiffness")
             out.append((baseline if not closes else _gap(settings, runs[index].name, {}),
                         spectra[index] if with_spectra else None))
@@ -479,7 +483,7 @@ def test_a_mismatch_in_every_run_is_reported_as_the_baselines_before_any_effect(
 
     def evaluate(jobs, description=""):
         out = []
-        for name, values, index, with_spectra in jobs:
+        for name, _values, index, with_spectra in jobs:
             cells = {surge: 10.0 + index}
             if name != "added_mass_error":
                 cells[pitch] = 0.2
@@ -492,7 +496,8 @@ def test_a_mismatch_in_every_run_is_reported_as_the_baselines_before_any_effect(
                                                                           ("pitch", "frequency.low_frequency", 1)]
     assert diagnosis.verdict == "baseline mismatch" and diagnosis.chosen == "added_mass_error"
     assert "surge std.low_frequency: model above the measurement in every run (11x to 13x" in diagnosis.reason
-    assert "not explained by any catalogue effect" in diagnosis.reason and "additionally added_mass_error" in diagnosis.reason
+    assert ("not explained by any catalogue effect" in diagnosis.reason
+            and "additionally added_mass_error" in diagnosis.reason)
     assert diagnosis.mismatches[1].explained_by == "added_mass_error"
     assert diagnosis.mismatches[0].slope([1.0, 2.0, 3.0]) == pytest.approx(1.0)
 
@@ -570,7 +575,7 @@ def test_an_effect_is_charged_for_moving_the_cells_set_aside_as_the_baselines():
 
     def evaluate(jobs, description=""):
         out = []
-        for name, values, index, with_spectra in jobs:
+        for _name, values, index, with_spectra in jobs:
             lighter = 1.0 - values.get("added_mass_scale", 1.0)
             stiffer = values.get("line_stiffness_scale", 1.0) - 1.0
             cells = {surge: -0.1 + 0.4 * lighter + 0.5 * stiffer, heave: (0.04, -0.04, 0.035)[index] + 0.4 * lighter}

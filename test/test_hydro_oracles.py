@@ -57,7 +57,8 @@ def test_pitched_column_inertia_in_a_regular_wave_is_the_rotated_normal_projecti
     pose = np.zeros((t.size, 6))
     pose[:, 4] = pitch
     still = np.zeros((t.size, 6))
-    options = HydroOptions(wetted_length="undisplaced", load_directions=directions, hydrostatics="linear", slow_drift="none")
+    options = HydroOptions(wetted_length="undisplaced", load_directions=directions, hydrostatics="linear",
+                           slow_drift="none")
     model = PlatformModel(platform, _regular_wave(), options=options)
     loads = model.prescribed_motion_loads(t, pose, still, still)[:, ROW["inertia"], :3]
     ix, iz = _depth_integrals(t, env.water_depth_m, env.gravity_m_s2)
@@ -86,7 +87,8 @@ def test_displaced_wetted_length_adds_a_mean_surge_force_in_a_regular_wave():
     acceleration[:, 2] = -heave * omega**2 * np.cos(omega * t + phase)
     means = {}
     for wetted in ("displaced", "undisplaced"):
-        model = PlatformModel(platform, _regular_wave(), options=HydroOptions(wetted_length=wetted, load_directions="fixed", hydrostatics="linear", slow_drift="none"))
+        model = PlatformModel(platform, _regular_wave(), options=HydroOptions(
+            wetted_length=wetted, load_directions="fixed", hydrostatics="linear", slow_drift="none"))
         loads = model.prescribed_motion_loads(t, motion, velocity, acceleration)
         means[wetted] = loads[:, ROW["inertia"], 0].mean()
     strips = model.geometry.strips
@@ -111,7 +113,8 @@ def test_newman_force_of_a_bichromatic_sea():
     w = 2 * np.pi * waves.frequency_hz
     d = np.interp(w, [0.0, 0.5, 1.0], [0.0, 1.0e4, 9.0e4])
     a = waves.amplitude_m
-    expected = a[0]**2 * d[0] + a[1]**2 * d[1] + 2 * a[0] * a[1] * np.sqrt(d[0] * d[1]) * np.cos((w[1] - w[0]) * t + 2.0 - 0.3)
+    expected = (a[0]**2 * d[0] + a[1]**2 * d[1]
+                + 2 * a[0] * a[1] * np.sqrt(d[0] * d[1]) * np.cos((w[1] - w[0]) * t + 2.0 - 0.3))
     assert np.allclose(samples[:, 0], expected, rtol=1e-9, atol=1e-9 * expected.max())
     assert np.allclose(samples[:, 1], 0.0, atol=1e-9 * expected.max())
 
@@ -127,7 +130,8 @@ def test_slow_drift_component_gives_the_mean_drift_of_a_regular_wave():
     d = drift.coefficients(platform.drift_coefficients_n_m2, np.array([2 * math.pi / PERIOD_S]))[0]
     assert d > 0
     for slow_drift, expected in (("newman", AMPLITUDE_M**2 * d), ("none", 0.0)):
-        options = HydroOptions(wetted_length="undisplaced", load_directions="fixed", hydrostatics="linear", slow_drift=slow_drift)
+        options = HydroOptions(wetted_length="undisplaced", load_directions="fixed", hydrostatics="linear",
+                               slow_drift=slow_drift)
         loads = PlatformModel(platform, waves, options=options).prescribed_motion_loads(t, still, still, still)
         row = loads[:, ROW["drift"]]
         assert np.allclose(row[:, 0], expected * math.cos(heading), rtol=1e-9, atol=1e-6)

@@ -199,7 +199,8 @@ def test_mean_surge_force_of_surge_and_heave_motion_is_the_wetted_length_product
         motion[:, j] = amp * np.sin(omega * t + ph)
         velocity[:, j] = amp * omega * np.cos(omega * t + ph)
         acceleration[:, j] = -amp * omega**2 * np.sin(omega * t + ph)
-    options = HydroOptions(wetted_length=wetted_length, load_directions="rotating", hydrostatics="linear", slow_drift="none")
+    options = HydroOptions(wetted_length=wetted_length, load_directions="rotating", hydrostatics="linear",
+                           slow_drift="none")
     loads = PlatformModel(column, options=options).prescribed_motion_loads(t, motion, velocity, acceleration)
     mean_fx = loads[:, ROW["added_mass"], 0].mean()
     expected = -1025.0 * 1.0 * math.pi * 7.5**2 * amplitude_x * amplitude_z * omega**2 * math.cos(phase) / 2

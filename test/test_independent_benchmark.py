@@ -68,7 +68,7 @@ def test_catenary_lines_follow_the_inextensible_closed_form():
     all_hanging = w * (lines.length_m ** 2 - h * h) / (2 * h)  # above it no chain would lie on the seabed
     for span in (760.0, 790.0, 800.0):
         ours = abs(moorpy_catenary(span, h, lines.length_m, lines.axial_stiffness_n, w, CB=0)[2])
-        closed = brentq(lambda H: span_at(H) - span, 1e3, all_hanging)
+        closed = brentq(lambda H, span=span: span_at(H) - span, 1e3, all_hanging)
         assert ours == pytest.approx(closed, rel=0.02)
 
 
@@ -99,7 +99,7 @@ def test_the_catenary_scenarios_stiffness_at_rest_is_within_the_catalogues_plaus
     ratios = []
     for values in INDEPENDENT_INJECTIONS["catenary_mooring"].strengths:
         lines = catenary.ChainLines(values["anchor_distance_m"], values["length_m"], values["weight_n_m"])
-        chain = lambda x: catenary.surge_force_n(PLATFORM, lines, x)  # noqa: E731
+        chain = lambda x, lines=lines: catenary.surge_force_n(PLATFORM, lines, x)  # noqa: E731
         ratios.append(stiffness(chain, 0.0) / spring)
         assert stiffness(chain, 5.0) > 1.2 * stiffness(chain, 0.0)
     assert ratios == pytest.approx([1.0, 1.2], abs=0.02) and all(low <= r <= high for r in ratios)
@@ -182,7 +182,8 @@ def test_diagnose_benchmark_independent_small(tmp_path):
     data = json.loads((out / "benchmark.json").read_text())
     scores = {s["scenario"]: s for s in data["scenarios"]}
     drift, null = scores["frequency_dependent_drift#1"], scores["null#1"]
-    assert drift["verdict"] in ("explained", "baseline mismatch") and drift["named"] == "slow_drift" and drift["correct"], drift
+    assert (drift["verdict"] in ("explained", "baseline mismatch") and drift["named"] == "slow_drift"
+            and drift["correct"]), drift
     assert drift["tuning_closure"] >= 0.5 and drift["blind_closure"] > 0.0, drift
     assert drift["footprint"][0] == ["surge", "std.low_frequency"] and drift["footprint_flagged"], drift
     report = json.loads((out / "reports" / "frequency_dependent_drift_1" / "diagnosis.json").read_text())

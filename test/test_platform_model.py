@@ -283,8 +283,8 @@ def test_prescribed_motion_replays_a_simulated_run():
     waves = synthesize(load_case("lc5.3").sea_state, 3600.0)
     model = PlatformModel(load_platform("windmoor12"), waves)
     run = model.run(200.0)
-    replay = PlatformModel(load_platform("windmoor12"), waves).prescribed_motion_loads(run.time_s, run.motion, run.velocity,
-                                                                        run.acceleration)
+    replay = PlatformModel(load_platform("windmoor12"), waves).prescribed_motion_loads(
+        run.time_s, run.motion, run.velocity, run.acceleration)
     magnitude = np.abs(run.loads).reshape(-1, run.loads.shape[1], 2, 3).max(axis=(0, 3))  # (rows, force | moment)
     scale = np.repeat(magnitude, 3, axis=1) + 1.0
     assert np.all(np.abs(replay - run.loads) <= 1e-12 * scale)

@@ -103,7 +103,7 @@ def test_two_independent_readers_read_every_message_and_schema(recorded_run):
         assert {c.topic: c.msgcount for c in reader.connections} == {t: i.message_count for t, i in ours.topics.items()}
         assert all(c.msgdef.data for c in reader.connections)  # every schema carried in the bag
         n = 0
-        for connection, timestamp, raw in reader.messages():
+        for connection, _timestamp, raw in reader.messages():
             msg = reader.deserialize(raw, connection.msgtype)
             n += 1
         assert n == ours.message_count
@@ -136,7 +136,8 @@ def test_message_records_are_the_mcap_librarys(tmp_path):
         writer.write(channel, 1_250_000_000, data)
         packed = bytes(writer._chunk)
     builder = RecordBuilder()
-    Message(channel_id=channel, log_time=1_250_000_000, publish_time=1_250_000_000, data=data, sequence=0).write(builder)
+    Message(channel_id=channel, log_time=1_250_000_000, publish_time=1_250_000_000, data=data,
+            sequence=0).write(builder)
     assert packed == builder.end()
 
 

@@ -332,7 +332,8 @@ def test_tilted_member_through_the_water_line_refuses_linear_hydrostatics_only(i
 
 
 def test_surface_grid_is_refused_without_free_surface_hydrostatics_and_when_not_positive(tmp_path, capsys):
-    with pytest.raises(ConfigError, match="surface_grid_m applies to hydrostatics 'free_surface' only, not 'nonlinear'"):
+    with pytest.raises(ConfigError,
+                       match="surface_grid_m applies to hydrostatics 'free_surface' only, not 'nonlinear'"):
         dataclasses.replace(HYDRODYN, surface_grid_m=5.0)
     with pytest.raises(ConfigError, match="surface_grid_m: must be a positive number, got -1"):
         dataclasses.replace(HYDRODYN, hydrostatics="free_surface", surface_grid_m=-1.0)
@@ -667,10 +668,10 @@ def test_stretching_wets_a_column_up_to_the_elevation_with_the_stretched_kinemat
     for time in t:
         eta = amplitude_m * math.cos(omega * time) if stretching != "none" else 0.0
         if stretching == "wheeler":
-            wetted = integrate.quad(lambda z: a_x(depth * (z - eta) / (depth + eta), time), -draft, eta,
-                                    epsabs=1e-12)[0]
+            wetted = integrate.quad(lambda z, eta=eta, time=time: a_x(depth * (z - eta) / (depth + eta), time),
+                                    -draft, eta, epsabs=1e-12)[0]
         else:
-            wetted = (integrate.quad(lambda z: a_x(z, time), -draft, min(eta, 0.0), epsabs=1e-12)[0]
+            wetted = (integrate.quad(lambda z, time=time: a_x(z, time), -draft, min(eta, 0.0), epsabs=1e-12)[0]
                       + max(eta, 0.0) * a_x(0.0, time))
         expected.append(RHO * math.pi * radius**2 * wetted)
     expected = np.array(expected)

@@ -39,7 +39,8 @@ def k_brentq(omega: np.ndarray, depth: float, g: float = G) -> np.ndarray:
     for w in np.atleast_1d(omega):
         lo = w**2 / g  # k >= w^2/g since tanh < 1
         hi = max(w / np.sqrt(g * depth), lo) * 2.0 + 1e-12
-        out.append(brentq(lambda k: g * k * np.tanh(k * depth) - w**2, lo * 0.999, hi, xtol=1e-300, rtol=1e-15))
+        out.append(brentq(lambda k, w=w: g * k * np.tanh(k * depth) - w**2, lo * 0.999, hi, xtol=1e-300,
+                          rtol=1e-15))
     return np.array(out)
 
 

@@ -8,9 +8,11 @@ import logging
 import sys
 
 NODE_OPTIONS = ("platform", "drag_model", "load_case", "hs_m", "tp_s", "seed", "duration_s", "dt_s",
-                "real_time_factor", "publish_rate_hz", "initial_state", "lockstep_timeout_s", "controller_lost", "controller_timeouts")
+                "real_time_factor", "publish_rate_hz", "initial_state", "lockstep_timeout_s", "controller_lost",
+                "controller_timeouts")
 TURBINE_OPTIONS = ("turbine", "hub_height_m", "wind", "wind_speed_m_s", "wind_end_m_s", "wind_start_s", "wind_ramp_s",
-                   "wind_file", "wind_bag", "wind_topic", "rotor_start", "rotor_speed_rad_s", "pitch_rad", "fixed_platform")
+                   "wind_file", "wind_bag", "wind_topic", "rotor_start", "rotor_speed_rad_s", "pitch_rad",
+                   "fixed_platform")
 
 
 def parser() -> argparse.ArgumentParser:

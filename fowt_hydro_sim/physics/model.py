@@ -106,7 +106,8 @@ class RunResult:
         ended, so its first row is dropped."""
         if not parts:
             raise ValueError("no run to join")
-        return RunResult(**{f.name: np.concatenate([getattr(parts[0], f.name)] + [getattr(p, f.name)[1:] for p in parts[1:]])
+        return RunResult(**{f.name: np.concatenate([getattr(parts[0], f.name)]
+                                                   + [getattr(p, f.name)[1:] for p in parts[1:]])
                             for f in fields(RunResult)})
 
 

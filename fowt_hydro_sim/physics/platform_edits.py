@@ -176,8 +176,8 @@ def with_coefficients(platform: Platform, values: dict[str, float]) -> Platform:
                     coefficients[k] = value
                 else:
                     where = f"{member.name}.{zone_name}.{field}"
-                    coefficients[k] = _set_cd(coefficients[k], _band_index(platform, path, where, coefficients[k], band),
-                                              value)
+                    coefficients[k] = _set_cd(coefficients[k],
+                                              _band_index(platform, path, where, coefficients[k], band), value)
             zones = list(member.zones)
             zones[zone] = replace(member.zones[zone], **{kind: tuple(coefficients)})
             members[i] = replace(member, zones=tuple(zones))

@@ -75,7 +75,8 @@ class Bag:
             storage = info["storage_identifier"]
             custom = info.get("custom_data") or {}
         except (yaml.YAMLError, KeyError, TypeError) as exc:
-            raise BagError(f"bag {self.path}: {METADATA_FILE} is not rosbag2 metadata ({type(exc).__name__}: {exc})")
+            raise BagError(f"bag {self.path}: {METADATA_FILE} is not rosbag2 metadata "
+                           f"({type(exc).__name__}: {exc})") from None
         if storage != "mcap":
             raise BagError(f"bag {self.path}: storage {storage!r}; only mcap bags are read")
         if missing := [f.name for f in files if not f.is_file()]:

@@ -158,7 +158,8 @@ class BagWriter:
         self._closed = False
 
     # ------------------------------------------------------------------ set-up
-    def add_topic(self, topic: str, type_name: str, qos: list[dict] | None = None, schema_text: str | None = None) -> int:
+    def add_topic(self, topic: str, type_name: str, qos: list[dict] | None = None,
+                  schema_text: str | None = None) -> int:
         """Register a topic (idempotent); returns its channel id. The schema is looked up
         from the type unless given."""
         with self._lock:

@@ -215,9 +215,9 @@ class BlockSynthesis:
     a linear convolution done by FFT of length L >= K + M - 1, O(L log L) per point and
     channel; every phase is reduced modulo 2N in integers first, so the long chirps keep
     full precision. A long-crested sea (one direction) takes five transforms per point, not
-    seven: the horizontal velocity and acceleration along the heading, split after. A block costs about (K + M) / M times a row of the one-shot inverse
-    FFT: the cost per simulated second grows with the repeat period (K is proportional to
-    it), the memory does not.
+    seven: the horizontal velocity and acceleration along the heading, split after. A block
+    costs about (K + M) / M times a row of the one-shot inverse FFT: the cost per simulated
+    second grows with the repeat period (K is proportional to it), the memory does not.
     """
 
     def __init__(self, waves: WaveComponents, points_m: np.ndarray, step_s: float, block_rows: int,

@@ -59,7 +59,8 @@ def _rotor_1p(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> V
     t = run.elevation_time_s - run.elevation_time_s[0]
     force = np.zeros((t.size, 6))
     force[:, 4] = values["amplitude_n_m"] * np.sin(2 * np.pi * values["frequency_hz"] * t)
-    return replace(variant, extension=variant.extension.plus(Extension(force_n=force, force_step_s=run.elevation_step_s)))
+    return replace(variant, extension=variant.extension.plus(
+        Extension(force_n=force, force_step_s=run.elevation_step_s)))
 
 
 def _wind_thrust(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
@@ -70,7 +71,8 @@ def _wind_thrust(variant: Variant, run: MeasuredRun, values: dict[str, float]) -
     thrust = values["mean_thrust_n"] * (1.0 + values["gust_share"] * gusts / np.std(gusts))
     force = np.zeros((t.size, 6))
     force[:, 0], force[:, 4] = thrust, thrust * 131.7
-    return replace(variant, extension=variant.extension.plus(Extension(force_n=force, force_step_s=run.elevation_step_s)))
+    return replace(variant, extension=variant.extension.plus(
+        Extension(force_n=force, force_step_s=run.elevation_step_s)))
 
 
 # effects outside the catalogue, each with the values it is injected at
@@ -210,7 +212,8 @@ class Score:
     baseline_mismatches: list[str] = field(default_factory=list)  # those no named effect explains
 
 
-def footprint(with_effect: list[MeasuredRun], without: list[MeasuredRun], settings: GapSettings) -> list[tuple[str, str]]:
+def footprint(with_effect: list[MeasuredRun], without: list[MeasuredRun],
+              settings: GapSettings) -> list[tuple[str, str]]:
     """(DOF, metric) cells the injected effect moves beyond their tolerance in any tuning
     run, strongest first (the truth with the effect against the truth without it)."""
     strength: dict[tuple[str, str], float] = {}

@@ -295,7 +295,8 @@ def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects
 
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
                description: str = "", mask: np.ndarray | None = None,
-               window_s: float | None = None, before: list[Gap] | None = None) -> tuple[dict[str, float], list[Gap], int]:
+               window_s: float | None = None,
+               before: list[Gap] | None = None) -> tuple[dict[str, float], list[Gap], int]:
     """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all; the
     cells outside it charge the effect for moving them from the plain model's gaps
     ``before``, see ``residuals``), on the runs' first ``window_s`` (default: whole
@@ -362,8 +363,10 @@ class Mismatch:
         ratio = self.metric.startswith(("std.", "frequency."))
         size = (f"{1 + lo:.2g}x to {1 + hi:.2g}x the measured" if ratio else f"{lo:+.3g} to {hi:+.3g}")
         return (f"{self.dof} {self.metric}: model {'above' if self.sign > 0 else 'below'} the measurement in every "
-                f"run ({size}; change per m of Hs {self.slope(self.hs_m):+.3g}, per s of Tp {self.slope(self.tp_s):+.3g})"
-                + (f", explained by {self.explained_by}" if self.explained_by else ", not explained by any catalogue effect"))
+                f"run ({size}; change per m of Hs {self.slope(self.hs_m):+.3g}, "
+                f"per s of Tp {self.slope(self.tp_s):+.3g})"
+                + (f", explained by {self.explained_by}" if self.explained_by
+                   else ", not explained by any catalogue effect"))
 
 
 @dataclass
@@ -386,7 +389,8 @@ class Diagnosis:
     mismatches: list[Mismatch] = field(default_factory=list)  # the baseline's, found before any effect
     fit_cells: np.ndarray | None = None  # the cells effects were fitted on (None: all; else all but those set aside)
     first_round: list[CandidateFit] = field(default_factory=list)  # the fits on every cell, if refitted without some
-    undriven: list[tuple[str, str, float, float]] = field(default_factory=list)  # (DOF, metric, shares: measured, model)
+    # (DOF, metric, shares: measured, model)
+    undriven: list[tuple[str, str, float, float]] = field(default_factory=list)
     window_before: list[Gap] = field(default_factory=list)  # tuning runs, plain model, in the fit window (if one)
 
     @property
@@ -407,7 +411,8 @@ class Diagnosis:
         if self.fit_cells is None:
             return []
         mismatched = {(m.dof, m.metric) for m in self.mismatches}
-        return [cell for cell, kept in zip(self.settings.cells(), self.fit_cells) if not kept and cell not in mismatched]
+        return [cell for cell, kept in zip(self.settings.cells(), self.fit_cells)
+                if not kept and cell not in mismatched]
 
     def differences_text(self) -> str:
         """The set-aside differences with their values per tuning run."""
@@ -515,11 +520,12 @@ def check_runs(runs: list[MeasuredRun], settings: GapSettings) -> None:
     for run in runs:
         span = float(run.motion_time_s[-1] - run.motion_time_s[0]) if run.motion_time_s.size else 0.0
         if span < settings.transient_s + 300.0:
-            raise InputError(f"run {run.name}: {span:.0f} s of motion; the diagnosis needs the {settings.transient_s:g} s "
-                             f"transient plus at least 300 s")
-        if run.motion_time_s[0] < run.elevation_time_s[0] - 60.0 or run.motion_time_s[-1] > run.elevation_time_s[-1] + 60.0:
-            raise InputError(f"run {run.name}: the motion ({run.motion_time_s[0]:.0f}-{run.motion_time_s[-1]:.0f} s) is "
-                             f"not within the wave elevation record ({run.elevation_time_s[0]:.0f}-"
+            raise InputError(f"run {run.name}: {span:.0f} s of motion; the diagnosis needs the "
+                             f"{settings.transient_s:g} s transient plus at least 300 s")
+        if (run.motion_time_s[0] < run.elevation_time_s[0] - 60.0
+                or run.motion_time_s[-1] > run.elevation_time_s[-1] + 60.0):
+            raise InputError(f"run {run.name}: the motion ({run.motion_time_s[0]:.0f}-{run.motion_time_s[-1]:.0f} s) "
+                             f"is not within the wave elevation record ({run.elevation_time_s[0]:.0f}-"
                              f"{run.elevation_time_s[-1]:.0f} s)")
 
 
@@ -718,7 +724,8 @@ def _choose(fitting: list[CandidateFit], effects: dict[str, Effect], deficit: fl
             chosen = agreeing[0]
             reason = (f"ties with {fitting[0].effect} on score; the measured low-frequency {settings.dofs[0]} is "
                       f"{'less' if incoherent else 'no less'} coherent with the waves than the model's "
-                      f"(deficit {deficit:.2f}), which points to a {'wave-incoherent' if incoherent else 'wave-coherent'} load")
+                      f"(deficit {deficit:.2f}), which points to a "
+                      f"{'wave-incoherent' if incoherent else 'wave-coherent'} load")
         else:
             reason += f"; also fit: {', '.join(c.effect for c in tied if c is not chosen)}"
     return chosen, reason

@@ -45,7 +45,8 @@ def plot_gap_matrix(diagnosis: Diagnosis, path: Path) -> None:
         after = diagnosis.candidate(diagnosis.chosen).gaps + diagnosis.blind_after
         panels.append((f"with {diagnosis.chosen} (blind runs not refitted)", after))
     runs = diagnosis.tuning + [f"{r} (blind)" for r in diagnosis.blind]
-    fig, axes = plt.subplots(len(panels), 1, figsize=(max(8, 0.45 * len(cells)), 1.2 + 0.45 * len(runs) * len(panels) + 1),
+    fig, axes = plt.subplots(len(panels), 1,
+                             figsize=(max(8, 0.45 * len(cells)), 1.2 + 0.45 * len(runs) * len(panels) + 1),
                              squeeze=False)
     for ax, (title, gaps) in zip(axes[:, 0], panels):
         residual = np.array([g.residual for g in gaps])
@@ -98,7 +99,8 @@ def plot_closure(diagnosis: Diagnosis, path: Path) -> None:
     plt = _matplotlib()
     names = [c.effect for c in diagnosis.candidates]
     fig, ax = plt.subplots(figsize=(7, 0.45 * len(names) + 1.5))
-    colours = ["C3" if n == diagnosis.chosen else ("C0" if c.fits else "0.6") for n, c in zip(names, diagnosis.candidates)]
+    colours = ["C3" if n == diagnosis.chosen else ("C0" if c.fits else "0.6")
+               for n, c in zip(names, diagnosis.candidates)]
     ax.barh(range(len(names)), [100 * max(c.closure, -1.0) for c in diagnosis.candidates], color=colours)
     if diagnosis.blind_after:
         i = names.index(diagnosis.chosen)

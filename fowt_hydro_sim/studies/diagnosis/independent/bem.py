@@ -226,5 +226,5 @@ def solve(platform: Platform, frequencies_hz=FREQUENCIES_HZ, headings_deg=HEADIN
     stiffness, volume = hydrostatics(platform)
     return HydroDatabase(omega_rad_s=data["omega"].values[solved], added_mass=symmetric(added[solved]),
                          damping=symmetric(damping[solved]), added_mass_inf=symmetric(added_inf),
-                         headings_deg=np.asarray(headings_deg, float), excitation=np.conj(excitation[solved]), hydrostatic_stiffness=stiffness,
-                         displaced_volume_m3=volume, panels=int(mesh.nb_faces))
+                         headings_deg=np.asarray(headings_deg, float), excitation=np.conj(excitation[solved]),
+                         hydrostatic_stiffness=stiffness, displaced_volume_m3=volume, panels=int(mesh.nb_faces))

@@ -43,9 +43,12 @@ def surge_force_n(platform: Platform, lines: ChainLines, surge_m: float) -> floa
 
 
 def surge_curve(platform: Platform, lines: ChainLines = ChainLines(),
-                offsets_m: np.ndarray = np.linspace(-40.0, 40.0, 41)) -> tuple[tuple[float, float], ...]:
-    """(surge offset, catenary force - spring lines' force) pairs, both zero-referenced."""
+                offsets_m: np.ndarray | None = None) -> tuple[tuple[float, float], ...]:
+    """(surge offset, catenary force - spring lines' force) pairs, both zero-referenced, at
+    ``offsets_m`` (default -40 to 40 m in 2 m steps)."""
     import warnings
+    if offsets_m is None:
+        offsets_m = np.linspace(-40.0, 40.0, 41)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         catenary_n = np.array([surge_force_n(platform, lines, x) for x in offsets_m])

@@ -217,7 +217,8 @@ def retardation(database: HydroDatabase, dt_s: float, length_s: float = KERNEL_L
     return kernel.reshape(t.size, 6, 6)
 
 
-def added_mass_from_kernel(kernel: np.ndarray, dt_s: float, added_mass_inf: np.ndarray, omega_rad_s: float) -> np.ndarray:
+def added_mass_from_kernel(kernel: np.ndarray, dt_s: float, added_mass_inf: np.ndarray,
+                           omega_rad_s: float) -> np.ndarray:
     """A(w) = A_inf - 1/w int_0^inf K(t) sin(w t) dt: the kernel's consistency with the BEM."""
     t = np.arange(kernel.shape[0]) * dt_s
     weights = np.full(t.size, dt_s)

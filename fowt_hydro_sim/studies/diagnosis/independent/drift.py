@@ -59,7 +59,8 @@ def far_field_amplitude(kochin: np.ndarray, omega_rad_s: float, k: float, depth_
     """f(theta) per unit wave amplitude from capytaine's Kochin function (its normalisation:
     (1/4 pi) int sigma cosh k(z+h)/cosh kh e^{-ik(x cos th + y sin th)} dS)."""
     kh = k * depth_m
-    depth_factor = k if not math.isfinite(kh) or kh > 20.0 else 2.0 * k * math.cosh(kh) ** 2 / (2.0 * kh + math.sinh(2.0 * kh))
+    depth_factor = (k if not math.isfinite(kh) or kh > 20.0
+                    else 2.0 * k * math.cosh(kh) ** 2 / (2.0 * kh + math.sinh(2.0 * kh)))
     return 2.0 * math.sqrt(2.0 * math.pi) * omega_rad_s / g * depth_factor * np.exp(-0.25j * math.pi) * kochin
 
 
@@ -226,7 +227,8 @@ def hull_drift(platform: Platform, omegas_rad_s: np.ndarray, panel_size_m: float
         excitation = np.array([diffraction.forces[d] + froude_krylov[d] for d in DOFS])
         h_fixed = compute_kochin(diffraction, theta)
         h_radiated = np.array([compute_kochin(r, theta) for r in radiation])
-        drift = lambda h: _drift_and_imbalance(far_field_amplitude(h, omega, k, depth, g), k, depth, rho, g)
+        drift = lambda h, omega=omega, k=k: _drift_and_imbalance(far_field_amplitude(h, omega, k, depth, g),
+                                                                 k, depth, rho, g)
         damped = rao(omega, mass + added, damping, restoring, excitation, damping_ratio)
         potential = rao(omega, mass + added, damping, restoring, excitation, 0.0)
         fixed, free = drift(h_fixed), drift(h_fixed + damped @ h_radiated)
