@@ -20,7 +20,7 @@ from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings
 from fowt_hydro_sim.studies.diagnosis.method import diagnose
 from fowt_hydro_sim.studies.diagnosis.runner import in_process
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import REPO, fowt_sim
 
 RECORD_S = 1800.0  # the benchmark's length: shorter records flag real but small property errors
 DRIFT_N_M2 = 3.0e5
@@ -31,10 +31,6 @@ CANDIDATES = ["slow_drift", "linear_damping", "wave_measurement_delay"]
 def platform() -> Platform:
     return load_platform("windmoor12")
 
-
-def fowt_sim(*args: str, timeout: float = 600) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", *args], cwd=REPO, capture_output=True,
-                          text=True, timeout=timeout)
 
 
 @pytest.fixture(scope="module")

@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import logging
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -24,7 +22,7 @@ from fowt_hydro_sim.studies.diagnosis.method import diagnose
 from fowt_hydro_sim.studies.diagnosis.report import summary_lines
 from fowt_hydro_sim.studies.diagnosis.runner import Progress, in_process
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant, fast_table_step, replay
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import REPO, fowt_sim
 
 RECORD_S = 1800.0
 WINDOW_S = 900.0
@@ -135,9 +133,8 @@ def test_every_run_of_a_diagnosis_keeps_its_kinematics_table(platform):
 def test_a_fit_window_too_short_gets_one_line(tmp_path):
     t = np.arange(0.0, 700.0, 0.5)
     bag = write_measured_bag(tmp_path / "run", t, 0.5 * np.sin(0.6 * t), (0.0, 0.0), t, np.zeros((t.size, 6)))
-    result = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "diagnose", "--measured", str(bag),
-                             "--fit-window", "100", "--workers", "1", "-o", str(tmp_path / "out")],
-                            cwd=REPO, capture_output=True, text=True, timeout=120)
+    result = fowt_sim("diagnose", "--measured", bag, "--fit-window", "100", "--workers", "1", "-o", tmp_path / "out",
+                      timeout=120)
     assert result.returncode == 2 and "fit window 100 s" in result.stderr, result.stderr
     assert "Traceback" not in result.stderr and len(result.stderr.strip().splitlines()) == 1, result.stderr
 

@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -15,7 +13,7 @@ import pytest
 from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.studies.diagnosis import benchmark
 from fowt_hydro_sim.studies.diagnosis.independent import basin, bem, catenary, cummins
-from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing import fowt_sim
 
 PLATFORM = load_platform("windmoor12")
 DATABASE = bem.load_database()
@@ -156,10 +154,6 @@ def test_a_first_seed_gives_other_realisations_of_the_same_scenarios(tmp_path):
     assert result.returncode == 2 and result.stderr.strip().splitlines() == [
         "fowt-sim diagnose-benchmark: error: --seed: must be zero or more, got -1"], result.stderr
 
-
-def fowt_sim(*args: str, timeout: float = 600) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", *args], cwd=REPO, capture_output=True,
-                          text=True, timeout=timeout)
 
 
 def test_diagnose_benchmark_independent_small(tmp_path):

@@ -10,7 +10,6 @@ import re
 import shutil
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -119,9 +118,8 @@ def test_the_run_configuration_in_the_bag_reproduces_the_run(recorded_run, tmp_p
     params = tmp_path / "rerun.yaml"
     result = fowt_sim("info", str(bag), "--params-file", str(params))
     assert result.returncode == 0 and "/platform/pose" in result.stdout, result.stderr
-    args = [sys.executable, "-m", "fowt_hydro_sim.cli", "node", "--ros-args", "--params-file", str(params),
-            "-p", f"record:={tmp_path / 'again'}"]
-    rerun = subprocess.run(args, cwd=REPO, capture_output=True, text=True, timeout=180)
+    rerun = fowt_sim("node", "--ros-args", "--params-file", params, "-p", f"record:={tmp_path / 'again'}",
+                     timeout=180)
     assert "stepping ended" in rerun.stderr + rerun.stdout
     first, again = Bag(bag).motion(), Bag(tmp_path / "again").motion()
     np.testing.assert_array_equal(first.time_s, again.time_s)
