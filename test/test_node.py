@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 import re
 import signal
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -289,11 +291,45 @@ def test_batches_publish_every_stamp_in_order_and_record_them_all(tmp_path):
     ({"hydrostatics": "exact"}, "parameter hydrostatics: must be one of linear, nonlinear"),
     ({"hydrostatics": "free_surface"}, "parameter hydrostatics: 'free_surface' is implemented for a prescribed "
                                        "motion only"),
+    *[pytest.param(args, message, marks=pytest.mark.slow) for args, message in [
+        ({"duraton_s": 600.0}, "parameter duraton_s: unknown to fowt_hydro_sim (did you mean duration_s?)"),
+        ({"no_such_param": 1.0}, "parameter no_such_param: unknown to fowt_hydro_sim"),
+        ({"hs_m": -3.0}, "parameter hs_m: must be 0 to 30, got -3"),
+        ({"seed": 1.5}, "parameter seed: must be a whole number, got 1.5"),
+        ({"lockstep": "maybe"}, "parameter lockstep: must be true or false, got 'maybe'"),
+        ({"record": "/proc/foo"}, "parameter record: cannot create the bag directory /proc/foo: No such file or "
+                                  "directory"),
+    ]],
 ])
 def test_bad_parameters_end_with_one_line(args: dict, message: str):
     node = start("node", **args)
     output = finish(node, 60)
     assert node.returncode == 2 and message in output and "Traceback" not in output, output
+    errors = [line for line in output.splitlines() if "ERROR" in line]
+    assert len(errors) == 1 and "Invalid parameter" not in output, output
+
+
+@pytest.mark.slow
+def test_unknown_parameters_in_a_parameter_file_are_refused(tmp_path):
+    """A misspelt name in a --params-file counts as on the command line: refused, not ignored."""
+    params = tmp_path / "params.yaml"
+    params.write_text("fowt_hydro_sim:\n  ros__parameters: {duration_s: 10.0, hs: 3.0}\n")
+    node = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "node", "--ros-args", "--params-file",
+                             str(params)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    output = finish(node, 60)
+    assert node.returncode == 2 and "parameter hs: unknown to fowt_hydro_sim (did you mean hs_m?)" in output, output
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("args, message", [
+    ({"mean_thrust": 1e6}, "parameter mean_thrust: unknown to fowt_thrust_controller (did you mean mean_thrust_n?)"),
+    ({"mean_thrust_n": "abc"}, "parameter mean_thrust_n: must be a number, got 'abc'"),
+    ({"frame_id": "nacelle"}, "parameter frame_id: must be one of world, platform, hub, got 'nacelle'"),
+])
+def test_bad_controller_parameters_end_with_one_line(args: dict, message: str):
+    controller = start("controller", **args)
+    output = finish(controller, 60)
+    assert controller.returncode == 2 and message in output and "Traceback" not in output, output
 
 
 def _tapered_record(duration_s: float = 600.0, dt_s: float = 0.1) -> tuple[np.ndarray, np.ndarray]:
@@ -406,8 +442,6 @@ def test_a_record_path_that_is_not_a_bag_is_said_so(tmp_path):
 
 
 def test_a_parameter_file_that_does_not_parse(tmp_path):
-    import subprocess
-    import sys
     broken = tmp_path / "params.yaml"
     broken.write_text("fowt_hydro_sim:\n  ros__parameters: {dt_s: [0.05\n")
     done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "node", "--ros-args", "--params-file",

@@ -54,7 +54,7 @@ from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.run_config import run_config
 from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.rosbag.writer import BagWriter, RecordingStopped
+from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, RecordingStopped
 from fowt_hydro_sim.settings import like, setting
 from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds, nanoseconds_array
@@ -189,6 +189,7 @@ class SimulatorNode(Node):
     def __init__(self, **node_kwargs):
         super().__init__("fowt_hydro_sim", **node_kwargs)
         parameters.declare(self, NodeSettings)
+        parameters.refuse_unknown(self)
         self.settings = parameters.read(self, NodeSettings)
         s = self.settings
         platform = load_platform(s.platform)
@@ -241,7 +242,13 @@ class SimulatorNode(Node):
         """The run's bag, holding its full configuration (reproducible from the bag alone)."""
         s = self.settings
         config = run_config(parameters.values(s), platform_path(s.platform).read_text(), asdict(s.sea_state))
-        recorder = BagWriter(s.record, config=config, overwrite=s.record_overwrite)
+        try:
+            recorder = BagWriter(s.record, config=config, overwrite=s.record_overwrite)
+        except BagError as exc:
+            raise ConfigError(f"parameter record: {exc}") from None
+        except OSError as exc:
+            raise ConfigError(f"parameter record: cannot create the bag directory {s.record}: "
+                              f"{exc.strerror or exc}") from None
         self._output_channels = [recorder.add_topic(topic, kind) for topic, kind in OUTPUTS.values()]
         self._input_channel = {topic: recorder.add_topic(topic, kind) for topic, kind in topics.INPUTS.items()}
         return recorder
