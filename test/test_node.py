@@ -332,6 +332,17 @@ def test_bad_controller_parameters_end_with_one_line(args: dict, message: str):
     assert controller.returncode == 2 and message in output and "Traceback" not in output, output
 
 
+@pytest.mark.slow
+def test_the_controller_stops_on_sigterm():
+    controller = start("controller")
+    time.sleep(5.0)
+    assert controller.poll() is None
+    controller.terminate()
+    started = time.monotonic()
+    finish(controller, 20)
+    assert controller.returncode == 0 and time.monotonic() - started < 5.0
+
+
 def _tapered_record(duration_s: float = 600.0, dt_s: float = 0.1) -> tuple[np.ndarray, np.ndarray]:
     """LC5.2-like elevation at the origin: 100 s of calm, 60 s cosine ramps, calm at the end."""
     from fowt_hydro_sim.physics.config import SeaState
