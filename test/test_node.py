@@ -7,6 +7,7 @@ pitch under a thrust), the wall clock (pacing), and the node's own log for refus
 from __future__ import annotations
 
 import math
+import os
 import re
 import signal
 import subprocess
@@ -26,7 +27,7 @@ import msg_adapters as adapt  # noqa: E402
 from fowt_hydro_sim.physics.config import HydroOptions, load_case, load_platform  # noqa: E402
 from fowt_hydro_sim.physics.model import PlatformModel  # noqa: E402
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize  # noqa: E402
-from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
+from fowt_hydro_sim.testing.ros import Listener, command_line, finish, start  # noqa: E402
 from msg_adapters import topics  # noqa: E402
 
 
@@ -468,3 +469,48 @@ def test_a_platform_file_that_does_not_parse(tmp_path):
     output = finish(node, 60)
     assert node.returncode == 2 and "broken_platform.yaml:" in output and "not valid YAML" in output, output
     assert "Traceback" not in output
+
+
+def test_a_users_own_domain_id():
+    """Without ROS_DOMAIN_ID: the user's own id (1..101, different for different users),
+    discovery on this host unless set; an explicit ROS_DOMAIN_ID is kept as it is."""
+    from fowt_hydro_sim.ros.startup import domain_id_of, own_domain
+
+    ids = [domain_id_of(uid) for uid in range(1000, 1101)]
+    assert len(set(ids)) == 101 and min(ids) == 1 and max(ids) == 101 and domain_id_of(0) != domain_id_of(1000)
+    environ: dict[str, str] = {}
+    own_domain(environ)
+    assert environ == {"ROS_DOMAIN_ID": str(domain_id_of(os.getuid())), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+    environ = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "SUBNET"}
+    own_domain(environ)
+    assert environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] == "SUBNET" and environ["ROS_DOMAIN_ID"]
+    environ = {"ROS_DOMAIN_ID": "7"}
+    own_domain(environ)
+    assert environ == {"ROS_DOMAIN_ID": "7"}
+
+
+@pytest.mark.slow
+def test_commands_without_a_domain_id_see_each_other(tmp_path):
+    """fowt-sim record and fowt-sim node started without ROS_DOMAIN_ID: both pick the user's own
+    domain, and the recording holds the node's poses. (The discovery range stays LOCALHOST: a
+    test sends nothing off this host; its default is the unit test's.)"""
+    from fowt_hydro_sim.ros.startup import domain_id_of
+    from fowt_hydro_sim.rosbag.reader import Bag
+
+    env = {k: v for k, v in os.environ.items() if k != "ROS_DOMAIN_ID"}
+    bag = tmp_path / "run"
+    record = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "record", "-o", str(bag), "--topics",
+                               topics.POSE], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    node = subprocess.Popen(command_line("node", duration_s=5.0, real_time_factor=0.0, drag_model="constant",
+                                         wait_for_subscribers=1), env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True)
+    try:
+        node_output = finish(node, 120)
+        time.sleep(1.0)
+    finally:
+        record.send_signal(signal.SIGINT)
+        record_output = finish(record, 30)
+    said = f"ROS_DOMAIN_ID not set: using {domain_id_of(os.getuid())}"
+    assert said in node_output and said in record_output, node_output + record_output
+    assert "duration 5 s reached" in node_output and node.returncode == 0, node_output
+    assert Bag(bag).topics[topics.POSE].message_count == 101, record_output
