@@ -248,6 +248,7 @@ def test_a_diverging_state_stops_the_stepping():
     finally:
         listener.close()
     assert _log_after(output, "the state diverged"), output
+    assert node.returncode == 1 and _log_after(output, "the run is incomplete: the state diverged"), output
     motions = np.array([adapt.motion_from_pose(m)[1] for m in listener.messages["/platform/pose"]])
     assert np.all(np.isfinite(motions)) and np.abs(motions[:, 4]).max() < 1.2
 
@@ -514,3 +515,90 @@ def test_commands_without_a_domain_id_see_each_other(tmp_path):
     assert said in node_output and said in record_output, node_output + record_output
     assert "duration 5 s reached" in node_output and node.returncode == 0, node_output
     assert Bag(bag).topics[topics.POSE].message_count == 101, record_output
+
+
+@pytest.mark.slow
+def test_a_lost_controller_cuts_the_run_short_with_exit_code_1(tmp_path):
+    """Lockstep, controller_lost stop: the controller killed mid-run stops the stepping before
+    duration_s; the node exits 1 and its bag is closed readable."""
+    from fowt_hydro_sim.rosbag.reader import Bag
+
+    listener = Listener({"/platform/pose": PoseStamped})
+    controller = start("controller", mean_thrust_n=1.0e6)
+    bag = tmp_path / "run"
+    node = start("node", duration_s=600.0, real_time_factor=5.0, lockstep=True, drag_model="constant",
+                 record=str(bag), lockstep_timeout_s=1.0)
+    try:
+        listener.wait_for(lambda: len(listener.messages["/platform/pose"]) > 100, 120.0)
+        controller.kill()
+        finish(controller, 10)
+        listener.wait_for(lambda: node.poll() is not None, 60.0)
+        output = finish(node, 10)
+    finally:
+        listener.close()
+    assert _log_after(output, "lockstep: the controller is gone"), output
+    assert node.returncode == 1 and _log_after(output, "the run is incomplete: the controller was lost"), output
+    poses = Bag(bag).topics[topics.POSE].message_count
+    assert 100 < poses < 0.5 * 12001, poses
+
+
+def _play(bag, *args: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(bag), *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+
+
+def _wave_bag(path, duration_s: float):
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "waves", "--duration", str(duration_s),
+                           "-o", str(path)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return path
+
+
+def _elevation_used(bag) -> tuple[np.ndarray, np.ndarray]:
+    from fowt_hydro_sim.rosbag.reader import Bag
+    from msg_adapters import cdr
+
+    times, values = cdr.decode_stamped(topics.POINT_STAMPED, [data for _, _, data in
+                                                              Bag(bag).messages([topics.ELEVATION_USED[0]])])
+    return times, values[:, 2]
+
+
+@pytest.mark.slow
+def test_a_wave_bag_played_as_fast_as_possible_drives_the_whole_run(tmp_path):
+    """fowt-sim play --rate 0 of a 400 s wave bag into a node stepping 300 s as fast as possible
+    on the topic's waves (needing samples up to 360 s: the kinematics lag them by 60 s): the
+    player waits for the node (flow control) instead of losing samples, the node for the
+    player; the elevation the node used is the sea's over the whole run, no still-water tail,
+    and both exit 0."""
+    waves = _wave_bag(tmp_path / "waves", 400.0)
+    record = tmp_path / "run"
+    player = _play(waves, "--rate", "0", "--wait-for-subscribers", "1")
+    node = start("node", wave_source="topic", real_time_factor=0.0, duration_s=300.0, drag_model="constant",
+                 record=str(record))
+    node_output = finish(node, 600)
+    player_output = finish(player, 120)
+    assert node.returncode == 0 and "duration 300 s reached" in node_output, node_output
+    assert "still water" not in node_output, node_output
+    assert player.returncode == 0 and "dropped" not in player_output, player_output
+    times, elevation = _elevation_used(record)
+    assert times[-1] == pytest.approx(300.0) and len(times) == 6001
+    for start_s in range(120, 300, 30):  # every 30 s past the stream's warm-up has its waves
+        window = (times >= start_s) & (times < start_s + 30)
+        assert elevation[window].std() > 0.5, (start_s, elevation[window].std())
+
+
+@pytest.mark.slow
+def test_a_wave_topic_silent_before_the_end_is_said_and_exits_1(tmp_path):
+    """The player's 100 s of waves end long before the node's 300 s (as fast as possible): once
+    the player has gone, the node says in one line that the topic went silent after samples up
+    to 100 s, goes on in still water, and exits 1 (the run is incomplete)."""
+    waves = _wave_bag(tmp_path / "waves", 100.0)
+    player = _play(waves, "--rate", "0", "--wait-for-subscribers", "1")
+    node = start("node", wave_source="topic", real_time_factor=0.0, duration_s=300.0, drag_model="constant")
+    node_output = finish(node, 600)
+    player_output = finish(player, 120)
+    assert player.returncode == 0, player_output
+    assert "went silent after samples up to t = 100.00 s" in node_output, node_output
+    assert node.returncode == 1 and "duration 300 s reached" in node_output, node_output
+    silent = [line for line in node_output.splitlines() if "no wave elevation on /waves/elevation" in line]
+    assert len(silent) == 1 and "ERROR" in silent[0], node_output
