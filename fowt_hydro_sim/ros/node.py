@@ -140,8 +140,9 @@ class NodeSettings:
                                            "onto it)", gt=0.0)
     preview_s: float = setting(60.0, "delay of the streamed wave kinematics behind the elevation samples [s]",
                                gt=0.0)
-    wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed",
-                                    gt=0.0)
+    wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed "
+                                         "(as fast as possible: only after a first sample and once the topic has "
+                                         "no publisher left)", gt=0.0)
     wave_block_s: float = setting(WAVE_BLOCK_S, "the internal waves' kinematics are synthesised in blocks of this "
                                                 "many simulated seconds, two held, the next made ahead in a worker "
                                                 "thread [s]", gt=0.0)
