@@ -389,7 +389,8 @@ class SimulatorNode(Node):
     def _topic_silent(self) -> bool:
         """Whether the wave topic counts as silent (the caller goes on in still water): no sample
         for wave_timeout_s wall seconds, and, as fast as possible, a first sample received and
-        no publisher left. Said once; silent after samples, the run is incomplete."""
+        no publisher left. Said once; silent after samples before the waves of duration_s are
+        known, the run is incomplete."""
         s, now = self.settings, time.monotonic()
         silent = now - self._last_sample_wall
         if self._still_water:
@@ -409,6 +410,11 @@ class SimulatorNode(Node):
                                       f"still water")
             return True
         last = self._feed.resampler.last[0]
+        if s.duration_s and self._feed.until_s >= s.duration_s - 1e-9:  # the run's waves are all known
+            self.get_logger().info(f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s after samples up "
+                                   f"to t = {last:.2f} s: waves known up to t = {self._feed.until_s:.2f} s, "
+                                   f"duration_s {s.duration_s:g} s")
+            return True
         self.incomplete = (f"the wave topic {topics.ELEVATION} went silent after samples up to t = {last:.2f} s: "
                            f"still water from t = {self._feed.until_s:.2f} s on")
         self.get_logger().error(f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s ({publishers} "
