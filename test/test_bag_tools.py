@@ -213,6 +213,37 @@ def test_play_loops_until_interrupted(source: Path):
     assert set(clock) >= {wrench_span + t for t, _ in source_messages(source, WRENCH)[:N_WRENCH // 2]}
 
 
+@pytest.mark.slow
+def test_play_gives_up_on_a_stuck_subscriber_with_exit_code_1(tmp_path: Path):
+    """A reliable keep-all subscriber that never takes a message (its queue fills up): the
+    player waits for it (flow control), then, after a window unacknowledged for STALL_S,
+    says it gave up and exits 1, instead of exiting 0 with messages lost."""
+    import rclpy
+    from rclpy.qos import HistoryPolicy
+
+    from fowt_hydro_sim.ros.player import STALL_S
+
+    path = tmp_path / "many"
+    with BagWriter(path) as writer:
+        channel = writer.add_topic(ELEVATION, POINT_TYPE)
+        for i in range(20000):
+            writer.write(channel, nanoseconds(i * DT_S), cdr.point(i * DT_S, 10.0, -5.0, elevation_z(i)))
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node(f"stuck_{os.getpid()}", context=context)
+    try:
+        node.create_subscription(PointStamped, ELEVATION, lambda msg: None,
+                                 QoSProfile(depth=100, history=HistoryPolicy.KEEP_ALL,
+                                            reliability=ReliabilityPolicy.RELIABLE))  # never spun
+        player = launch("play", path, "--rate", 0, "--start-delay", START_DELAY, "--wait-for-subscribers", 1)
+        code, output = wait_exit(player, STALL_S + 120)
+    finally:
+        node.destroy_node()
+        context.try_shutdown()
+    assert code == 1 and "Traceback" not in output, output
+    assert "had not acknowledged the last" in output and "playback given up after" in output, output
+
+
 # ---------------------------------------------------------------------- record
 def test_record_what_play_publishes(source: Path, tmp_path: Path):
     out = tmp_path / "recorded"

@@ -7,8 +7,11 @@ pitch under a thrust), the wall clock (pacing), and the node's own log for refus
 from __future__ import annotations
 
 import math
+import os
 import re
 import signal
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -24,7 +27,7 @@ import msg_adapters as adapt  # noqa: E402
 from fowt_hydro_sim.physics.config import HydroOptions, load_case, load_platform  # noqa: E402
 from fowt_hydro_sim.physics.model import PlatformModel  # noqa: E402
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize  # noqa: E402
-from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
+from fowt_hydro_sim.testing.ros import Listener, command_line, finish, start  # noqa: E402
 from msg_adapters import topics  # noqa: E402
 
 
@@ -245,6 +248,7 @@ def test_a_diverging_state_stops_the_stepping():
     finally:
         listener.close()
     assert _log_after(output, "the state diverged"), output
+    assert node.returncode == 1 and _log_after(output, "the run is incomplete: the state diverged"), output
     motions = np.array([adapt.motion_from_pose(m)[1] for m in listener.messages["/platform/pose"]])
     assert np.all(np.isfinite(motions)) and np.abs(motions[:, 4]).max() < 1.2
 
@@ -289,11 +293,56 @@ def test_batches_publish_every_stamp_in_order_and_record_them_all(tmp_path):
     ({"hydrostatics": "exact"}, "parameter hydrostatics: must be one of linear, nonlinear"),
     ({"hydrostatics": "free_surface"}, "parameter hydrostatics: 'free_surface' is implemented for a prescribed "
                                        "motion only"),
+    *[pytest.param(args, message, marks=pytest.mark.slow) for args, message in [
+        ({"duraton_s": 600.0}, "parameter duraton_s: unknown to fowt_hydro_sim (did you mean duration_s?)"),
+        ({"no_such_param": 1.0}, "parameter no_such_param: unknown to fowt_hydro_sim"),
+        ({"hs_m": -3.0}, "parameter hs_m: must be 0 to 30, got -3"),
+        ({"seed": 1.5}, "parameter seed: must be a whole number, got 1.5"),
+        ({"lockstep": "maybe"}, "parameter lockstep: must be true or false, got 'maybe'"),
+        ({"record": "/proc/foo"}, "parameter record: cannot create the bag directory /proc/foo: No such file or "
+                                  "directory"),
+    ]],
 ])
 def test_bad_parameters_end_with_one_line(args: dict, message: str):
     node = start("node", **args)
     output = finish(node, 60)
     assert node.returncode == 2 and message in output and "Traceback" not in output, output
+    errors = [line for line in output.splitlines() if "ERROR" in line]
+    assert len(errors) == 1 and "Invalid parameter" not in output, output
+
+
+@pytest.mark.slow
+def test_unknown_parameters_in_a_parameter_file_are_refused(tmp_path):
+    """A misspelt name in a --params-file counts as on the command line: refused, not ignored."""
+    params = tmp_path / "params.yaml"
+    params.write_text("fowt_hydro_sim:\n  ros__parameters: {duration_s: 10.0, hs: 3.0}\n")
+    node = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "node", "--ros-args", "--params-file",
+                             str(params)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    output = finish(node, 60)
+    assert node.returncode == 2 and "parameter hs: unknown to fowt_hydro_sim (did you mean hs_m?)" in output, output
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("args, message", [
+    ({"mean_thrust": 1e6}, "parameter mean_thrust: unknown to fowt_thrust_controller (did you mean mean_thrust_n?)"),
+    ({"mean_thrust_n": "abc"}, "parameter mean_thrust_n: must be a number, got 'abc'"),
+    ({"frame_id": "nacelle"}, "parameter frame_id: must be one of world, platform, hub, got 'nacelle'"),
+])
+def test_bad_controller_parameters_end_with_one_line(args: dict, message: str):
+    controller = start("controller", **args)
+    output = finish(controller, 60)
+    assert controller.returncode == 2 and message in output and "Traceback" not in output, output
+
+
+@pytest.mark.slow
+def test_the_controller_stops_on_sigterm():
+    controller = start("controller")
+    time.sleep(5.0)
+    assert controller.poll() is None
+    controller.terminate()
+    started = time.monotonic()
+    finish(controller, 20)
+    assert controller.returncode == 0 and time.monotonic() - started < 5.0
 
 
 def _tapered_record(duration_s: float = 600.0, dt_s: float = 0.1) -> tuple[np.ndarray, np.ndarray]:
@@ -406,8 +455,6 @@ def test_a_record_path_that_is_not_a_bag_is_said_so(tmp_path):
 
 
 def test_a_parameter_file_that_does_not_parse(tmp_path):
-    import subprocess
-    import sys
     broken = tmp_path / "params.yaml"
     broken.write_text("fowt_hydro_sim:\n  ros__parameters: {dt_s: [0.05\n")
     done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "node", "--ros-args", "--params-file",
@@ -423,3 +470,135 @@ def test_a_platform_file_that_does_not_parse(tmp_path):
     output = finish(node, 60)
     assert node.returncode == 2 and "broken_platform.yaml:" in output and "not valid YAML" in output, output
     assert "Traceback" not in output
+
+
+def test_a_users_own_domain_id():
+    """Without ROS_DOMAIN_ID: the user's own id (1..101, different for different users),
+    discovery on this host unless set; an explicit ROS_DOMAIN_ID is kept as it is."""
+    from fowt_hydro_sim.ros.startup import domain_id_of, own_domain
+
+    ids = [domain_id_of(uid) for uid in range(1000, 1101)]
+    assert len(set(ids)) == 101 and min(ids) == 1 and max(ids) == 101 and domain_id_of(0) != domain_id_of(1000)
+    environ: dict[str, str] = {}
+    own_domain(environ)
+    assert environ == {"ROS_DOMAIN_ID": str(domain_id_of(os.getuid())), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+    environ = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "SUBNET"}
+    own_domain(environ)
+    assert environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] == "SUBNET" and environ["ROS_DOMAIN_ID"]
+    environ = {"ROS_DOMAIN_ID": "7"}
+    own_domain(environ)
+    assert environ == {"ROS_DOMAIN_ID": "7"}
+
+
+@pytest.mark.slow
+def test_commands_without_a_domain_id_see_each_other(tmp_path):
+    """fowt-sim record and fowt-sim node started without ROS_DOMAIN_ID: both pick the user's own
+    domain, and the recording holds the node's poses. (The discovery range stays LOCALHOST: a
+    test sends nothing off this host; its default is the unit test's.)"""
+    from fowt_hydro_sim.ros.startup import domain_id_of
+    from fowt_hydro_sim.rosbag.reader import Bag
+
+    env = {k: v for k, v in os.environ.items() if k != "ROS_DOMAIN_ID"}
+    bag = tmp_path / "run"
+    record = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "record", "-o", str(bag), "--topics",
+                               topics.POSE], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    node = subprocess.Popen(command_line("node", duration_s=5.0, real_time_factor=0.0, drag_model="constant",
+                                         wait_for_subscribers=1), env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True)
+    try:
+        node_output = finish(node, 120)
+        time.sleep(1.0)
+    finally:
+        record.send_signal(signal.SIGINT)
+        record_output = finish(record, 30)
+    said = f"ROS_DOMAIN_ID not set: using {domain_id_of(os.getuid())}"
+    assert said in node_output and said in record_output, node_output + record_output
+    assert "duration 5 s reached" in node_output and node.returncode == 0, node_output
+    assert Bag(bag).topics[topics.POSE].message_count == 101, record_output
+
+
+@pytest.mark.slow
+def test_a_lost_controller_cuts_the_run_short_with_exit_code_1(tmp_path):
+    """Lockstep, controller_lost stop: the controller killed mid-run stops the stepping before
+    duration_s; the node exits 1 and its bag is closed readable."""
+    from fowt_hydro_sim.rosbag.reader import Bag
+
+    listener = Listener({"/platform/pose": PoseStamped})
+    controller = start("controller", mean_thrust_n=1.0e6)
+    bag = tmp_path / "run"
+    node = start("node", duration_s=600.0, real_time_factor=5.0, lockstep=True, drag_model="constant",
+                 record=str(bag), lockstep_timeout_s=1.0)
+    try:
+        listener.wait_for(lambda: len(listener.messages["/platform/pose"]) > 100, 120.0)
+        controller.kill()
+        finish(controller, 10)
+        listener.wait_for(lambda: node.poll() is not None, 60.0)
+        output = finish(node, 10)
+    finally:
+        listener.close()
+    assert _log_after(output, "lockstep: the controller is gone"), output
+    assert node.returncode == 1 and _log_after(output, "the run is incomplete: the controller was lost"), output
+    poses = Bag(bag).topics[topics.POSE].message_count
+    assert 100 < poses < 0.5 * 12001, poses
+
+
+def _play(bag, *args: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "play", str(bag), *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+
+
+def _wave_bag(path, duration_s: float):
+    done = subprocess.run([sys.executable, "-m", "fowt_hydro_sim.cli", "waves", "--duration", str(duration_s),
+                           "-o", str(path)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return path
+
+
+def _elevation_used(bag) -> tuple[np.ndarray, np.ndarray]:
+    from fowt_hydro_sim.rosbag.reader import Bag
+    from msg_adapters import cdr
+
+    times, values = cdr.decode_stamped(topics.POINT_STAMPED, [data for _, _, data in
+                                                              Bag(bag).messages([topics.ELEVATION_USED[0]])])
+    return times, values[:, 2]
+
+
+@pytest.mark.slow
+def test_a_wave_bag_played_as_fast_as_possible_drives_the_whole_run(tmp_path):
+    """fowt-sim play --rate 0 of a 400 s wave bag into a node stepping 300 s as fast as possible
+    on the topic's waves (needing samples up to 360 s: the kinematics lag them by 60 s): the
+    player waits for the node (flow control) instead of losing samples, the node for the
+    player; the elevation the node used is the sea's over the whole run, no still-water tail,
+    and both exit 0."""
+    waves = _wave_bag(tmp_path / "waves", 400.0)
+    record = tmp_path / "run"
+    player = _play(waves, "--rate", "0", "--wait-for-subscribers", "1")
+    node = start("node", wave_source="topic", real_time_factor=0.0, duration_s=300.0, drag_model="constant",
+                 record=str(record))
+    node_output = finish(node, 600)
+    player_output = finish(player, 120)
+    assert node.returncode == 0 and "duration 300 s reached" in node_output, node_output
+    assert "still water" not in node_output, node_output
+    assert player.returncode == 0 and "dropped" not in player_output, player_output
+    times, elevation = _elevation_used(record)
+    assert times[-1] == pytest.approx(300.0) and len(times) == 6001
+    for start_s in range(120, 300, 30):  # every 30 s past the stream's warm-up has its waves
+        window = (times >= start_s) & (times < start_s + 30)
+        assert elevation[window].std() > 0.5, (start_s, elevation[window].std())
+
+
+@pytest.mark.slow
+def test_a_wave_topic_silent_before_the_end_is_said_and_exits_1(tmp_path):
+    """The player's 100 s of waves end long before the node's 300 s (as fast as possible): once
+    the player has gone, the node says in one line that the topic went silent after samples up
+    to 100 s, goes on in still water, and exits 1 (the run is incomplete)."""
+    waves = _wave_bag(tmp_path / "waves", 100.0)
+    player = _play(waves, "--rate", "0", "--wait-for-subscribers", "1")
+    node = start("node", wave_source="topic", real_time_factor=0.0, duration_s=300.0, drag_model="constant")
+    node_output = finish(node, 600)
+    player_output = finish(player, 120)
+    assert player.returncode == 0, player_output
+    assert "went silent after samples up to t = 100.00 s" in node_output, node_output
+    assert node.returncode == 1 and "duration 300 s reached" in node_output, node_output
+    silent = [line for line in node_output.splitlines() if "no wave elevation on /waves/elevation" in line]
+    assert len(silent) == 1 and "ERROR" in silent[0], node_output

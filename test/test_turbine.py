@@ -287,3 +287,18 @@ def test_a_wind_series_from_a_bag(tmp_path):
     assert wind.at(0.5) == pytest.approx(10.5) and wind.at(2.0) == 13.0 and wind.at(9.0) == 13.0
     with pytest.raises(ConfigError, match="wind_bag"):
         TurbineSettings(wind="bag")
+
+
+@pytest.mark.ros
+@pytest.mark.slow
+@pytest.mark.parametrize("args, message", [
+    ({"wind_sped_m_s": 3.0}, "parameter wind_sped_m_s: unknown to fowt_turbine (did you mean wind_speed_m_s?)"),
+    ({"wind_speed_m_s": -3.0}, "parameter wind_speed_m_s: must be 0 to 80, got -3"),
+])
+def test_bad_turbine_parameters_end_with_one_line(args: dict, message: str):
+    from fowt_hydro_sim.testing.ros import finish, start
+
+    turbine = start("turbine", **args)
+    output = finish(turbine, 60)
+    assert turbine.returncode == 2 and message in output and "Traceback" not in output, output
+    assert "Invalid parameter" not in output, output

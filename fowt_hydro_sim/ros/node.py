@@ -7,6 +7,18 @@ every stamp are simulation time. A stepping thread advances the model one publis
 at a time, paced against the wall clock (``real_time_factor``), or as fast as possible in
 batches of publish periods (one compiled call each, published by a second thread while
 the next batch is computed), while the executor serves the subscriptions.
+
+Wave samples on the topic (wave_source topic): paced, wave_timeout_s wall seconds without a
+sample mean still water. As fast as possible the node waits for its first sample, and then
+as long as a publisher of the topic is on the graph (its samples may be held back by flow
+control while the node is busy); with none left, still water after wave_timeout_s.
+
+Exit codes of ``fowt-sim node``: 0 the run is complete (duration_s stepped) or was stopped by
+the user (Ctrl-C, SIGTERM); 1 the run was cut short or is incomplete because of an error (the
+controller lost with controller_lost stop, a diverging state, the wave bag ending before
+duration_s, the wave topic going silent after it had delivered samples, the recording
+failing), said in one line at the end, the bag closed readable; 2 bad input (parameters,
+parameter file, platform), one line.
 """
 from __future__ import annotations
 
@@ -54,7 +66,7 @@ from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.run_config import run_config
 from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.rosbag.writer import BagWriter, RecordingStopped
+from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, RecordingStopped
 from fowt_hydro_sim.settings import like, setting
 from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds, nanoseconds_array
@@ -70,6 +82,7 @@ MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts 
 MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the state has diverged
 DELIVERY_TIMEOUT_S = 5.0  # at the end of a run: wall seconds at most for subscribers to acknowledge every output
 WARNING_INTERVAL_S = 5.0  # refused inputs of one kind: at most one warning line per this many wall seconds
+WAITING_INTERVAL_S = 10.0  # waiting for wave samples: one line per this many wall seconds
 
 
 class WarningLimiter:
@@ -127,8 +140,9 @@ class NodeSettings:
                                            "onto it)", gt=0.0)
     preview_s: float = setting(60.0, "delay of the streamed wave kinematics behind the elevation samples [s]",
                                gt=0.0)
-    wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed",
-                                    gt=0.0)
+    wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed "
+                                         "(as fast as possible: only after a first sample and once the topic has "
+                                         "no publisher left)", gt=0.0)
     wave_block_s: float = setting(WAVE_BLOCK_S, "the internal waves' kinematics are synthesised in blocks of this "
                                                 "many simulated seconds, two held, the next made ahead in a worker "
                                                 "thread [s]", gt=0.0)
@@ -189,6 +203,7 @@ class SimulatorNode(Node):
     def __init__(self, **node_kwargs):
         super().__init__("fowt_hydro_sim", **node_kwargs)
         parameters.declare(self, NodeSettings)
+        parameters.refuse_unknown(self)
         self.settings = parameters.read(self, NodeSettings)
         s = self.settings
         platform = load_platform(s.platform)
@@ -206,7 +221,9 @@ class SimulatorNode(Node):
             self._feed = WaveFeed(self.model, s.wave_point_xy, s.world_frame_id, s.wave_sample_dt_s, s.preview_s,
                                   s.sea_state.heading_deg)
             self._last_sample_wall = time.monotonic()
+            self._said_waiting = time.monotonic()
             self._still_water = False
+            self._samples_received = False
         if s.wave_source == "bag":
             bag = Bag(s.wave_bag)
             bag.check_type(topics.ELEVATION)
@@ -218,6 +235,7 @@ class SimulatorNode(Node):
         self._open_loop = False  # lockstep given up: the controller is gone
         self._rtf = s.real_time_factor
         self._stop = threading.Event()
+        self.incomplete: str | None = None  # why the run is cut short or incomplete (an error): exit code 1
         self.lateness_s: deque[float] = deque(maxlen=100_000)  # wall lateness of each paced publish
         self.dropped = 0  # messages DDS refused (a subscriber too slow for the pace)
         self.published = 0  # messages published (each also recorded when recording)
@@ -241,7 +259,13 @@ class SimulatorNode(Node):
         """The run's bag, holding its full configuration (reproducible from the bag alone)."""
         s = self.settings
         config = run_config(parameters.values(s), platform_path(s.platform).read_text(), asdict(s.sea_state))
-        recorder = BagWriter(s.record, config=config, overwrite=s.record_overwrite)
+        try:
+            recorder = BagWriter(s.record, config=config, overwrite=s.record_overwrite)
+        except BagError as exc:
+            raise ConfigError(f"parameter record: {exc}") from None
+        except OSError as exc:
+            raise ConfigError(f"parameter record: cannot create the bag directory {s.record}: "
+                              f"{exc.strerror or exc}") from None
         self._output_channels = [recorder.add_topic(topic, kind) for topic, kind in OUTPUTS.values()]
         self._input_channel = {topic: recorder.add_topic(topic, kind) for topic, kind in topics.INPUTS.items()}
         return recorder
@@ -316,6 +340,7 @@ class SimulatorNode(Node):
             self.get_logger().warning(f"wave elevation: {feed.resampler.gap_s:.2f} s gap before t = {t:.3f} s, "
                                       f"interpolated")
         self._last_sample_wall = time.monotonic()
+        self._samples_received = True
         if self._still_water and made:
             self.get_logger().info("wave elevation samples again: leaving still water")
             self._still_water = False
@@ -333,29 +358,70 @@ class SimulatorNode(Node):
 
     def _wait_for_waves(self, until_s: float) -> bool:
         """Stream kinematics up to ``until_s``: from the wave bag (False at its end), or from
-        the topic, going on in still water after wave_timeout_s without samples (said once).
-        False if the node is stopping."""
-        s = self.settings
+        the topic, going on in still water once it is silent (``_topic_silent``). False if the
+        node is stopping."""
         with self._lock:
             while not self._stop.is_set():
                 if self._feed.feed(until_s):
                     return True
                 if self._wave_bag is not None:
                     if not self._next_bag_sample():
-                        self.get_logger().info(f"wave bag {s.wave_bag} ends: waves known up to t = "
-                                               f"{self._feed.until_s:.2f} s, stepping stopped")
+                        self._wave_bag_ended()
                         return False
                     continue
-                silent = time.monotonic() - self._last_sample_wall
-                if silent > s.wave_timeout_s:
-                    if not self._still_water:
-                        self.get_logger().warning(
-                            f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s: going on in still water")
-                        self._still_water = True
+                if self._topic_silent():
                     self._feed.fill_still_water()
                     continue
                 self._lock.wait(timeout=0.05)
         return False
+
+    def _wave_bag_ended(self) -> None:
+        """Said; before duration_s the run is cut short."""
+        s, t = self.settings, self.model.time_s
+        if s.duration_s and t < s.duration_s - 1e-9:
+            self.incomplete = f"the wave bag {s.wave_bag} ended at t = {t:.2f} s, before duration_s {s.duration_s:g} s"
+            self.get_logger().error(f"{self.incomplete} (its waves are known up to t = {self._feed.until_s:.2f} s): "
+                                    f"stepping stopped")
+        else:
+            self.get_logger().info(f"wave bag {s.wave_bag} ends: waves known up to t = {self._feed.until_s:.2f} s, "
+                                   f"stepping stopped")
+
+    def _topic_silent(self) -> bool:
+        """Whether the wave topic counts as silent (the caller goes on in still water): no sample
+        for wave_timeout_s wall seconds, and, as fast as possible, a first sample received and
+        no publisher left. Said once; silent after samples before the waves of duration_s are
+        known, the run is incomplete."""
+        s, now = self.settings, time.monotonic()
+        silent = now - self._last_sample_wall
+        if self._still_water:
+            return True
+        if silent <= s.wave_timeout_s:
+            return False
+        publishers = self.count_publishers(topics.ELEVATION)
+        if self._rtf == 0 and (publishers or not self._samples_received):
+            if now - self._said_waiting > WAITING_INTERVAL_S:
+                self.get_logger().info(f"waiting for wave elevation samples on {topics.ELEVATION} ({publishers} "
+                                       f"publisher(s)) to step past t = {self.model.time_s:.2f} s")
+                self._said_waiting = now
+            return False
+        self._still_water = True
+        if not self._samples_received:
+            self.get_logger().warning(f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s: going on in "
+                                      f"still water")
+            return True
+        last = self._feed.resampler.last[0]
+        if s.duration_s and self._feed.until_s >= s.duration_s - 1e-9:  # the run's waves are all known
+            self.get_logger().info(f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s after samples up "
+                                   f"to t = {last:.2f} s: waves known up to t = {self._feed.until_s:.2f} s, "
+                                   f"duration_s {s.duration_s:g} s")
+            return True
+        self.incomplete = (f"the wave topic {topics.ELEVATION} went silent after samples up to t = {last:.2f} s: "
+                           f"still water from t = {self._feed.until_s:.2f} s on")
+        self.get_logger().error(f"no wave elevation on {topics.ELEVATION} for {silent:.1f} s ({publishers} "
+                                f"publisher(s)) after samples up to t = {last:.2f} s: going on in still water from "
+                                f"t = {self._feed.until_s:.2f} s (the kinematics lag the samples by "
+                                f"{self._feed.delay_s:g} s); the run is incomplete")
+        return True
 
     def _wait_for_controller(self) -> None:
         """Lockstep: before the first step, wait until a controller is connected both ways."""
@@ -398,6 +464,8 @@ class SimulatorNode(Node):
     def _controller_lost(self, time_s: float, why: str) -> bool:
         """Say once that the controller is gone; False if the stepping stops."""
         stop = self.settings.controller_lost == "stop"
+        if stop:
+            self.incomplete = f"the controller was lost at t = {time_s:.3f} s ({why})"
         self.get_logger().error(f"lockstep: the controller is gone at t = {time_s:.3f} s ({why}): "
                                 + ("stepping stopped (controller_lost stop)" if stop else
                                    "going on open loop with the last wrench (controller_lost open_loop)"))
@@ -552,6 +620,7 @@ class SimulatorNode(Node):
         if not bad.any():
             return len(time_s)
         first = int(np.argmax(bad))
+        self.incomplete = f"the state diverged at t = {time_s[first]:.3f} s"
         self.get_logger().error(f"the state diverged at t = {time_s[first]:.3f} s (motion {motion[first].tolist()}): "
                                 f"stepping stopped, nothing more is published")
         self._stop.set()
@@ -610,7 +679,8 @@ class SimulatorNode(Node):
 
 
 def main(args: list[str] | None = None) -> int:
-    """``fowt-sim node [--ros-args ...]``: run the node until stopped or its duration is done."""
+    """``fowt-sim node [--ros-args ...]``: run the node until stopped or its duration is done;
+    the exit code as the module says (0 complete or stopped, 1 cut short or incomplete, 2 bad input)."""
     logging.basicConfig(level=logging.INFO, format="[%(levelname)s] [%(name)s]: %(message)s")
     log = logging.getLogger("fowt_hydro_sim")
     try:
@@ -640,4 +710,6 @@ def main(args: list[str] | None = None) -> int:
         executor.shutdown(timeout_sec=1.0)
         node.destroy_node()
         rclpy.try_shutdown()
-    return 1 if node.recording_failed else 0
+    if node.incomplete:
+        log.error(f"fowt-sim node: the run is incomplete: {node.incomplete} (exit code 1)")
+    return 1 if node.recording_failed or node.incomplete else 0

@@ -17,8 +17,18 @@ k times the bag's span (last minus first log time of the played topics), so the 
 and the generated clock keep going forward. The messages themselves (and their header
 stamps) are published unchanged.
 
-Publishers: reliable, volatile, keep-last 1000, unless the bag's metadata.yaml offers a
+Publishers: reliable, volatile, keep-all, unless the bag's metadata.yaml offers a
 different reliability or durability for the topic (that of its first offered profile).
+
+Flow control on reliable topics: no message is given up while its subscribers keep taking
+them. As fast as possible (``--rate 0``) the player publishes ``WINDOW`` messages of a topic,
+then waits until every subscriber has acknowledged them, so a slower subscriber (a node
+stepping as fast as possible takes its samples as it needs them) slows the playback down,
+however long it takes. Paced, a message the middleware refuses (its queue for a subscriber far
+behind is full) is published again once the subscribers have acknowledged the queue. At the
+end the player waits until everything is acknowledged. It gives up only on a subscriber that
+leaves a wait unacknowledged for ``STALL_S`` wall seconds (stuck): said in one line, exit code
+1, as for a message refused twice (lost to a subscriber).
 """
 from __future__ import annotations
 
@@ -43,12 +53,19 @@ log = logging.getLogger("fowt_hydro_sim.player")
 DEPTH = 1000
 CLOCK_TOPIC = "/clock"
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
-# at the end: wall seconds to wait for reliable subscribers to acknowledge (it returns as soon
-# as they have; a busy subscriber, e.g. a node stepping as fast as it can on a loaded machine,
-# may take seconds, and what it has not acknowledged when the player exits is lost to it)
-ACK_TIMEOUT_S = 30.0
+# reliable topics: messages published before waiting for their acknowledgement (an acknowledgement
+# may wait for the writer's next heartbeat, 3 s with Fast DDS's defaults: the window sets the
+# pace of a replay as fast as possible then, about 170 messages/s at least)
+WINDOW = 500
+STALL_S = 60.0  # wall seconds a window may stay unacknowledged (a subscriber taking < 8 messages/s): stuck
+ACK_SLICE_S = 0.5  # waiting for acknowledgements in slices of this many wall seconds (Ctrl-C is taken between)
+CLOCK_ACK_TIMEOUT_S = 5.0  # at the end: wall seconds at most for the generated /clock (keep-last) to be acknowledged
 _RELIABILITY = {"reliable": "reliable", "best_effort": "best_effort", 1: "reliable", 2: "best_effort"}
 _DURABILITY = {"volatile": "volatile", "transient_local": "transient_local", 1: "transient_local", 2: "volatile"}
+
+
+class PlaybackStalled(RuntimeError):
+    """A subscriber acknowledged nothing for STALL_S wall seconds: the playback was given up."""
 
 
 @dataclass(frozen=True)
@@ -158,6 +175,7 @@ class Player:
         self.bag, self.topics, self.rate, self.clock, self.loop = bag, topics, rate, clock, loop
         self.node = rclpy.create_node("fowt_sim_play")
         self.publishers = {}
+        self._unacked: dict[str, int] = {}  # reliable topics: messages published since the last acknowledgement
         for t in topics:
             best_effort = t.reliability == "best_effort"
             # reliable: keep all, so a fast replay waits for its subscribers instead of overwriting
@@ -166,6 +184,8 @@ class Player:
                              durability=DurabilityPolicy.TRANSIENT_LOCAL if t.durability == "transient_local"
                              else DurabilityPolicy.VOLATILE)
             self.publishers[t.name] = self.node.create_publisher(t.message_class, t.name, qos)
+            if not best_effort:
+                self._unacked[t.name] = 0
         self.clock_publisher = None
         if clock:
             from rosgraph_msgs.msg import Clock
@@ -186,16 +206,27 @@ class Player:
             log.warning(f"--wait-for-subscribers: fewer than {count} subscriber(s) on {', '.join(short)} after "
                         f"{timeout_s:g} s; playing anyway")
 
-    def _send(self, publisher, data: bytes) -> None:
+    def _send(self, publisher, data: bytes, topic: str | None = None) -> None:
         """Publish; a reliable subscriber too slow for the rate can make DDS refuse the write
-        (after blocking): the message is dropped and counted."""
+        (after blocking): on a reliable topic it is published again once the subscribers have
+        acknowledged what is queued; refused again (or on /clock, ``topic`` None), it is dropped
+        and counted."""
         try:
             publisher.publish(data)
+            return
         except self._error as exc:
-            self.dropped += 1
-            if self.dropped == 1 or self.dropped % 1000 == 0:
-                log.warning(f"{self.dropped} message(s) dropped, e.g. on {publisher.topic_name} "
-                            f"({str(exc).split(',')[0]}): a subscriber cannot keep up; lower --rate")
+            error = exc
+        if topic in self._unacked:
+            self._wait_for_acknowledgement(topic)
+            try:
+                publisher.publish(data)
+                return
+            except self._error as exc:
+                error = exc
+        self.dropped += 1
+        if self.dropped == 1 or self.dropped % 1000 == 0:
+            log.warning(f"{self.dropped} message(s) dropped, e.g. on {publisher.topic_name} "
+                        f"({str(error).split(',')[0]}): a subscriber cannot keep up; lower --rate")
 
     def play(self) -> None:
         names = [t.name for t in self.topics]
@@ -217,8 +248,12 @@ class Player:
                 if self.clock_publisher is not None and when > last_clock:
                     self._send(self.clock_publisher, clock_bytes(when))
                     last_clock = when
-                self._send(self.publishers[topic], data)
+                self._send(self.publishers[topic], data, topic)
                 self.played += 1
+                if topic in self._unacked:
+                    self._unacked[topic] += 1
+                    if self.rate == 0 and self._unacked[topic] >= WINDOW:
+                        self._wait_for_acknowledgement(topic)
             self.passes += 1
             if not self.loop or first is None:
                 return
@@ -227,19 +262,33 @@ class Player:
                 return
             offset += last - first
 
-    def finish(self) -> None:
-        """Give reliable subscribers a moment to acknowledge the last messages, then destroy
-        the node."""
+    def _wait_for_acknowledgement(self, topic: str) -> None:
+        """Until every subscriber of ``topic`` has acknowledged what was published on it, as
+        long as that takes; PlaybackStalled after STALL_S wall seconds without."""
         from rclpy.duration import Duration
 
-        deadline = time.monotonic() + ACK_TIMEOUT_S
-        for publisher in [*self.publishers.values(), self.clock_publisher]:
-            if publisher is not None:
-                remaining = max(0.0, deadline - time.monotonic())
-                if not publisher.wait_for_all_acked(Duration(nanoseconds=int(remaining * 1e9))):
-                    log.warning("%s: a reliable subscriber had not acknowledged every message after %.0f s; "
-                                "it may miss the last ones", publisher.topic_name, ACK_TIMEOUT_S)
-        self.node.destroy_node()
+        publisher, started = self.publishers[topic], time.monotonic()
+        while not publisher.wait_for_all_acked(Duration(seconds=ACK_SLICE_S)):
+            if time.monotonic() - started > STALL_S:
+                raise PlaybackStalled(
+                    f"{topic}: a subscriber had not acknowledged the last {self._unacked[topic]} message(s) after "
+                    f"{STALL_S:g} s: playback given up after {self.played} messages, the rest is lost to it")
+        self._unacked[topic] = 0
+
+    def finish(self) -> None:
+        """Wait until the reliable subscribers have acknowledged every message (PlaybackStalled
+        if one is stuck), give the generated /clock a moment, then destroy the node."""
+        from rclpy.duration import Duration
+
+        try:
+            for topic in self._unacked:
+                self._wait_for_acknowledgement(topic)
+            if self.clock_publisher is not None and not self.clock_publisher.wait_for_all_acked(
+                    Duration(seconds=CLOCK_ACK_TIMEOUT_S)):
+                log.warning(f"{self.clock_publisher.topic_name}: not acknowledged by every subscriber within "
+                            f"{CLOCK_ACK_TIMEOUT_S:g} s; a subscriber may miss the last clock messages")
+        finally:
+            self.node.destroy_node()
 
 
 def parser() -> argparse.ArgumentParser:
@@ -265,7 +314,8 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """``fowt-sim play BAG [options] [--ros-args ...]``; exit 0 when done or stopped (Ctrl-C,
-    SIGTERM), 2 for bad input (one line on stderr)."""
+    SIGTERM), 1 when messages were lost to a subscriber (the playback given up on a stuck
+    subscriber, or messages the middleware refused), 2 for bad input (one line on stderr)."""
     logging.basicConfig(level=logging.INFO, format="[%(levelname)s] [%(name)s]: %(message)s")
     own, ros_args = split_ros_args(sys.argv[1:] if argv is None else list(argv))
     try:
@@ -294,7 +344,7 @@ def main(argv: list[str] | None = None) -> int:
         rclpy.try_shutdown()
         return 2
     player = None
-    code = 0
+    code: int | None = 0  # None: stopped by the user
     start = time.monotonic()
     try:
         player = Player(bag, topics, args.rate, args.clock, args.loop)
@@ -308,6 +358,10 @@ def main(argv: list[str] | None = None) -> int:
         player.play()
     except (KeyboardInterrupt, ExternalShutdownException):
         log.info("stopped")
+        code = None  # stopped by the user: exit 0, without waiting for acknowledgements
+    except PlaybackStalled as exc:
+        log.error(f"fowt-sim play: {exc}")
+        code = 1
     except (BagError, McapError, ZstdError, struct.error, ValueError, OSError, EOFError) as exc:  # damaged data
         log.error(f"fowt-sim play: {exc}".splitlines()[0])
         code = 2
@@ -315,11 +369,21 @@ def main(argv: list[str] | None = None) -> int:
         if player is not None:
             wall = time.monotonic() - start
             try:
-                player.finish()
+                if code == 0:
+                    player.finish()
+                else:
+                    player.node.destroy_node()
             except (KeyboardInterrupt, ExternalShutdownException):
                 pass
+            except PlaybackStalled as exc:
+                log.error(f"fowt-sim play: {exc}")
+                code = 1
+            if player.dropped and not code:
+                log.error(f"fowt-sim play: {player.dropped} message(s) refused by the middleware, lost to a "
+                          f"subscriber")
+                code = 1
             log.info(f"played {player.played} messages"
                      + (f" ({player.passes} complete pass(es))" if args.loop else "")
                      + (f", {player.dropped} dropped" if player.dropped else "") + f" in {wall:.2f} s wall time")
         rclpy.try_shutdown()
-    return code
+    return code or 0

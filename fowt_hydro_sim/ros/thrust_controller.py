@@ -11,12 +11,12 @@ thrust). It runs on simulation time (``use_sim_time`` is set).
 from __future__ import annotations
 
 import logging
+from dataclasses import dataclass
 
 import numpy as np
 import rclpy
 from geometry_msgs.msg import WrenchStamped
 from nav_msgs.msg import Odometry
-from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
@@ -24,22 +24,28 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 
 import msg_adapters as adapt
 from fowt_hydro_sim.frames import WRENCH_FRAMES
+from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.startup import init_ros
+from fowt_hydro_sim.settings import setting
+
+
+@dataclass(frozen=True)
+class ControllerSettings:
+    """The controller's parameters."""
+
+    mean_thrust_n: float = setting(1.5e6, "constant rotor thrust [N]")
+    pitch_damping_n_s_rad: float = setting(0.0, "thrust change per platform pitch rate [N s/rad]")
+    frame_id: str = setting("hub", "wrench frame", choices=WRENCH_FRAMES)
 
 
 class ThrustController(Node):
     def __init__(self, **node_kwargs):
         super().__init__("fowt_thrust_controller", **node_kwargs)
         self.set_parameters([Parameter("use_sim_time", Parameter.Type.BOOL, True)])
-        self.mean_thrust_n = self.declare_parameter(
-            "mean_thrust_n", 1.5e6, ParameterDescriptor(description="constant rotor thrust [N]")).value
-        self.damping = self.declare_parameter(
-            "pitch_damping_n_s_rad", 0.0,
-            ParameterDescriptor(description="thrust change per platform pitch rate [N s/rad]")).value
-        self.frame_id = self.declare_parameter(
-            "frame_id", "hub", ParameterDescriptor(description=f"wrench frame: {', '.join(WRENCH_FRAMES)}")).value
-        if self.frame_id not in WRENCH_FRAMES:
-            raise ValueError(f"parameter frame_id: must be one of {', '.join(WRENCH_FRAMES)}, got {self.frame_id!r}")
+        parameters.declare(self, ControllerSettings)
+        parameters.refuse_unknown(self)
+        s = parameters.read(self, ControllerSettings)
+        self.mean_thrust_n, self.damping, self.frame_id = s.mean_thrust_n, s.pitch_damping_n_s_rad, s.frame_id
         qos = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
         self._publisher = self.create_publisher(WrenchStamped, "/platform/external_wrench", qos)
         self.create_subscription(Odometry, "/platform/odom", self._on_odometry, qos)
@@ -65,7 +71,8 @@ def main(args: list[str] | None = None) -> int:
         rclpy.try_shutdown()
         return 2
     try:
-        rclpy.spin(node)
+        while rclpy.ok():  # a timeout: the stop signal (KeyboardInterrupt) is taken between waits
+            rclpy.spin_once(node, timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:

@@ -82,6 +82,7 @@ class TurbineNode(Node):
         super().__init__("fowt_turbine", **node_kwargs)
         self.set_parameters([Parameter("use_sim_time", Parameter.Type.BOOL, True)])
         parameters.declare(self, TurbineSettings)
+        parameters.refuse_unknown(self)
         s = self.settings = parameters.read(self, TurbineSettings)
         self.turbine = load_turbine(s.turbine)
         self.wind = s.make_wind()
