@@ -149,7 +149,8 @@ def read_with_rosbags(path: Path) -> dict[str, list]:
 def test_play_publishes_every_message_in_order_with_the_clock(source: Path):
     listener = Listener({ELEVATION: PointStamped, WRENCH: WrenchStamped, CLOCK: Clock})
     try:
-        player = launch("play", source, "--rate", 10, "--clock", "--start-delay", START_DELAY, "--wait-for-subscribers", 1,
+        player = launch("play", source, "--rate", 10, "--clock", "--start-delay", START_DELAY,
+                        "--wait-for-subscribers", 1,
                         *REMAP_CLOCK)
         code, output = wait_exit(player, 60)
         received = listener.wait_for(lambda: len(listener.messages[ELEVATION]) >= N_ELEVATION
@@ -252,7 +253,8 @@ def test_record_what_play_publishes(source: Path, tmp_path: Path):
         seen = wait_for_line(recorder, "until stopped", 30)  # its node is up: it finds the player's topics
         # rate 2: a clock step is 50 ms of wall time, so that a busy machine delaying the recorder's
         # callbacks by a few ms does not make a message's log time lag its stamp by two steps
-        player = launch("play", source, "--rate", 2, "--clock", "--start-delay", START_DELAY, "--wait-for-subscribers", 1,
+        player = launch("play", source, "--rate", 2, "--clock", "--start-delay", START_DELAY,
+                        "--wait-for-subscribers", 1,
                         *REMAP_CLOCK)
         play_code, play_output = wait_exit(player, 90)
         time.sleep(0.5)

@@ -166,8 +166,8 @@ def test_wave_blocks_do_not_stall_the_paced_node():
     core, whatever its length) with 200 s blocks runs past 600 s: block boundaries at 200,
     400 and 600 s (the last also the default 600 s block's). No pose interval at the
     subscriber exceeds 0.6 s, and the stepping waited for wave blocks less than 0.1 s in all
-    (the node's report). With each block made in the stepping thread (main before issue 18's
-    third round) the poses stopped for the whole synthesis at every boundary: 1.46 s here.
+    (the node's report). With each block made in the stepping thread (as the node once did)
+    the poses stopped for the whole synthesis at every boundary: 1.46 s here.
     The bound leaves room for the scheduling of the node and of this test's own Python
     subscriber: a 309 ms interval away from any boundary was seen once on an idle machine."""
     factor, period_s, block_s, bound_s = 20.0, 0.05, 200.0, 0.6

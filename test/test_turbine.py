@@ -191,7 +191,8 @@ def test_steady_platform_pitch_under_the_mean_thrust_is_the_static_offset(hydros
 
 def test_wind_inputs(tmp_path):
     assert Wind("steady", 9.0).at(100.0) == 9.0
-    assert Wind("step", 10.0, 14.0, start_s=5.0).at(4.9) == 10.0 and Wind("step", 10.0, 14.0, start_s=5.0).at(5.0) == 14.0
+    step = Wind("step", 10.0, 14.0, start_s=5.0)
+    assert step.at(4.9) == 10.0 and step.at(5.0) == 14.0
     assert Wind("ramp", 10.0, 14.0, start_s=10.0, ramp_s=40.0).at(20.0) == pytest.approx(11.0)
     csv = tmp_path / "wind.csv"
     csv.write_text("time_s,speed_m_s\n0,10\n10,12\n")

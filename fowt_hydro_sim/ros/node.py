@@ -184,7 +184,7 @@ class NodeSettings:
         if self.hydrostatics == "free_surface":
             raise ConfigError("parameter hydrostatics: 'free_surface' is implemented for a prescribed motion only "
                               "(fowt-sim loads), not for the node")
-        self.sea_state  # an unknown load case fails here
+        load_case(self.load_case)  # an unknown load case fails here
 
     @property
     def sea_state(self) -> SeaState:

@@ -52,7 +52,8 @@ class TurbineSettings:
     wind_ramp_s: float = setting(60.0, "duration of the ramp [s]", gt=0.0)
     wind_file: str = setting("", "CSV of time [s] and hub-height wind speed [m/s] (wind file)")
     wind_bag: str = setting("", "bag holding a hub-height wind speed series (wind bag)")
-    wind_topic: str = setting(topics.TURBINE["wind_speed"][0], "topic of wind_bag with the wind speed (a turbine quantity topic: Vector3Stamped, x)")
+    wind_topic: str = setting(topics.TURBINE["wind_speed"][0],
+                              "topic of wind_bag with the wind speed (a turbine quantity topic: Vector3Stamped, x)")
     rotor_start: str = setting("steady", "steady: the turbine starts at its steady operating point in the "
                                            "initial wind; given: at rotor_speed_rad_s and pitch_rad",
                                  choices=("steady", "given"))
@@ -98,7 +99,8 @@ class TurbineNode(Node):
         self._last = None  # (stamp, pitch rate) of the last odometry answered
         qos = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
         self._wrench = self.create_publisher(WrenchStamped, topics.EXTERNAL_WRENCH, qos)
-        self._state = {name: self.create_publisher(Vector3Stamped, topic, qos) for name, (topic, _) in topics.TURBINE.items()}
+        self._state = {name: self.create_publisher(Vector3Stamped, topic, qos)
+                       for name, (topic, _) in topics.TURBINE.items()}
         self.create_subscription(Odometry, topics.MOTION["odom"][0], self._on_odometry, qos)
         self.get_logger().info(
             f"{self.turbine.name}: ROSCO every {self.turbine.controller_dt_s:g} s, wind {s.wind}, thrust at "
