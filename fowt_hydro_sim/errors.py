@@ -9,3 +9,7 @@ from __future__ import annotations
 
 class InputError(ValueError):
     """The user's input cannot be used; the message names the input and the problem."""
+
+
+class ConfigError(InputError):
+    """A configuration file or value that cannot be used; the message names the field."""

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from fowt_hydro_sim.errors import InputError
+from fowt_hydro_sim.errors import ConfigError, InputError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, like, setting, validate
 
 DRAG_MODELS = ("constant", "filtered")
@@ -31,10 +31,6 @@ HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
 STRETCHING = ("none", "vertical", "wheeler")
 SLOW_DRIFTS = ("newman", "none")
-
-
-class ConfigError(InputError):
-    """A configuration file or value that cannot be used; the message names the field."""
 
 
 class SampleError(InputError):

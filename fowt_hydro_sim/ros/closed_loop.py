@@ -113,6 +113,8 @@ def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrit
     processes = {"record": _start(record, logs / "record.log")}
     processes["node"] = _start(_command("node", {**node, "lockstep": True}), logs / "node.log")
     _wait_for_recording(logs / "record.log", processes, RECORDER_READY_S)  # the run's first messages too
+    # the turbine answers the platform only once the recorder subscribes to its topics: no sample missed
+    turbine = {**turbine, "wait_for_subscribers": turbine.get("wait_for_subscribers") or 1}
     processes["turbine"] = _start(_command("turbine", turbine), logs / "turbine.log")
     codes: dict[str, int] = {}
     try:

@@ -16,7 +16,7 @@ from typing import Any
 
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
 
-from fowt_hydro_sim.physics.config import ConfigError
+from fowt_hydro_sim.errors import ConfigError
 from fowt_hydro_sim.settings import Described, SettingError, check, described
 
 

@@ -9,6 +9,7 @@ t: a lockstep platform node steps on it), and the turbine's state on ``/turbine/
 from __future__ import annotations
 
 import logging
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -61,6 +62,9 @@ class TurbineSettings:
     pitch_rad: float = setting(0.0, "initial blade pitch (rotor_start given) [rad]", ge=-0.5, le=1.6)
     fixed_platform: bool = setting(False, "ignore the platform's motion (a turbine on a fixed foundation)")
     rosco_logging: int = setting(0, "ROSCO's LoggingLevel (debug files in its temporary folder)", ge=0, le=3)
+    wait_for_subscribers: int = setting(0, "before answering the first odometry, wait (at most 60 wall seconds) "
+                                           "until this many subscribers are connected to each /turbine/ topic (a "
+                                           "recorder started alongside, so that its bag misses no sample)", ge=0)
 
     def __post_init__(self) -> None:
         if self.wind == "file" and not self.wind_file:
@@ -105,6 +109,18 @@ class TurbineNode(Node):
         self.get_logger().info(
             f"{self.turbine.name}: ROSCO every {self.turbine.controller_dt_s:g} s, wind {s.wind}, thrust at "
             f"{self.thrust_height_m:g} m" + (", platform held fixed" if s.fixed_platform else ""))
+
+    def wait_for_subscribers(self, timeout_s: float = 60.0) -> None:
+        """Until each turbine quantity topic has ``wait_for_subscribers`` subscribers (DDS
+        discovers them without spinning, so no odometry is answered meanwhile)."""
+        count = self.settings.wait_for_subscribers
+        deadline = time.monotonic() + timeout_s
+        while count and min(p.get_subscription_count() for p in self._state.values()) < count:
+            if time.monotonic() > deadline:
+                self.get_logger().warning(f"wait_for_subscribers: fewer than {count} subscribers after "
+                                          f"{timeout_s:g} s; answering anyway")
+                return
+            time.sleep(0.05)
 
     def _hub_motion(self, msg: Odometry) -> tuple[float, float, float]:
         """(time, fore-aft velocity of the thrust point, pitch acceleration) from the odometry."""
@@ -163,6 +179,7 @@ def main(args: list[str] | None = None) -> int:
         rclpy.try_shutdown()
         return 2
     try:
+        node.wait_for_subscribers()
         while rclpy.ok() and not node.failed:
             rclpy.spin_once(node, timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException):
