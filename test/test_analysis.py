@@ -95,6 +95,7 @@ def write_pose_bag(path, x: np.ndarray, pitch_rad: np.ndarray) -> None:
             bag.write(channel, nanoseconds(t), cdr.pose(t, [surge, 0.0, 0.0, 0.0, pitch, 0.0]))
 
 
+@pytest.mark.slow
 def test_fowt_sim_analyze_writes_the_tables_and_figures(tmp_path):
     rng = np.random.default_rng(8)
     x, y = gaussian_record(rng, 7200.0), gaussian_record(rng, 7200.0)
@@ -160,6 +161,7 @@ def test_analyze_refuses_bad_options_in_one_line(tmp_path, args, message):
     assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr
 
 
+@pytest.mark.slow
 def test_analyze_reads_what_simulate_writes_into_a_default_report_folder(tmp_path):
     """An offline run is analysed like a recorded one; without -o the report goes beside it."""
     run = tmp_path / "run1"

@@ -146,6 +146,7 @@ def read_with_rosbags(path: Path) -> dict[str, list]:
 
 
 # ---------------------------------------------------------------------- play
+@pytest.mark.slow
 def test_play_publishes_every_message_in_order_with_the_clock(source: Path):
     listener = Listener({ELEVATION: PointStamped, WRENCH: WrenchStamped, CLOCK: Clock})
     try:
@@ -177,6 +178,7 @@ def test_play_publishes_every_message_in_order_with_the_clock(source: Path):
     assert f"played {N_ELEVATION + N_WRENCH} messages" in output
 
 
+@pytest.mark.slow
 def test_play_only_the_chosen_topics_as_fast_as_possible(source: Path):
     listener = Listener({ELEVATION: PointStamped, WRENCH: WrenchStamped})
     try:
@@ -193,6 +195,7 @@ def test_play_only_the_chosen_topics_as_fast_as_possible(source: Path):
     assert "as fast as possible" in output and f"played {N_ELEVATION} messages" in output
 
 
+@pytest.mark.slow
 def test_play_loops_until_interrupted(source: Path):
     listener = Listener({WRENCH: WrenchStamped, CLOCK: Clock})
     try:
@@ -217,13 +220,12 @@ def test_play_loops_until_interrupted(source: Path):
 @pytest.mark.slow
 def test_play_gives_up_on_a_stuck_subscriber_with_exit_code_1(tmp_path: Path):
     """A reliable keep-all subscriber that never takes a message (its queue fills up): the
-    player waits for it (flow control), then, after a window unacknowledged for STALL_S,
-    says it gave up and exits 1, instead of exiting 0 with messages lost."""
+    player waits for it (flow control), then, after a window unacknowledged for the stall
+    timeout, says it gave up and exits 1, instead of exiting 0 with messages lost."""
     import rclpy
     from rclpy.qos import HistoryPolicy
 
-    from fowt_hydro_sim.ros.player import STALL_S
-
+    stall_s = 8.0
     path = tmp_path / "many"
     with BagWriter(path) as writer:
         channel = writer.add_topic(ELEVATION, POINT_TYPE)
@@ -236,16 +238,18 @@ def test_play_gives_up_on_a_stuck_subscriber_with_exit_code_1(tmp_path: Path):
         node.create_subscription(PointStamped, ELEVATION, lambda msg: None,
                                  QoSProfile(depth=100, history=HistoryPolicy.KEEP_ALL,
                                             reliability=ReliabilityPolicy.RELIABLE))  # never spun
-        player = launch("play", path, "--rate", 0, "--start-delay", START_DELAY, "--wait-for-subscribers", 1)
-        code, output = wait_exit(player, STALL_S + 120)
+        player = launch("play", path, "--rate", 0, "--start-delay", START_DELAY, "--wait-for-subscribers", 1,
+                        "--stall-timeout", stall_s)
+        code, output = wait_exit(player, stall_s + 120)
     finally:
         node.destroy_node()
         context.try_shutdown()
     assert code == 1 and "Traceback" not in output, output
-    assert "had not acknowledged the last" in output and "playback given up after" in output, output
+    assert "had not acknowledged the last" in output and f"after {stall_s:g} s: playback given up" in output, output
 
 
 # ---------------------------------------------------------------------- record
+@pytest.mark.slow
 def test_record_what_play_publishes(source: Path, tmp_path: Path):
     out = tmp_path / "recorded"
     recorder = launch("record", "-o", out, "--topics", ELEVATION, WRENCH, CLOCK, *REMAP_CLOCK)
@@ -283,6 +287,7 @@ def test_record_what_play_publishes(source: Path, tmp_path: Path):
     assert [m.clock.sec * 10**9 + m.clock.nanosec for m in rosbags[CLOCK]][-1] == SPAN_NS
 
 
+@pytest.mark.slow
 def test_record_on_a_full_disk_ends_in_one_line_with_a_readable_bag(small_disk):
     """``fowt-sim record`` of an accelerated node until its 1 MiB disk is full: one error
     line, exit 1, and a closed bag that both readers read to the end."""
@@ -308,6 +313,7 @@ def test_record_on_a_full_disk_ends_in_one_line_with_a_readable_bag(small_disk):
     assert len(read_with_rosbags(out)["/platform/pose"]) == bag.topics["/platform/pose"].message_count
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_recorder_closes_the_bag_when_stopped(signum: int, tmp_path: Path):
     out = tmp_path / "stopped"
@@ -337,6 +343,7 @@ def test_recorder_closes_the_bag_when_stopped(signum: int, tmp_path: Path):
     assert len(read_with_rosbags(out)[ELEVATION]) == 50
 
 
+@pytest.mark.slow
 def test_record_all_topics_finds_topics_appearing_later(tmp_path: Path):
     """Default: every topic, looked for again every 0.5 s (subscribed best effort if its
     publisher offers only that)."""

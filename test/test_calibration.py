@@ -54,6 +54,7 @@ def measured(tmp_path_factory, platform):
     return write_measured_bag(tmp_path_factory.mktemp("measured") / "lc53", t, eta, (0.0, 0.0), time_s, motion)
 
 
+@pytest.mark.slow
 def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, platform):
     settings = AnalysisSettings(transient_s=300.0, dofs=("surge", "pitch"))
     result = calibrate(measured_run(measured), platform, [LF_COLUMNS], settings)
@@ -66,6 +67,7 @@ def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, platform):
     assert result.model_runs <= 20
 
 
+@pytest.mark.dask
 def test_fowt_sim_calibrate_on_a_local_dask_cluster_then_regress_and_predict(measured, tmp_path):
     out = tmp_path / "cal"
     result = fowt_sim("calibrate", "--measured", str(measured), "--params", LF_COLUMNS, "--dofs", "surge",

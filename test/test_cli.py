@@ -18,6 +18,7 @@ from fowt_hydro_sim.testing import REPO, fowt_sim
 from fowt_hydro_sim.testing.references import hydrodyn_case
 
 
+@pytest.mark.slow
 def test_simulate_writes_time_series_and_summary(tmp_path: Path):
     out = tmp_path / "run"
     done = fowt_sim("simulate", "--load-case", "lc5.2", "--duration", "120", "--seed", "2", "-o", str(out))
@@ -144,6 +145,7 @@ def test_list_defaults_are_printed_as_the_option_takes_them():
     assert "(default: surge heave pitch)" in " ".join(fowt_sim("analyze", "--help").stdout.split())
 
 
+@pytest.mark.slow
 def test_simulate_from_a_run_file(tmp_path: Path):
     """Platform, sea state and run from one YAML file; a bad field is named."""
     run_file = tmp_path / "run.yaml"
@@ -160,6 +162,7 @@ def test_simulate_from_a_run_file(tmp_path: Path):
     assert done.returncode == 2 and "bad.yaml: run.dt_s: must be a positive number" in done.stderr
 
 
+@pytest.mark.slow
 def test_filtered_simulate_and_the_load_case_study_agree(tmp_path: Path):
     """``simulate --drag filtered`` and ``load-cases`` on the same sea (seed, duration,
     start-up) report the same band STDs; the study writes its CSV, Markdown table and a PNG
@@ -195,6 +198,7 @@ def test_filtered_simulate_and_the_load_case_study_agree(tmp_path: Path):
     assert done.stdout.count("fowt-sim") == 0 and "x real time" not in done.stderr  # no line per run
 
 
+@pytest.mark.slow
 def test_an_interrupted_load_case_study_keeps_the_table_of_the_cases_done(tmp_path: Path):
     """Ctrl-C during a study: exit 130, one line, the tables of the cases done. The study gets
     SIGINT's default disposition, as a process started from a terminal has: a test run
@@ -253,6 +257,7 @@ def test_load_case_figures_have_a_log_frequency_axis_the_sea_state_and_the_marks
     assert all(scale == "log" and lim[0] < 0.005 < 0.25 < lim[1] for scale, lim in shown[0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("dof, j, offset", [("surge", 0, 8.0), ("heave", 2, 2.0), ("pitch", 4, 0.05)])
 def test_a_free_decay_run_reports_its_fitted_period_and_damping(tmp_path: Path, dof: str, j: int, offset: float):
     """Still water and an initial offset: the fitted period is the linearised model's natural
@@ -318,6 +323,7 @@ def fowt_sim_without(packages: str, *args: object) -> subprocess.CompletedProces
                           capture_output=True, text=True, timeout=300)
 
 
+@pytest.mark.slow
 def test_without_matplotlib_analyze_writes_its_tables_and_says_the_figures_are_not_drawn(tmp_path: Path):
     run = tmp_path / "run"
     assert fowt_sim("simulate", "--load-case", "lc5.2", "--duration", "200", "-o", run).returncode == 0

@@ -25,6 +25,7 @@ pytestmark = pytest.mark.ros
 PLATFORM_TOPICS = ("/clock", "/platform/odom", "/platform/pose", "/platform/external_wrench", "/platform/loads/total")
 
 
+@pytest.mark.slow
 def test_600_s_of_lc5_2_waves_and_13_m_s_wind(tmp_path):
     bag_path = tmp_path / "loop"
     result = closed_loop.run(bag_path, {"load_case": "lc5.2", "duration_s": 600.0, "real_time_factor": 0.0},
@@ -48,6 +49,8 @@ def test_600_s_of_lc5_2_waves_and_13_m_s_wind(tmp_path):
     assert power.mean() == pytest.approx(15e6, rel=0.05)  # above rated: rated power on average
 
 
+@pytest.mark.reference
+@pytest.mark.rosco
 def test_held_fixed_the_turbine_node_gives_rosco_simulators_trajectories(tmp_path):
     """The platform held fixed (turbine parameter fixed_platform), a wind step 10 -> 14 m/s:
     the recorded rotor speed, pitch and generator torque against rosco.toolbox.sim.Sim."""
@@ -79,6 +82,7 @@ def clock_after(listener: Listener, time_s: float, timeout_s: float) -> bool:
     return listener.wait_for(reached, timeout_s)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("lost", ["stop", "open_loop"])
 def test_the_turbine_killed_mid_run_is_noticed_and_the_parameter_followed(tmp_path, lost):
     listener = Listener({"/clock": Clock})
@@ -108,6 +112,7 @@ def test_the_turbine_killed_mid_run_is_noticed_and_the_parameter_followed(tmp_pa
     assert np.all(np.isfinite(odom.values))
 
 
+@pytest.mark.slow
 def test_rosco_refusing_its_input_is_one_clear_line_and_the_bag_stays_readable(tmp_path):
     good = load_turbine()
     discon = tmp_path / "DISCON.IN"
@@ -126,6 +131,7 @@ def test_rosco_refusing_its_input_is_one_clear_line_and_the_bag_stays_readable(t
     Bag(bag_path)  # closed and readable
 
 
+@pytest.mark.slow
 def test_a_silent_controller_is_given_up_after_its_timeouts_in_a_row():
     """A controller connected both ways that never answers: after controller_timeouts
     timeouts in a row (not one timeout per step forever) the node says so once and stops."""
@@ -149,6 +155,7 @@ def test_a_silent_controller_is_given_up_after_its_timeouts_in_a_row():
 
 @pytest.mark.parametrize("bad, named", [(["--wind-speed", "100"], "--wind-speed"), (["--duration", "0"], "--duration"),
                                         (["--turbine", "nope"], "turbine 'nope'"), (["--wind", "file"], "wind_file")])
+@pytest.mark.slow
 def test_closed_loop_refuses_bad_input_in_one_line(tmp_path, bad, named):
     done = fowt_sim("closed-loop", "-o", str(tmp_path / "b"), *bad, timeout=120)
     assert done.returncode == 2

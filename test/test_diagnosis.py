@@ -47,6 +47,7 @@ def drift_bags(tmp_path_factory, platform):
     return bags
 
 
+@pytest.mark.dask
 def test_diagnose_names_slow_drift_and_closes_the_blind_gap(drift_bags, tmp_path):
     out = tmp_path / "report"
     result = fowt_sim("diagnose", "--measured", str(drift_bags["lc5.2"]), str(drift_bags["lc5.3"]),
@@ -70,6 +71,7 @@ def test_diagnose_names_slow_drift_and_closes_the_blind_gap(drift_bags, tmp_path
     assert "verdict: explained: slow_drift" in result.stdout
 
 
+@pytest.mark.slow
 def test_a_run_without_an_unmodelled_effect_raises_no_alarm(platform):
     """Noise and small property errors only: no cell is flagged, nothing is fitted."""
     null = Scenario("null", "null", None, {}, 11)
@@ -80,6 +82,7 @@ def test_a_run_without_an_unmodelled_effect_raises_no_alarm(platform):
     assert len(diagnosis.baseline) == 2 and diagnosis.model_runs == 2
 
 
+@pytest.mark.dask
 def test_diagnose_benchmark_small(tmp_path):
     """The benchmark's own command on three scenarios: a wave-probe delay, a null and an
     out-of-catalogue rotor moment, with three candidates."""
@@ -95,6 +98,7 @@ def test_diagnose_benchmark_small(tmp_path):
     assert summary["median_blind_closure"] > 0.5 and summary["footprint_flagged"] == 1.0
 
 
+@pytest.mark.slow
 def test_bad_input_gets_one_line(drift_bags, tmp_path):
     cases = [(["--measured", str(tmp_path / "missing")], "missing"),
              (["--measured", str(drift_bags["lc5.2"]), "--effects", "gremlins"], "unknown gremlins"),
@@ -108,6 +112,7 @@ def test_bad_input_gets_one_line(drift_bags, tmp_path):
         assert "Traceback" not in result.stderr and len(result.stderr.strip().splitlines()) == 1, result.stderr
 
 
+@pytest.mark.slow
 def test_a_replay_is_past_its_start_up_transient_when_the_record_begins(platform):
     """A replay starts before the record (in its periodic extension): in the first 300 s of
     the record its low-frequency surge is the one of a model that has run for 40 minutes,

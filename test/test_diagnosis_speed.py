@@ -34,6 +34,7 @@ def platform() -> Platform:
     return load_platform("windmoor12")
 
 
+@pytest.mark.slow
 def test_long_records_fitted_on_their_first_part_name_the_effect(platform, caplog):
     """Slow drift injected: fitted on the first 900 s of two 1800 s records, the drift is
     named with its coefficient, the fit's replays are all short, the fitted candidates are
@@ -107,6 +108,7 @@ def _prime_factors(n: int) -> list[int]:
     return out + ([n] if n > 1 else [])
 
 
+@pytest.mark.slow
 def test_every_run_of_a_diagnosis_keeps_its_kinematics_table(platform):
     """Seven runs replayed in turn, twice: each run's table is built once (a cache of fewer
     tables than runs would rebuild every one on every pass)."""
@@ -130,6 +132,7 @@ def test_every_run_of_a_diagnosis_keeps_its_kinematics_table(platform):
     assert len(built) == 7 and len(replay_module._tables) == 7
 
 
+@pytest.mark.slow
 def test_a_fit_window_too_short_gets_one_line(tmp_path):
     t = np.arange(0.0, 700.0, 0.5)
     bag = write_measured_bag(tmp_path / "run", t, 0.5 * np.sin(0.6 * t), (0.0, 0.0), t, np.zeros((t.size, 6)))

@@ -237,6 +237,7 @@ def test_filtered_model_needs_drag_bands_and_the_time_loop():
 
 
 # --------------------------------------------------------------------------- the paper's mechanism
+@pytest.mark.slow
 def test_band_cds_act_on_their_bands_in_lc53():
     """LC5.3 (Hs 11 m, Tp 12 s), filtered model, 3600 s after 300 s of start-up, band STDs
     (0.005-0.05 and 0.05-0.25 Hz) with each band's Cd doubled in turn, same waves:
@@ -273,6 +274,7 @@ def test_band_cds_act_on_their_bands_in_lc53():
     assert abs(change("wave", "surge", "low_frequency")) < abs(change("low_frequency", "surge", "low_frequency"))
 
 
+@pytest.mark.slow
 def test_no_filter_state_becomes_subnormal_in_an_hour():
     """An hour of windmoor12 in LC5.3 with the filtered drag leaves no filter state subnormal
     (nonzero but below the smallest normal double): products with subnormal numbers are many

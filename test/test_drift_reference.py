@@ -11,6 +11,8 @@ import pytest
 
 from fowt_hydro_sim.studies.diagnosis.independent import cummins, drift
 
+pytestmark = pytest.mark.reference  # against another code's output
+
 RHO, G = 1025.0, 9.80665
 
 
@@ -36,6 +38,7 @@ def test_short_waves_on_a_large_cylinder_tend_to_total_reflection():
     assert force == pytest.approx(2.0 / 3.0 * RHO * G * radius, rel=0.03)
 
 
+@pytest.mark.slow
 def test_capytaine_kochin_drift_of_a_bottom_mounted_cylinder():
     cpt = pytest.importorskip("capytaine")
     import logging

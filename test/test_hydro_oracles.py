@@ -43,6 +43,7 @@ def _depth_integrals(t_s, depth_m: float, g: float):
     return ix, iz
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("directions", ["rotating", "fixed"])
 def test_pitched_column_inertia_in_a_regular_wave_is_the_rotated_normal_projection(directions):
     """A column pitched by th about its water-line centre, kinematics and wetted length

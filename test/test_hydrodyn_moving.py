@@ -19,6 +19,8 @@ from fowt_hydro_sim.studies.prescribed_motion import CHANNELS, hydro_channels, m
 from fowt_hydro_sim.testing.references import PRESCRIBED_STILL_CASE as CASE
 from fowt_hydro_sim.testing.references import hydrodyn_case, hydrodyn_hull, read_hydrodyn_out, reference_motion
 
+pytestmark = pytest.mark.reference  # against another code's output
+
 RHO_G = 1025.0 * 9.80665
 
 
@@ -124,6 +126,7 @@ def _import(deck, tmp_path) -> str:
     return str(out)
 
 
+@pytest.mark.slow
 def test_imported_deck_moving_in_still_water_matches_hydrodyn(tmp_path):
     """The reference's own HydroDyn.dat, imported, then moved along its motion by ``fowt-sim
     loads``: the same channels as HydroDyn's within the targets."""

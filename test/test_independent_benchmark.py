@@ -38,6 +38,7 @@ def test_fft_synthesis_is_the_direct_sum():
                        rtol=1e-9, atol=1e-6)
 
 
+@pytest.mark.slow
 def test_the_pre_roll_is_a_run_started_earlier_in_the_periodic_sea():
     """A run of 200 s after a 100 s pre-roll equals the last 200 s of a 300 s run in the same
     sea shifted by 100 s (phases - w 100 s)."""
@@ -140,6 +141,7 @@ def test_basin_runs_are_cached_and_keyed_by_what_makes_them(tmp_path):
     assert len(list(tmp_path.glob("*.npz"))) == 2
 
 
+@pytest.mark.slow
 def test_a_first_seed_gives_other_realisations_of_the_same_scenarios(tmp_path):
     """--seed moves every scenario to other sea realisations (to pool more nulls than one
     list holds) and leaves names and injections as they are; a negative seed is one line."""
@@ -156,6 +158,7 @@ def test_a_first_seed_gives_other_realisations_of_the_same_scenarios(tmp_path):
 
 
 
+@pytest.mark.dask
 def test_diagnose_benchmark_independent_small(tmp_path):
     """``--source independent`` on the frequency-dependent drift and a null, 660 s records (60 s
     transient after the 600 s pre-roll), slow drift as the one candidate, two least-squares

@@ -198,6 +198,7 @@ def _read_hydrodyn_out(path: Path) -> dict[str, np.ndarray]:
     return {name: data[:, j] for j, name in enumerate(names)}
 
 
+@pytest.mark.reference
 def test_against_openfast_hydrodyn_cyl_fixed() -> None:
     """Oracle: OpenFAST v5.0.0 HydroDyn driver output (Wave1Elev, FVel/FAcc/FDynP at (0,0,z)),
     same .Comp waves; relative RMS < 1e-4 on every channel."""

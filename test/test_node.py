@@ -54,6 +54,7 @@ def run_node(duration_s: float, topics: dict | None = None, timeout_s: float = 1
     return listener, output
 
 
+@pytest.mark.slow
 def test_internal_waves_match_the_offline_model_bit_for_bit():
     listener, output = run_node(30.0, real_time_factor=0.0, load_case="lc5.2", seed=3, drag_model="filtered")
     assert "duration 30 s reached" in output, output
@@ -71,6 +72,7 @@ def test_internal_waves_match_the_offline_model_bit_for_bit():
     assert clock and max(clock) == pytest.approx(30.0)  # simulation time, not the wall clock
 
 
+@pytest.mark.slow
 def test_hydro_option_parameters_reach_the_model():
     """HydroDyn's hydro options as node parameters: the node's motion is the offline model's
     with the same options, bit for bit."""
@@ -110,6 +112,7 @@ def _controlled_run(duration_s: float, real_time_factor: float, damping: float, 
     return t, motion, output
 
 
+@pytest.mark.slow
 def test_controller_thrust_sets_the_static_mean_pitch():
     """A 1.5 MN hub thrust with pitch damping, in lockstep: the mean pitch and surge over the
     last 300 s of 600 s are K^-1 F, K the linear restoring matrix (hydrostatics, mooring).
@@ -127,6 +130,7 @@ def test_controller_thrust_sets_the_static_mean_pitch():
     assert abs(static[4]) > math.radians(1.0)  # a visible tilt, not a rounding effect
 
 
+@pytest.mark.slow
 def test_lockstep_is_deterministic_at_any_speed():
     """The same closed loop at real-time factors 0 (as fast as possible) and 20: identical poses."""
     t0, fast, out0 = _controlled_run(150.0, 0.0, damping=5e7, publish_rate_hz=20.0, load_case="lc5.3")
@@ -140,6 +144,7 @@ def test_lockstep_is_deterministic_at_any_speed():
     assert np.ptp(fast[i0, 4]) > 1e-4  # the pitch moves: there is something to compare
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("factor", [1.0, 10.0])
 def test_pacing_follows_the_real_time_factor(factor: float):
     """Simulated time over wall time, from /clock as it arrives, over about 20 s: within 2 %."""
@@ -160,6 +165,7 @@ def test_pacing_follows_the_real_time_factor(factor: float):
     assert ratio == pytest.approx(factor, rel=0.02)
 
 
+@pytest.mark.slow
 def test_wave_blocks_do_not_stall_the_paced_node():
     """Oracle: the wall clock. A node at 20x real time (2.5 ms between poses) on a 12-hour sea
     (duration_s sets the repeat period; a block costs about 1 s of synthesis on an idle
@@ -198,6 +204,7 @@ def _log_after(output: str, needle: str) -> bool:
     return any(needle in line for line in output.splitlines())
 
 
+@pytest.mark.slow
 def test_bad_wrenches_are_refused_and_the_node_keeps_running():
     """NaN, absurd and unknown-frame wrenches: one log line each, the node keeps stepping on
     the last good wrench, and publishes no NaN."""
@@ -233,6 +240,7 @@ def test_bad_wrenches_are_refused_and_the_node_keeps_running():
         assert np.all(np.isfinite(adapt.motion_from_pose(msg)[1]))
 
 
+@pytest.mark.slow
 def test_a_diverging_state_stops_the_stepping():
     """A 0.9 GN thrust at the hub (accepted, under the absurd limit) overturns the platform:
     the node says the state diverged, stops stepping and publishes nothing beyond the bound."""
@@ -253,6 +261,7 @@ def test_a_diverging_state_stops_the_stepping():
     assert np.all(np.isfinite(motions)) and np.abs(motions[:, 4]).max() < 1.2
 
 
+@pytest.mark.slow
 def test_batches_publish_every_stamp_in_order_and_record_them_all(tmp_path):
     """As fast as possible the node steps and publishes in batches (5 s of simulated time):
     over DDS every output topic delivers every publish time 0, 0.05, ..., 12 s once and in
@@ -303,6 +312,7 @@ def test_batches_publish_every_stamp_in_order_and_record_them_all(tmp_path):
                                   "directory"),
     ]],
 ])
+@pytest.mark.slow
 def test_bad_parameters_end_with_one_line(args: dict, message: str):
     node = start("node", **args)
     output = finish(node, 60)
@@ -354,6 +364,7 @@ def _tapered_record(duration_s: float = 600.0, dt_s: float = 0.1) -> tuple[np.nd
     return t, eta * np.sin(0.5 * np.pi * ramp) ** 2
 
 
+@pytest.mark.slow
 def test_wave_topic_gives_the_offline_models_motion():
     """An elevation record published on /waves/elevation (wave_source topic, streamed
     kinematics) against the offline model fed the same record by FFT decomposition: surge,
@@ -391,6 +402,7 @@ def test_wave_topic_gives_the_offline_models_motion():
         assert np.sqrt(np.mean(error**2)) < 0.01 * reference.std(), (dof, np.sqrt(np.mean(error**2)), reference.std())
 
 
+@pytest.mark.slow
 def test_bad_elevation_samples_and_a_silent_topic():
     """NaN, absurd (1e6 m), duplicated, out-of-order, far-future, misplaced and wrong-frame
     samples: one log line each and the sample is ignored; a burst of 400 bad samples of one kind
@@ -438,6 +450,7 @@ def test_bad_elevation_samples_and_a_silent_topic():
     assert all(math.isfinite(m.point.z) for m in listener.messages["/waves/elevation_used"])
 
 
+@pytest.mark.slow
 def test_integer_values_of_floating_point_parameters_are_taken():
     """``-p duration_s:=60`` as users type it (an INTEGER for a DOUBLE parameter)."""
     listener, output = run_node(8, real_time_factor=0, publish_rate_hz=10, dt_s=0.05)
@@ -446,6 +459,7 @@ def test_integer_values_of_floating_point_parameters_are_taken():
     assert t[-1] == pytest.approx(8.0) and len(t) >= 0.9 * 81
 
 
+@pytest.mark.slow
 def test_a_record_path_that_is_not_a_bag_is_said_so(tmp_path):
     (tmp_path / "notes.txt").write_text("mine")
     node = start("node", record=str(tmp_path))

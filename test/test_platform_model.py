@@ -37,6 +37,7 @@ def fixed_body_loads(platform, case: str, out_name: str, strip_length_m: float):
     return loads, np.column_stack([ref[c] for c in CHANNELS])
 
 
+@pytest.mark.reference
 def test_fixed_column_matches_hydrodyn():
     """One windmoor12 column, fixed, in 169 JONSWAP components: OpenFAST HydroDyn's total
     load (inertia, drag, keel end plate, buoyancy). Its README expects ~1e-3 relative RMS."""
@@ -51,6 +52,7 @@ def test_fixed_column_matches_hydrodyn():
     assert ours[:, 2].mean() == pytest.approx(ref[:, 2].mean(), rel=1e-6)  # buoyancy + mean keel loads
 
 
+@pytest.mark.reference
 def test_fixed_platform_matches_hydrodyn():
     """The whole windmoor12 hull held fixed in the same waves (columns Cd 0.8, pontoons Cd 2.0
     in both directions, as the reference README says)."""

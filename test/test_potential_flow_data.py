@@ -48,6 +48,7 @@ def test_a_table_beyond_the_kernel_step_is_refused():
         radiation.retardation_kernel(np.array([1.0, 10.0]), np.array([1.0, 1.0]), 60.0, 0.5)
 
 
+@pytest.mark.reference
 @pytest.mark.parametrize("dof, tolerance", [(0, 0.035), (2, 0.01)], ids=["surge", "heave"])
 def test_ogilvie_reproduces_the_volturnus_added_mass(dof: int, tolerance: float):
     """WAMIT solved A(w) and B(w) separately; A from B alone (kernel as HydroDyn computes it,

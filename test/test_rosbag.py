@@ -49,6 +49,7 @@ def recorded_run(tmp_path_factory) -> tuple[Path, str]:
     return bag, log
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 def test_a_recorded_run_holds_exactly_the_messages_published(recorded_run):
     bag, log = recorded_run
@@ -109,6 +110,7 @@ def test_two_independent_readers_read_every_message_and_schema(recorded_run):
         assert reader.connections[0].ext.offered_qos_profiles[0].depth == 1000
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 def test_the_run_configuration_in_the_bag_reproduces_the_run(recorded_run, tmp_path):
     bag, _ = recorded_run
@@ -194,6 +196,7 @@ def test_a_wave_bag_has_the_sea_states_elevation(wave_bag):
     assert 0.6 * sea.hs_m < 4 * elevation.values[:, 2].std() < 1.4 * sea.hs_m  # 200 s of an 11 m sea
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 def test_bag_wave_source_gives_the_offline_models_motion_and_records_the_same_samples(wave_bag, tmp_path):
     record = tmp_path / "run"
@@ -234,6 +237,7 @@ def recording_node(bag: Path, real_time_factor: float, run_s: float) -> subproce
     return process
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 @pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
 def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
@@ -248,6 +252,7 @@ def test_an_interrupted_recording_is_a_complete_bag(stop, tmp_path):
         assert sum(1 for _ in reader.messages()) == sum(t.message_count for t in counts.values())
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 @pytest.mark.parametrize("on_failure", ["stop", "continue"])
 def test_a_full_disk_ends_the_recording_with_one_line_and_a_readable_bag(small_disk, on_failure):
@@ -271,6 +276,7 @@ def test_a_full_disk_ends_the_recording_with_one_line_and_a_readable_bag(small_d
     assert np.all(np.diff(pose.time_s) > 0) and pose.time_s[-1] < 600.0
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):
     bag = tmp_path / "run"
@@ -337,6 +343,7 @@ def _bad_bags(root: Path, good: Path) -> dict[str, tuple[Path, str]]:
                                                                           "not a directory")}
 
 
+@pytest.mark.slow
 def test_bad_bags_give_a_clear_error(wave_bag, tmp_path):
     for name, (path, message) in _bad_bags(tmp_path, wave_bag).items():
         with pytest.raises(BagError, match=message):
@@ -345,6 +352,7 @@ def test_bad_bags_give_a_clear_error(wave_bag, tmp_path):
         assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr, name
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 def test_wrong_topic_types_and_empty_bags_are_named(tmp_path):
     with BagWriter(tmp_path / "wrong") as writer:
@@ -360,6 +368,7 @@ def test_wrong_topic_types_and_empty_bags_are_named(tmp_path):
     assert "no topic /waves/elevation" in log and "Traceback" not in log
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 def test_an_existing_bag_is_not_overwritten_unless_asked(recorded_run, tmp_path):
     bag, _ = recorded_run
@@ -395,6 +404,7 @@ def test_the_shipped_sample_bags_hold_their_load_cases(case):
     assert abs(4 * elevation.values[:, 2].std() / sea.hs_m - 1) < 0.15
 
 
+@pytest.mark.slow
 @pytest.mark.ros
 def test_a_wave_bag_played_on_the_topic_is_recorded_again_bit_for_bit(wave_bag, tmp_path):
     """fowt-sim play into the node (wave_source topic, recording): the samples the node

@@ -36,6 +36,8 @@ from fowt_hydro_sim.physics.waves.components import WaveComponents, read_comp_fi
 from fowt_hydro_sim.testing import REPO
 from fowt_hydro_sim.testing.references import read_hydrodyn_out
 
+pytestmark = pytest.mark.reference  # against another code's output
+
 RHO, G = 1025.0, 9.80665
 RTEST = REPO / "test" / "data" / "openfast_rtest"
 R_A, R_B, Z_A, Z_B = 4.5, 4.45, -30.0, 10.0  # the r-test tapered cylinder
@@ -264,6 +266,7 @@ def test_rtest_regular_wave_comp_file_reproduces_hydrodyn_wave_elevation():
     assert math.hypot(c, s) == pytest.approx(5.0, rel=1e-6)
 
 
+@pytest.mark.slow
 def test_rtest_rectangular_member_free_surface_hydrostatics_match_hydrodyn(imported_rectangle):
     """hd_MHstLMod2_RectMmbr: the imported member (tapered 8 x 4 to 5 x 6 m, spun 60 deg,
     crossing the surface), held at rest in the regular wave (depth 200 m, MHstLMod 2, all
@@ -287,6 +290,7 @@ def test_rtest_rectangular_member_free_surface_hydrostatics_match_hydrodyn(impor
     (["--surface-grid", "5"], (1e-5,) * 6),  # measured 6.8e-7 2.3e-6 7.5e-8 3.3e-7 2.8e-7 4.6e-7
     ([], (2e-3, 1e-2, 2e-3, 2e-3, 2e-3, 2e-3)),  # measured 8.7e-4 5.7e-3 1.4e-4 9.7e-4 4.9e-4 5.8e-4
 ])
+@pytest.mark.slow
 def test_rtest_rectangular_member_imported_and_run_by_fowt_sim_loads_matches_hydrodyn(
         imported_rectangle, tmp_path, grid, tolerances):
     """The second r-test case end to end: the imported deck run by ``fowt-sim loads --hydrodyn

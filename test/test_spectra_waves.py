@@ -249,6 +249,7 @@ def test_delayed_is_time_shift() -> None:
 
 
 # --------------------------------------------------------------------------- .Comp files
+@pytest.mark.reference
 def test_read_comp_matches_reference_csv() -> None:
     """Oracle: the reference .csv (f, omega, a, phase, k) written beside the OpenFAST .Comp deck."""
     waves = read_comp_file(CYL_FIXED / "waves_jonswap_Hs11_Tp12_g4.9.Comp")

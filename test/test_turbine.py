@@ -60,6 +60,8 @@ def run_model(turbine_name: str, dt_s: float, duration_s: float, wind: Wind, rpm
     return dict(zip(("time_s", "rotor_speed_rad_s", "pitch_rad", "generator_torque_nm"), np.array(rows).T))
 
 
+@pytest.mark.reference
+@pytest.mark.rosco
 def test_a_wind_step_gives_rosco_simulators_trajectories(tmp_path):
     """Platform held fixed: the turbine model with ROSCO against rosco.toolbox.sim.Sim, same
     turbine, same DISCON.IN, wind 10 -> 14 m/s (each in its own process: ROSCO is global)."""
@@ -157,6 +159,7 @@ def linear_offset(thrust_n: float, hub_z_m: float, exact_hydrostatics: bool) -> 
     return np.linalg.solve(closed_form_stiffness(hub_z_m, exact_hydrostatics), thrust_n * np.array([1.0, 0.0, hub_z_m]))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("hydrostatics", ["linear", "nonlinear"])
 def test_steady_platform_pitch_under_the_mean_thrust_is_the_static_offset(hydrostatics):
     """The mean thrust at 13 m/s (1.5 MN) at the hub of the floating platform.
@@ -251,6 +254,7 @@ print(json.dumps(outputs))
 """
 
 
+@pytest.mark.reference
 @pytest.mark.rosco
 def test_the_c_interface_gives_the_rosco_toolboxs_commands_bit_for_bit():
     """The same 100 s of measurements through ROSCO's Python toolbox (ControllerInterface) and

@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from fowt_hydro_sim.testing import REPO
 
 # a fresh process: run the command under numba's compile-event recorder (cache misses only)
@@ -29,6 +31,7 @@ def run(args: list[str], cache: Path, count: bool = False) -> subprocess.Complet
                           env={**os.environ, "NUMBA_CACHE_DIR": str(cache)})
 
 
+@pytest.mark.slow
 def test_after_compile_a_first_simulate_compiles_nothing(tmp_path: Path):
     cache = tmp_path / "cache"
     warm = run(["compile"], cache, count=True)

@@ -98,6 +98,7 @@ def runs():
     return models, {name: model.run(1000.0, output_interval_s=0.1) for name, model in models.items()}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["blocks 370 s", "one-shot"])
 def test_block_boundaries_invisible_in_the_loads(runs, name: str) -> None:
     """Oracle: the same run with another block length and with the one-shot table: every load
@@ -138,6 +139,7 @@ def test_prescribed_motion_across_blocks_equals_one_shot(runs) -> None:
     assert relative_difference(got, expected) <= 1e-12
 
 
+@pytest.mark.slow
 def test_simulate_streams_the_same_run_as_one_call(tmp_path) -> None:
     """Oracle: ``run_model`` (the whole run in memory, as ``fowt-sim sweep`` runs it): the time
     series ``simulate`` writes part by part has its rows and the summary its statistics,
@@ -153,6 +155,7 @@ def test_simulate_streams_the_same_run_as_one_call(tmp_path) -> None:
     np.testing.assert_allclose(written["mooring_fx_n"], result.load("mooring")[:, 0], rtol=1e-8)
 
 
+@pytest.mark.slow
 def test_blocks_made_ahead_give_the_same_run(runs) -> None:
     """Oracle: the same model with every block made in the stepping thread (blocks_ahead
     False). A run in one call (1000 s of 150 s blocks: six boundaries) and a run stepped one

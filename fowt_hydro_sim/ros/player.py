@@ -166,13 +166,14 @@ def clock_bytes(time_ns: int) -> bytes:
 class Player:
     """Publishers for the selected topics (and /clock) on a node; ``play`` runs the schedule."""
 
-    def __init__(self, bag, topics: list[Topic], rate: float, clock: bool, loop: bool):
+    def __init__(self, bag, topics: list[Topic], rate: float, clock: bool, loop: bool, stall_s: float = STALL_S):
         import rclpy
         from rclpy.impl.implementation_singleton import rclpy_implementation
         from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
         self._error = rclpy_implementation.RCLError
         self.bag, self.topics, self.rate, self.clock, self.loop = bag, topics, rate, clock, loop
+        self.stall_s = stall_s
         self.node = rclpy.create_node("fowt_sim_play")
         self.publishers = {}
         self._unacked: dict[str, int] = {}  # reliable topics: messages published since the last acknowledgement
@@ -264,15 +265,15 @@ class Player:
 
     def _wait_for_acknowledgement(self, topic: str) -> None:
         """Until every subscriber of ``topic`` has acknowledged what was published on it, as
-        long as that takes; PlaybackStalled after STALL_S wall seconds without."""
+        long as that takes; PlaybackStalled after ``stall_s`` wall seconds without."""
         from rclpy.duration import Duration
 
         publisher, started = self.publishers[topic], time.monotonic()
         while not publisher.wait_for_all_acked(Duration(seconds=ACK_SLICE_S)):
-            if time.monotonic() - started > STALL_S:
+            if time.monotonic() - started > self.stall_s:
                 raise PlaybackStalled(
                     f"{topic}: a subscriber had not acknowledged the last {self._unacked[topic]} message(s) after "
-                    f"{STALL_S:g} s: playback given up after {self.played} messages, the rest is lost to it")
+                    f"{self.stall_s:g} s: playback given up after {self.played} messages, the rest is lost to it")
         self._unacked[topic] = 0
 
     def finish(self) -> None:
@@ -309,6 +310,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--wait-for-subscribers", type=int, default=0, metavar="N",
                    help="before playing, wait (at most 60 wall seconds) until every played topic has N "
                         "subscribers (default 0: do not wait)")
+    p.add_argument("--stall-timeout", type=float, default=STALL_S, metavar="S",
+                   help=f"give the playback up (exit 1) when a subscriber acknowledges nothing for S wall seconds "
+                        f"(default {STALL_S:g})")
     return p
 
 
@@ -327,6 +331,8 @@ def main(argv: list[str] | None = None) -> int:
             raise ValueError(f"--rate must be a finite number >= 0, got {args.rate:g}")
         if not (0 <= args.start_delay < float("inf")):
             raise ValueError(f"--start-delay must be a finite number >= 0, got {args.start_delay:g}")
+        if not (0 < args.stall_timeout < float("inf")):
+            raise ValueError(f"--stall-timeout must be a finite number > 0, got {args.stall_timeout:g}")
         bag, topics = open_bag(args.bag, args.topics, args.clock)
     except (BagError, ValueError) as exc:
         log.error(f"fowt-sim play: {exc}".splitlines()[0])
@@ -347,7 +353,7 @@ def main(argv: list[str] | None = None) -> int:
     code: int | None = 0  # None: stopped by the user
     start = time.monotonic()
     try:
-        player = Player(bag, topics, args.rate, args.clock, args.loop)
+        player = Player(bag, topics, args.rate, args.clock, args.loop, args.stall_timeout)
         count = sum(bag.topics[t.name].message_count for t in topics)
         log.info(f"playing {bag.path}: {count} messages on {len(topics)} topic(s) ({', '.join(t.name for t in topics)})"
                  f", rate {'as fast as possible' if args.rate == 0 else f'{args.rate:g}'}"
