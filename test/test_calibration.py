@@ -67,6 +67,7 @@ def test_a_hidden_cd_is_recovered_and_the_errors_closed(measured, platform):
     assert result.model_runs <= 20
 
 
+@pytest.mark.slow
 @pytest.mark.dask
 def test_fowt_sim_calibrate_on_a_local_dask_cluster_then_regress_and_predict(measured, tmp_path):
     out = tmp_path / "cal"

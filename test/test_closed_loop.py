@@ -49,6 +49,7 @@ def test_600_s_of_lc5_2_waves_and_13_m_s_wind(tmp_path):
     assert power.mean() == pytest.approx(15e6, rel=0.05)  # above rated: rated power on average
 
 
+@pytest.mark.slow
 @pytest.mark.reference
 @pytest.mark.rosco
 def test_held_fixed_the_turbine_node_gives_rosco_simulators_trajectories(tmp_path):

@@ -47,6 +47,7 @@ def drift_bags(tmp_path_factory, platform):
     return bags
 
 
+@pytest.mark.slow
 @pytest.mark.dask
 def test_diagnose_names_slow_drift_and_closes_the_blind_gap(drift_bags, tmp_path):
     out = tmp_path / "report"
@@ -82,6 +83,7 @@ def test_a_run_without_an_unmodelled_effect_raises_no_alarm(platform):
     assert len(diagnosis.baseline) == 2 and diagnosis.model_runs == 2
 
 
+@pytest.mark.slow
 @pytest.mark.dask
 def test_diagnose_benchmark_small(tmp_path):
     """The benchmark's own command on three scenarios: a wave-probe delay, a null and an

@@ -158,6 +158,7 @@ def test_a_first_seed_gives_other_realisations_of_the_same_scenarios(tmp_path):
 
 
 
+@pytest.mark.slow
 @pytest.mark.dask
 def test_diagnose_benchmark_independent_small(tmp_path):
     """``--source independent`` on the frequency-dependent drift and a null, 660 s records (60 s

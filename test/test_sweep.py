@@ -99,6 +99,7 @@ def test_std_intervals_cover_the_mean_of_seed_to_seed_stds():
         assert min(low for _, _, low, _ in draws) > 0
 
 
+@pytest.mark.slow
 @pytest.mark.dask
 def test_sweep_rows_are_single_simulate_runs_and_intervals_are_student_t(tmp_path: Path):
     """2 seeds x 2 drag models x 2 variants on a 2-worker LocalCluster, bags on; each row
@@ -151,6 +152,7 @@ def test_sweep_rows_are_single_simulate_runs_and_intervals_are_student_t(tmp_pat
         assert (float(s["ci_low"]), float(s["ci_high"])) == pytest.approx((low, high), rel=1e-9, abs=1e-14)
 
 
+@pytest.mark.slow
 @pytest.mark.dask
 def test_an_interrupted_sweep_resumes_without_redoing_finished_runs(tmp_path: Path):
     """Kill the command (and its cluster) once some rows are written, cut its last line as a
@@ -185,6 +187,7 @@ def test_an_interrupted_sweep_resumes_without_redoing_finished_runs(tmp_path: Pa
     assert len(after) == 9 and len(set(keys)) == 8
 
 
+@pytest.mark.slow
 @pytest.mark.dask
 def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
     """A sweep YAML (seeds as a count, a variant by coefficient path); bad entries named."""

@@ -60,6 +60,7 @@ def run_model(turbine_name: str, dt_s: float, duration_s: float, wind: Wind, rpm
     return dict(zip(("time_s", "rotor_speed_rad_s", "pitch_rad", "generator_torque_nm"), np.array(rows).T))
 
 
+@pytest.mark.slow
 @pytest.mark.reference
 @pytest.mark.rosco
 def test_a_wind_step_gives_rosco_simulators_trajectories(tmp_path):
@@ -254,6 +255,7 @@ print(json.dumps(outputs))
 """
 
 
+@pytest.mark.slow
 @pytest.mark.reference
 @pytest.mark.rosco
 def test_the_c_interface_gives_the_rosco_toolboxs_commands_bit_for_bit():
