@@ -5,7 +5,10 @@ bar on stderr (the results in order, or each as soon as it is ready).
 A local cluster's worker processes start with SIGINT blocked: Ctrl-C (which the terminal
 sends to the whole process group) is handled by this process alone, which shuts the cluster
 down (the client, then each worker, given ``WORKER_EXIT_S`` to exit, then the cluster) with
-Dask's own shutdown messages kept off the terminal; errors still show."""
+Dask's own shutdown messages kept off the terminal. The worker processes log only what is
+critical: a run's exception reaches the user through its result, a worker that dies through
+this process's nanny (a worker interrupted mid-run would otherwise print the tracebacks of
+its broken connections)."""
 from __future__ import annotations
 
 import asyncio
@@ -112,7 +115,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
     try:
         with _sigint_held():  # the cluster's thread and worker processes start with SIGINT blocked
             cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                                   host="127.0.0.1", silence_logs=logging.ERROR,  # (workers' warnings: errors only)
+                                   host="127.0.0.1", silence_logs=logging.CRITICAL,
                                    scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"})
             # (the scheduler's HTTP server on loopback, no dashboard)
             client = Client(cluster)
