@@ -4,6 +4,8 @@ Runs at import time, before any test module imports rclpy: ROS 2 discovery is co
 this machine (loopback only), and the caller's ROS_DOMAIN_ID is kept; without one, a domain
 id is derived from this checkout's path and the test session's process id, so that two
 checkouts (or two sessions) testing on one host at once do not see each other's nodes.
+Under pytest-xdist (``pytest -n 2``) each worker gets a domain of its own: the caller's id
+for the first worker, the next ids for the others.
 
 Test tiers are markers (pyproject.toml): the default run leaves out ``slow``. Tests that
 need ROS (rclpy, the message packages and a middleware) are marked ``ros``, those that need
@@ -27,8 +29,11 @@ def free_domain_id(key: str) -> int:
     return 1 + zlib.crc32(key.encode()) % 101
 
 
-if not os.environ.get("ROS_DOMAIN_ID"):
+if not os.environ.get("ROS_DOMAIN_ID"):  # (each xdist worker is a process of its own)
     os.environ["ROS_DOMAIN_ID"] = str(free_domain_id(f"{Path(__file__).resolve().parent}:{os.getpid()}"))
+elif os.environ.get("PYTEST_XDIST_WORKER", "gw0") != "gw0":
+    worker = int(os.environ["PYTEST_XDIST_WORKER"].removeprefix("gw"))
+    os.environ["ROS_DOMAIN_ID"] = str(1 + (int(os.environ["ROS_DOMAIN_ID"]) - 1 + worker) % 101)
 
 # marker -> (installed?, what to install)
 NEEDS = {
