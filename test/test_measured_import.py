@@ -149,7 +149,7 @@ def test_froude_scaling_of_a_free_decay_period_and_a_force_by_hand(tmp_path: Pat
     np.testing.assert_allclose(bag.scalar("/mooring/tension/fairlead").values[:, 0], 1_281_250.0, rtol=1e-12)
 
 
-def test_one_file_with_many_runs_hdf5_and_a_run_column(tmp_path: Path):
+def test_one_file_with_many_runs_hdf5_and_a_run_column_and_a_matlab_v73_file(tmp_path: Path):
     h5py = pytest.importorskip("h5py", reason="not installed: pip install '.[basin]'")
     runs = [full_scale_run(120.0), full_scale_run(100.0)]
     runs[1]["motion"] = runs[1]["motion"] * 0.5
@@ -164,6 +164,17 @@ def test_one_file_with_many_runs_hdf5_and_a_run_column(tmp_path: Path):
     assert [p.name for p, _ in written] == ["campaign_tests_irregular_01", "campaign_tests_irregular_02"]
     for (bag_path, _), run in zip(written, runs):
         assert_bag_is_the_run(bag_path, run)
+    # a MATLAB v7.3 file (HDF5 after a 512-byte MATLAB header; MATLAB stores vectors as 1 x n)
+    source = tmp_path / "campaign73.mat"
+    with h5py.File(source, "w", userblock_size=512) as stream:
+        for channel, values in model_scale_channels(runs[0]).items():
+            stream.create_dataset(f"test_03/{channel}", data=values.reshape(1, -1))
+    header = b"MATLAB 7.3 MAT-file, Platform: GLNXA64, HDF5 schema 1.00 .".ljust(116) + bytes(8) + b"\x00\x02IM"
+    with open(source, "r+b") as stream:
+        stream.write(header.ljust(512, b"\x00"))
+    [(bag_path, _)] = import_files([source], mapping, tmp_path / "v73")
+    assert bag_path.name == "campaign73"
+    assert_bag_is_the_run(bag_path, runs[0])
     # two runs in one table, told apart by a run column
     table = {**{k: np.concatenate([model_scale_channels(r)[k] for r in runs]) for k in model_scale_channels(runs[0])},
              "Run": np.concatenate([np.full(r["time"].size, i + 1.0) for i, r in enumerate(runs)])}
