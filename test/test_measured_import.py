@@ -237,6 +237,8 @@ def test_a_long_gap_is_refused_in_one_line_and_nothing_is_written(tmp_path: Path
     assert not (tmp_path / "bags").exists()
     assert main([*command, "--max-gap", "5"]) == 0
     assert "wrote" in capsys.readouterr().out
+    assert main([*command, "--max-gap", "5"]) == 2  # the bag is there
+    assert "exists (pass --overwrite to replace it)" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("edit, message", [

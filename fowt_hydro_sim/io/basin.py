@@ -221,7 +221,8 @@ def _number(text: str, path: Path, line: int, column: str) -> float:
     try:
         return float(text)
     except ValueError:
-        raise InputError(f"{path}: line {line}, column {column}: not a number: {text!r}") from None
+        hint = " (a units row? skip_rows: 1 in the column map skips it)" if line == 2 else ""
+        raise InputError(f"{path}: line {line}, column {column}: not a number: {text!r}{hint}") from None
 
 
 def _read_table(path: Path, mapping: ColumnMap, delimiter: str) -> list[RawRun]:

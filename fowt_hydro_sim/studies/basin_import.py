@@ -114,6 +114,9 @@ def import_files(paths: list[str | Path], mapping: ColumnMap, output: str | Path
     if len(set(names)) < len(names):
         twice = sorted({n for n in names if names.count(n) > 1})
         raise InputError(f"two runs would be written to the same bag: {', '.join(twice)} (rename a file)")
+    existing = [str(Path(output) / run.name) for run in runs if (Path(output) / run.name).exists()]
+    if existing and not overwrite:
+        raise InputError(f"{', '.join(existing)}: exists (pass --overwrite to replace it)")
     written = []
     for run in runs:
         for note in run.notes:
