@@ -28,7 +28,9 @@ PLOTS = ['matplotlib']
 CLUSTER = ['dask[distributed]']
 # every command's extras, and the tests' independent references: bag readers, OpenFAST's file
 # library, ROSCO's simulator (the turbine's oracle), MoorPy, capytaine (BEM)
-TEST = [*PLOTS, *CLUSTER, 'pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', ROSCO, 'moorpy',
+# fowt-sim measured import of HDF5 files (CSV/TSV and MATLAB .mat need no extra)
+BASIN = ['h5py']
+TEST = [*PLOTS, *CLUSTER, *BASIN, 'pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', ROSCO, 'moorpy',
         'capytaine>=3.0']
 
 # Top-level packages are listed explicitly so that a missing directory is a loud
@@ -84,6 +86,8 @@ setup(
         'hydrodyn': ['openfast-io>=5.0'],
         # rebuilding the independent simulator's BEM database (the stored one needs neither)
         'bem': ['capytaine>=3.0', 'xarray'],
+        # fowt-sim measured import: HDF5 basin files
+        'basin': BASIN,
         # diagnose-benchmark --source independent: the catenary mooring scenario (MoorPy's catenary)
         'benchmark': ['moorpy'],
     },

@@ -24,7 +24,8 @@ from fowt_hydro_sim.errors import InputError
 COMMAND_MODULES = {
     "simulate": "simulate", "load-cases": "simulate", "waves": "bags", "recover": "bags", "info": "bags",
     "analyze": "analyze", "calibrate": "calibrate", "diagnose": "diagnose", "diagnose-benchmark": "diagnose",
-    "loads": "prescribed_motion", "platform": "platform", "sweep": "sweep", "compile": "compile",
+    "loads": "prescribed_motion", "platform": "platform", "measured": "measured", "sweep": "sweep",
+    "compile": "compile",
 }
 # each subcommand's one-line help, as its module gives it (the top-level help imports no module)
 COMMAND_HELP = {
@@ -39,6 +40,7 @@ COMMAND_HELP = {
     "diagnose-benchmark": "score the diagnosis on runs whose effect is withheld",
     "loads": "loads for a prescribed motion (the HydroDyn driver's job), to CSV",
     "platform": "platform files: import an OpenFAST HydroDyn deck",
+    "measured": "measured runs: import basin files as bags",
     "sweep": "load cases x seeds x drag models x platform variants on a Dask cluster",
     "compile": "compile the model's kernels into the cache (set-up; first runs start fast)",
 }

@@ -9,10 +9,13 @@ from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, SeaState, load_platform
-from fowt_hydro_sim.studies.diagnosis.benchmark import INDEPENDENT_INJECTIONS
+from fowt_hydro_sim.studies.diagnosis.benchmark import INDEPENDENT_INJECTIONS, SPLIT_FILE, SPLIT_SETS
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
 from fowt_hydro_sim.studies.diagnosis.method import FIT_WINDOW_S
 from fowt_hydro_sim.studies.diagnosis.runner import REPLAY_DT_S
+
+# the generated scenario list's options and their defaults (not with --set)
+GENERATED = {"strengths": 2, "nulls": 10, "out_of_catalogue": 2}
 
 
 def _effects(names: list[str] | None) -> dict[str, Effect]:
@@ -45,9 +48,15 @@ def diagnose_command(args: argparse.Namespace) -> int:
 def benchmark_command(args: argparse.Namespace) -> int:
     from fowt_hydro_sim.studies.diagnosis.benchmark import benchmark
     platform, settings, effects, dt_s = _common(args)
+    given = [f"--{name.replace('_', '-')}" for name, default in GENERATED.items() if getattr(args, name) != default]
+    if args.scenario_set and given:
+        raise ConfigError(f"{', '.join(given)}: the scenarios of a --set are fixed in its file (--inject and "
+                          "--scenarios choose among them)")
     lines = benchmark(platform, settings, effects, Path(args.output), args.inject, args.strengths, args.nulls,
-                      args.out_of_catalogue, args.duration, args.max_evaluations, dt_s, args.scheduler, args.workers,
-                      args.source, options.values(args, SeaState, ("seed",))["seed"])
+                      args.out_of_catalogue, args.duration, args.max_evaluations, dt_s,
+                      args.scheduler, args.workers,
+                      args.source, options.values(args, SeaState, ("seed",))["seed"], args.scenario_set,
+                      args.scenarios)
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
 
@@ -93,13 +102,18 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                    help="simulator of the 'measured' runs (default %(default)s)")
     b.add_argument("--inject", nargs="+", help="effects to inject (default: all; twin: catalogue effects; "
                                                f"independent: {', '.join(INDEPENDENT_INJECTIONS)})")
-    b.add_argument("--strengths", type=int, default=2, choices=(0, 1, 2),
-                   help="strengths per injected effect (default %(default)s)")
-    b.add_argument("--nulls", type=int, default=10, help="null scenarios, noise and property errors only "
-                                                          "(default %(default)s)")
-    b.add_argument("--out-of-catalogue", type=int, default=2, choices=(0, 1, 2),
+    b.add_argument("--strengths", type=int, default=GENERATED["strengths"], choices=(0, 1, 2),
+                   help="strengths per injected effect; not with --set (default %(default)s)")
+    b.add_argument("--nulls", type=int, default=GENERATED["nulls"],
+                   help="null scenarios, noise and property errors only; not with --set (default %(default)s)")
+    b.add_argument("--out-of-catalogue", type=int, default=GENERATED["out_of_catalogue"], choices=(0, 1, 2),
                    help="out-of-catalogue scenarios, a rotor 1P pitch moment and wind thrust (independent: the "
-                        "1P moment only) (default %(default)s)")
+                        "1P moment only); not with --set (default %(default)s)")
+    b.add_argument("--set", dest="scenario_set", choices=SPLIT_SETS,
+                   help="with --source independent: the development or held-out scenarios fixed in "
+                        f"{SPLIT_FILE.name} (their seeds and load cases) instead of the generated list; --inject "
+                        "keeps the injected forms named (default: the generated list)")
+    b.add_argument("--scenarios", nargs="+", help="with --set: only these scenarios of the set (default: all)")
     b.add_argument("--duration", type=float, default=10800.0,
                    help="seconds per measured run (default %(default)s, 3 hours)")
     options.add(b, SeaState, ("seed",), defaults={"seed": None},

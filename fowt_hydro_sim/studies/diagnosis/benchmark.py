@@ -25,9 +25,10 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 from fowt_hydro_sim.errors import InputError
-from fowt_hydro_sim.physics.config import HydroOptions, Platform, load_case
+from fowt_hydro_sim.physics.config import HydroOptions, Platform, load_case, load_cases
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import scaled_added_mass, scaled_drag, scaled_mooring_stiffness
@@ -108,6 +109,10 @@ INDEPENDENT_INJECTIONS: dict[str, IndependentInjection] = {
     + list(INDEPENDENT_ONLY)}
 # the rotor's 1P pitch moment, out of the catalogue, in basin.py's form
 INDEPENDENT_OUT_OF_CATALOGUE = (("rotor_1p", {"amplitude_n_m": 6.0e7, "frequency_hz": 0.12}),)
+# the independent scenarios split into a development set (what the rules were looked at on)
+# and a held-out set (the headline score), fixed in this file
+SPLIT_FILE = Path(__file__).parent / "independent" / "data" / "split.yaml"
+SPLIT_SETS = ("development", "held-out")
 
 
 @dataclass(frozen=True)
@@ -121,6 +126,8 @@ class Scenario:
     values: dict[str, float]
     seed: int
     accepted: tuple[str, ...] = ()
+    tuning_cases: tuple[str, ...] = TUNING_CASES
+    blind_cases: tuple[str, ...] = BLIND_CASES
 
     @property
     def right_answers(self) -> tuple[str, ...]:
@@ -153,6 +160,37 @@ def independent_scenarios(effects: list[str] | None = None, strengths: int = 1, 
     out += [Scenario(name, "out_of_catalogue", name, values, 0)
             for name, values in INDEPENDENT_OUT_OF_CATALOGUE[:out_of_catalogue]]
     return [replace(s, seed=first_seed + 17 * i) for i, s in enumerate(out)]
+
+
+def split_scenarios(which: str, inject: list[str] | None = None, names: list[str] | None = None,
+                    path: Path = SPLIT_FILE) -> list[Scenario]:
+    """The independent benchmark's ``development`` or ``held-out`` scenarios as the split file
+    fixes them (names, forms, strengths, seeds, load cases); ``inject`` keeps the injected
+    scenarios of those forms (and every null and out-of-catalogue one), ``names`` only the
+    scenarios named."""
+    if which not in SPLIT_SETS:
+        raise InputError(f"--set: must be one of {', '.join(SPLIT_SETS)}, got {which!r}")
+    entries = yaml.safe_load(path.read_text())[which.replace("-", "_")]
+    known_cases = set(load_cases())
+    out = []
+    for entry in entries:
+        form = entry.get("form")
+        if entry["kind"] == "injected" and form not in INDEPENDENT_INJECTIONS:
+            raise InputError(f"{path}: {entry['name']}: unknown form {form!r}")
+        if not set(entry["tuning"]) | set(entry["blind"]) <= known_cases:
+            raise InputError(f"{path}: {entry['name']}: unknown load case in {entry['tuning'] + entry['blind']}")
+        accepted = INDEPENDENT_INJECTIONS[form].accepted if entry["kind"] == "injected" else ()
+        out.append(Scenario(entry["name"], entry["kind"], form, dict(entry.get("values") or {}), int(entry["seed"]),
+                            accepted, tuple(entry["tuning"]), tuple(entry["blind"])))
+    if inject:
+        out = [s for s in out if s.kind != "injected" or s.effect in inject]
+    if names:
+        unknown = [n for n in names if n not in {s.name for s in out}]
+        if unknown:
+            raise InputError(f"--scenarios: not in the {which} set: {', '.join(unknown)} "
+                             f"(it has: {', '.join(s.name for s in out)})")
+        out = [s for s in out if s.name in names]
+    return out
 
 
 def perturbed(platform: Platform, rng: np.random.Generator) -> Platform:
@@ -281,23 +319,21 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     the effect; independent: the Cummins/BEM simulator, cached in ``cache``), diagnose each
     with the plain model (``MODEL_OPTIONS[source]``), score it; ``report(score)`` is called as each
     scenario ends; each diagnosis's report is written to ``reports/SCENARIO`` if given."""
-    cases = TUNING_CASES + BLIND_CASES
-    jobs = [(s, c, True) for s in chosen for c in cases]
-    jobs += [(s, c, False) for s in chosen if s.kind == "injected" for c in TUNING_CASES]
+    jobs = truth_jobs(chosen)
     made = dict(zip([(s.name, c, w) for s, c, w in jobs],
                     map_with_progress(client, _truth_task, jobs, "measured runs", platform=platform,
                                       duration_s=duration_s, source=source, cache=cache)))
     scores = []
     for scenario in chosen:
         start = time.perf_counter()
-        tuning = [made[scenario.name, c, True] for c in TUNING_CASES]
-        blind = [made[scenario.name, c, True] for c in BLIND_CASES]
+        tuning = [made[scenario.name, c, True] for c in scenario.tuning_cases]
+        blind = [made[scenario.name, c, True] for c in scenario.blind_cases]
         evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s,
                                     MODEL_OPTIONS[source])
         diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations, progress=Progress())
         if reports is not None:
             write_report(diagnosis, reports / scenario.name.replace("#", "_"))
-        cells = (footprint(tuning, [made[scenario.name, c, False] for c in TUNING_CASES], settings)
+        cells = (footprint(tuning, [made[scenario.name, c, False] for c in scenario.tuning_cases], settings)
                  if scenario.kind == "injected" else [])
         scores.append(score_scenario(scenario, diagnosis, cells, time.perf_counter() - start))
         if report:
@@ -305,35 +341,70 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     return scores
 
 
+def chosen_scenarios(source: str, inject: list[str] | None = None, strengths: int = 2, nulls: int = 10,
+                     out_of_catalogue: int = 2, first_seed: int | None = None, scenario_set: str | None = None,
+                     names: list[str] | None = None) -> tuple[list[Scenario], str]:
+    """The scenarios a benchmark runs and the line saying which: a set of the split file
+    (``scenario_set``, the independent source), the independent source's generated list, or
+    the twin's."""
+    seed = {} if first_seed is None else {"first_seed": first_seed}  # else each source's own default
+    if scenario_set is not None:
+        chosen = split_scenarios(scenario_set, inject, names)
+        return chosen, f"scenario set: {scenario_set} ({len(chosen)} scenarios of {SPLIT_FILE.name})"
+    if source == "independent":
+        chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
+        return chosen, (f"scenario set: generated ({len(chosen)} scenarios: --inject, --strengths, --nulls, "
+                        "--out-of-catalogue)")
+    chosen = scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
+    return chosen, f"scenario set: twin ({len(chosen)} scenarios)"
+
+
+def truth_jobs(chosen: list[Scenario]) -> list[tuple[Scenario, str, bool]]:
+    """The measured runs a benchmark makes: (scenario, load case, with the effect) for each
+    scenario's tuning and blind cases, and its tuning cases without the effect (injected
+    scenarios: the footprint)."""
+    jobs = [(s, c, True) for s in chosen for c in s.tuning_cases + s.blind_cases]
+    return jobs + [(s, c, False) for s in chosen if s.kind == "injected" for c in s.tuning_cases]
+
+
 def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effect], output: Path,
               inject: list[str] | None = None, strengths: int = 2, nulls: int = 10, out_of_catalogue: int = 2,
               duration_s: float = DURATION_S, max_evaluations: int = 4, dt_s: float = REPLAY_DT_S,
               scheduler: str | None = None, workers: int | None = None, source: str = "twin",
-              first_seed: int | None = None) -> list[str]:
+              first_seed: int | None = None, scenario_set: str | None = None,
+              names: list[str] | None = None) -> list[str]:
     """``fowt-sim diagnose-benchmark``: every scenario on a Dask cluster; ``benchmark.json``
     in ``output`` (as each scenario ends, its score appended to ``scenarios.jsonl`` and its
     diagnosis written to ``reports/SCENARIO``; the independent source's runs cached in
     ``output/runs``); ``first_seed`` (default 1000 twin, 2000 independent) sets the scenarios'
-    realisations; returns the report's lines (one per scenario, then the summary)."""
+    realisations. ``scenario_set`` (independent source): the split file's ``development`` or
+    ``held-out`` scenarios instead of the generated list (``names``: only those), its seeds
+    fixed. Returns the report's lines (which scenarios ran, one line per scenario, then the
+    summary)."""
     if source not in SOURCES:
         raise InputError(f"--source: must be one of {', '.join(SOURCES)}, got {source!r}")
+    if scenario_set is not None and source != "independent":
+        raise InputError("--set: the development and held-out sets are the independent source's (--source "
+                         "independent)")
+    if names and scenario_set is None:
+        raise InputError("--scenarios: picks scenarios of a --set")
+    if scenario_set is not None and first_seed is not None:
+        raise InputError("--seed: the seeds of a --set are fixed in its file")
     known = INJECTIONS if source == "twin" else INDEPENDENT_INJECTIONS
     unknown = [n for n in inject or [] if n not in known]
     if unknown:
         raise InputError(f"--inject: unknown {', '.join(unknown)} (for {source}: {', '.join(known)})")
     if duration_s < settings.transient_s + 600:
         raise InputError(f"--duration: need at least the transient plus 600 s, got {duration_s:g} s")
-    seed = {} if first_seed is None else {"first_seed": first_seed}  # else each source's own default
+    chosen, ran = chosen_scenarios(source, inject, strengths, nulls, out_of_catalogue, first_seed, scenario_set, names)
     if source == "independent":
-        chosen = independent_scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
         if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
             raise InputError("--source independent: the catenary_mooring scenario needs moorpy "
                              "(pip install '.[benchmark]'), or leave it out with --inject")
-    else:
-        chosen = scenarios(inject, strengths, nulls, out_of_catalogue, **seed)
     output.mkdir(parents=True, exist_ok=True)
     (output / "scenarios.jsonl").unlink(missing_ok=True)
-    lines = []
+    lines = [ran]
+    logging.getLogger(__name__).info(ran)
 
     def report(score: Score) -> None:
         closure = '-' if score.blind_closure is None else f'{100 * score.blind_closure:.0f} %'
@@ -348,7 +419,8 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
         scores = run_benchmark(client, chosen, platform, settings, effects, duration_s, max_evaluations, report,
                                dt_s, source, output / "runs" if source == "independent" else None,
                                output / "reports")
-    figures = summary(scores)
+    figures = {"scenario_set": scenario_set or ("generated" if source == "independent" else "twin"),
+               **summary(scores)}
     (output / "benchmark.json").write_text(json.dumps({"summary": figures, "scenarios": [s.__dict__ for s in scores]},
                                                       indent=1) + "\n")
     return lines + [json.dumps(figures, indent=1)]

@@ -27,6 +27,9 @@ MODULES = (
     "added_mass_error",
     "kc_dependent_drag",
     "wave_measurement_delay",
+    "model_slow_drift",
+    "model_drag",
+    "model_restoring",
 )
 
 

@@ -1,0 +1,74 @@
+"""The independent benchmark's development and held-out scenarios: the split file's sets,
+fixed (the held-out set's content is pinned by its digest), disjoint in seeds and
+strengths, and ``diagnose-benchmark --set`` running either and saying which it ran."""
+from __future__ import annotations
+
+import hashlib
+import json
+from pathlib import Path
+
+import pytest
+import yaml
+
+from fowt_hydro_sim.cli import main
+from fowt_hydro_sim.studies.diagnosis import benchmark
+
+# sha256 of the held-out entries as canonical JSON: a change to the held-out set is deliberate
+HELD_OUT_DIGEST = "8c81f541dbea0de176082551ef703d50b718f5cc79a56a9a82bbfc5fd1a136b0"
+
+
+def _digest(entries: list[dict]) -> str:
+    return hashlib.sha256(json.dumps(entries, sort_keys=True).encode()).hexdigest()
+
+
+def test_the_development_set_is_every_scenario_the_rules_were_looked_at_on():
+    development = benchmark.split_scenarios("development")
+    generated = (benchmark.independent_scenarios(None, 2, 10, 2, 2000)
+                 + benchmark.independent_scenarios(None, 0, 7, 0, 3000))
+    key = lambda s: (s.kind, s.effect, s.values, s.seed, s.accepted, s.tuning_cases, s.blind_cases)  # noqa: E731
+    assert [key(s) for s in development] == [key(s) for s in generated]
+
+
+def test_the_held_out_set_is_fixed_and_apart_from_the_development_set():
+    entries = yaml.safe_load(benchmark.SPLIT_FILE.read_text())["held_out"]
+    assert _digest(entries) == HELD_OUT_DIGEST
+    development, held_out = benchmark.split_scenarios("development"), benchmark.split_scenarios("held-out")
+    assert not {s.seed for s in development} & {s.seed for s in held_out}
+    assert not {s.name for s in development} & {s.name for s in held_out}
+    strengths = lambda scenarios: {(s.effect, json.dumps(s.values, sort_keys=True))  # noqa: E731
+                                   for s in scenarios if s.kind != "null"}
+    assert not strengths(development) & strengths(held_out)
+    kinds = [s.kind for s in held_out]
+    assert kinds.count("null") >= 10 and kinds.count("out_of_catalogue") >= 2
+    assert {s.effect for s in held_out if s.kind == "injected"} == set(benchmark.INDEPENDENT_INJECTIONS)
+    assert all(s.accepted == benchmark.INDEPENDENT_INJECTIONS[s.effect].accepted
+               for s in held_out if s.kind == "injected")
+    assert {s.tuning_cases for s in held_out} == {("lc5.1", "lc5.2", "lc5.3"), ("lc5.2", "lc5.3", "lc5.4")}
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--set", "held-out"], "--set: the development and held-out sets are the independent source's"),
+    (["--source", "independent", "--set", "held-out", "--scenarios", "null#99"], "--scenarios: not in the held-out"),
+    (["--source", "independent", "--set", "development", "--seed", "5"], "--seed: the seeds of a --set are fixed"),
+    (["--source", "independent", "--set", "development", "--nulls", "3"], "--nulls: the scenarios of a --set"),
+    (["--source", "independent", "--scenarios", "null#h1"], "--scenarios: picks scenarios of a --set"),
+])
+def test_set_options_given_wrongly_are_one_line(tmp_path: Path, capsys, args: list[str], message: str):
+    assert main(["diagnose-benchmark", *args, "-o", str(tmp_path)]) == 2
+    error = capsys.readouterr().err
+    assert message in error and len(error.strip().splitlines()) == 1, error
+
+
+def test_a_set_is_run_with_each_scenarios_own_load_cases_and_the_benchmark_says_which_set():
+    chosen, line = benchmark.chosen_scenarios("independent", scenario_set="held-out", names=["null#h2", "null#h3"])
+    assert line == "scenario set: held-out (2 scenarios of split.yaml)"
+    assert [(s.name, c, w) for s, c, w in benchmark.truth_jobs(chosen)] == [
+        ("null#h2", c, True) for c in ("lc5.2", "lc5.3", "lc5.4", "lc6.1", "lc6.4")] + [
+        ("null#h3", c, True) for c in ("lc5.1", "lc5.2", "lc5.3", "lc6.1", "lc6.4")]
+    chosen, line = benchmark.chosen_scenarios("independent", ["mixed_damping"], scenario_set="held-out")
+    assert line == "scenario set: held-out (15 scenarios of split.yaml)"
+    assert {s.effect for s in chosen if s.kind == "injected"} == {"mixed_damping"}
+    injected = [s for s in chosen if s.kind == "injected"][1]
+    assert [c for s, c, w in benchmark.truth_jobs([injected]) if not w] == ["lc5.2", "lc5.3", "lc5.4"]
+    _, line = benchmark.chosen_scenarios("independent", strengths=1, nulls=1, out_of_catalogue=0)
+    assert line.startswith("scenario set: generated (4 scenarios")
