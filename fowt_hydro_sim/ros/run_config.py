@@ -42,7 +42,8 @@ def write_params_file(config: dict, path: str | Path) -> Path:
     document = {"fowt_hydro_sim": {"ros__parameters": parameters}}
     if "turbine_parameters" in config:
         document["fowt_turbine"] = {"ros__parameters": {**config["turbine_parameters"],
-                                                        "platform": str(platform_file.resolve())}}
+                                                        "platform": str(platform_file.resolve()),
+                                                        "wait_for_subscribers": 0, "rosco_debug_dir": ""}}
     path.write_text(yaml.safe_dump(document, sort_keys=False))
     return path
 
