@@ -324,19 +324,39 @@ def test_the_hub_motion_from_the_platforms_twist():
     assert hub_motion(2.0, np.ones(6), second, h, fixed=True) == HubMotion(2.0, 0.0, 0.0, 0.0, 0.0)
 
 
+_ACCELERATIONS = """
+import sys
+from pathlib import Path
+from fowt_hydro_sim.turbine.description import load_turbine
+from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
+from fowt_hydro_sim.turbine.rosco import Rosco
+from fowt_hydro_sim.turbine.rotor import TurbineModel
+turbine = load_turbine()
+rosco = Rosco(turbine.discon_path, turbine.controller_dt_s, turbine.generator_efficiency, logging_level=2)
+model = TurbineModel(turbine, RotorCoefficients(read_table(turbine.performance_path)), rosco,
+                     turbine.rated_rotor_speed_rad_s)
+try:
+    for _ in range(20):
+        model.step(13.0, 0.1, 0.002, fore_aft_acceleration_m_s2=0.3)
+finally:
+    kept = rosco.close(Path(sys.argv[1]))
+print(" ".join(sorted(p.name for p in kept)))
+"""
+
+
+@pytest.mark.slow
 def test_rosco_gets_the_fore_aft_acceleration_and_its_debug_channels_are_kept(tmp_path):
     """ROSCO's own record of its inputs (LoggingLevel 2: its local variables, .dbg2) holds the
-    fore-aft and pitch accelerations given, and its debug channels (.dbg) are kept."""
-    turbine = load_turbine()
-    rosco = Rosco(turbine.discon_path, turbine.controller_dt_s, turbine.generator_efficiency, logging_level=2)
-    model = TurbineModel(turbine, RotorCoefficients(read_table(turbine.performance_path)), rosco,
-                         turbine.rated_rotor_speed_rad_s)
-    try:
-        for _ in range(20):
-            model.step(13.0, 0.1, 0.002, fore_aft_acceleration_m_s2=0.3)
-    finally:
-        kept = rosco.close(tmp_path / "debug")
-    assert sorted(p.name for p in kept) == ["rosco.RO.dbg", "rosco.RO.dbg2"]
+    fore-aft and pitch accelerations given, and its debug channels (.dbg) are kept. In a
+    child process: ROSCO is one instance per process."""
+    import subprocess
+    import sys
+
+    from fowt_hydro_sim.testing import REPO
+    done = subprocess.run([sys.executable, "-c", _ACCELERATIONS, str(tmp_path / "debug")], cwd=REPO,
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip().splitlines()[-1] == "rosco.RO.dbg rosco.RO.dbg2"
     lines = (tmp_path / "debug" / "rosco.RO.dbg2").read_text().splitlines()
     names = lines[1].split()
     rows = np.array([[float(v) for v in line.split()] for line in lines[3:]])
