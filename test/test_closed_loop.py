@@ -161,7 +161,8 @@ def test_a_silent_controller_is_given_up_after_its_timeouts_in_a_row():
 
 
 @pytest.mark.parametrize("bad, named", [(["--wind-speed", "100"], "--wind-speed"), (["--duration", "0"], "--duration"),
-                                        (["--turbine", "nope"], "turbine 'nope'"), (["--wind", "file"], "wind_file")])
+                                        (["--turbine", "nope"], "turbine 'nope'"), (["--wind", "file"], "wind_file"),
+                                        (["--params-file", "nope.yaml"], "--params-file nope.yaml: cannot be read")])
 @pytest.mark.slow
 def test_closed_loop_refuses_bad_input_in_one_line(tmp_path, bad, named):
     done = fowt_sim("closed-loop", "-o", str(tmp_path / "b"), *bad, timeout=120)
