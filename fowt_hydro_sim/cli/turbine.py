@@ -1,6 +1,8 @@
 """``fowt-sim closed-loop``: the platform node and the ROSCO-driven turbine node in lockstep,
-recorded to one bag (``ros.closed_loop``). Its options are the two nodes' settings; the
-ROS modules are imported only when the command runs."""
+recorded to one bag with the run's configuration (``ros.closed_loop``). Its options are the
+two nodes' settings, or a parameter file of both (``--params-file``, as ``fowt-sim info``
+writes it from a closed loop's bag) with the options given over it; the ROS modules are
+imported only when the command runs."""
 from __future__ import annotations
 
 import argparse
@@ -30,10 +32,11 @@ def parser(defaults: bool = True) -> argparse.ArgumentParser:
     p.add_argument("--params-file", help="both nodes' parameters from this file (fowt-sim info BAG --params-file "
                                          "writes it from a closed loop's bag: the run repeated); options given "
                                          "here override it (default: none)")
-    options.add(p.add_argument_group("platform node"), NodeSettings, NODE_OPTIONS,
+    platform = p.add_argument_group("platform node")
+    options.add(platform, NodeSettings, NODE_OPTIONS,
                 defaults={"duration_s": 600.0, "real_time_factor": 0.0, "load_case": "lc5.2", "initial_state": None},
                 notes={"initial_state": "; not given: the static offset under the initial thrust"})
-    p.add_argument("--still-water", action="store_true", help="no waves (the node's wave_source none)")
+    platform.add_argument("--still-water", action="store_true", help="no waves (the node's wave_source none)")
     options.add(p.add_argument_group("turbine node"), TurbineSettings, TURBINE_OPTIONS)
     if not defaults:
         p.set_defaults(**{a.dest: None for a in p._actions if a.dest != "help"})

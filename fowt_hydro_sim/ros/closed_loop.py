@@ -1,7 +1,9 @@
 """``fowt-sim closed-loop``: the platform node and the turbine node (ROSCO) in lockstep, and
-one bag recording both (``fowt-sim record``), as three child processes on the caller's ROS
-domain. Returns when the platform node has stepped its duration (or stopped), after
-stopping the turbine and closing the bag."""
+one bag recording both (``fowt-sim record``, given the run's configuration: both nodes'
+parameters, the platform and the sea state), as three child processes on the caller's ROS
+domain. Returns when the platform node has stepped its duration (or stopped, or lost its
+controller as its controller_lost says), after stopping the turbine and closing the bag;
+Ctrl-C stops all three cleanly."""
 from __future__ import annotations
 
 import logging
