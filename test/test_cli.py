@@ -341,3 +341,18 @@ def test_without_dask_a_sweep_is_refused_in_one_line_naming_the_extra(tmp_path: 
     assert [line for line in done.stderr.splitlines() if "error" in line] == [
         "fowt-sim sweep: error: this command runs on a Dask cluster, and Dask is not installed: "
         "pip install 'fowt_hydro_sim[cluster]'"], done.stderr
+
+
+@pytest.mark.slow
+@pytest.mark.ros
+@pytest.mark.parametrize("command, module, settings", [("turbine", "turbine_node", "TurbineSettings"),
+                                                       ("controller", "thrust_controller", "ControllerSettings")])
+def test_the_other_nodes_help_lists_their_parameters(command, module, settings):
+    pytest.importorskip("rclpy")
+    import importlib
+
+    from fowt_hydro_sim.settings import described
+    done = fowt_sim(command, "--help")
+    assert done.returncode == 0, done.stderr
+    listed = {line.split()[0] for line in done.stdout.splitlines() if line.startswith("  ")}
+    assert listed == set(described(getattr(importlib.import_module(f"fowt_hydro_sim.ros.{module}"), settings)))

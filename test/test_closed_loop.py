@@ -3,8 +3,14 @@ NREL's ROSCO as child processes, recorded to one bag; and the faults: the turbin
 mid-run, ROSCO refusing its input file."""
 from __future__ import annotations
 
+import inspect
+import os
 import re
 import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,7 +22,7 @@ from rosgraph_msgs.msg import Clock  # noqa: E402
 
 from fowt_hydro_sim.ros import closed_loop  # noqa: E402
 from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
-from fowt_hydro_sim.testing import fowt_sim, rosco_oracle  # noqa: E402
+from fowt_hydro_sim.testing import REPO, fowt_sim, rosco_oracle  # noqa: E402
 from fowt_hydro_sim.testing.ros import Listener, finish, start  # noqa: E402
 from fowt_hydro_sim.turbine.description import load_turbine, turbine_path  # noqa: E402
 from msg_adapters import topics  # noqa: E402
@@ -155,7 +161,8 @@ def test_a_silent_controller_is_given_up_after_its_timeouts_in_a_row():
 
 
 @pytest.mark.parametrize("bad, named", [(["--wind-speed", "100"], "--wind-speed"), (["--duration", "0"], "--duration"),
-                                        (["--turbine", "nope"], "turbine 'nope'"), (["--wind", "file"], "wind_file")])
+                                        (["--turbine", "nope"], "turbine 'nope'"), (["--wind", "file"], "wind_file"),
+                                        (["--params-file", "nope.yaml"], "--params-file nope.yaml: cannot be read")])
 @pytest.mark.slow
 def test_closed_loop_refuses_bad_input_in_one_line(tmp_path, bad, named):
     done = fowt_sim("closed-loop", "-o", str(tmp_path / "b"), *bad, timeout=120)
@@ -163,3 +170,208 @@ def test_closed_loop_refuses_bad_input_in_one_line(tmp_path, bad, named):
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and named in lines[0] and "Traceback" not in done.stderr
     assert not (tmp_path / "b").exists()  # nothing started
+
+
+# ---------------------------------------------------------------------- the command as a user runs it
+INITIAL = (0.0, 0.0, 0.0, 0.0, 0.1, 0.0)
+
+
+@pytest.fixture(scope="module")
+def loop_bag(tmp_path_factory):
+    """``fowt-sim closed-loop`` for 3 s in still water from a given initial state, ROSCO's
+    debug channels asked for; its bag and the command's result."""
+    bag = tmp_path_factory.mktemp("cli") / "loop"
+    done = fowt_sim("closed-loop", "-o", bag, "--duration", 3, "--initial", *INITIAL, "--still-water",
+                    "--rosco-logging", 1, timeout=900)
+    return bag, done
+
+
+@pytest.mark.slow
+def test_the_command_takes_the_initial_state_and_still_water(loop_bag):
+    bag_path, done = loop_bag
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert re.fullmatch(r"closed loop: 3\.0 s simulated in [\d.]+ s .*\n", done.stdout), done.stdout
+    bag = Bag(bag_path)
+    motion = bag.motion()
+    assert motion.time_s[0] == 0.0 and np.allclose(motion.values[0], INITIAL, atol=1e-9)
+    assert np.all(bag.series("/waves/elevation_used").values[:, 2] == 0.0)  # still water
+
+
+@pytest.mark.slow
+def test_the_bag_holds_one_sample_per_stamp_from_the_first(loop_bag):
+    bag = Bag(loop_bag[0])
+    odom = bag.series("/platform/odom").time_s  # sorted, repeated stamps dropped
+    assert odom[0] == 0.0 and odom[-1] == pytest.approx(3.0)
+    for topic in ("/platform/odom", "/platform/external_wrench", *(t for t, _ in topics.TURBINE.values())):
+        assert np.array_equal(bag.series(topic).time_s, odom), topic
+        assert bag.topics[topic].message_count == len(odom), topic  # no stamp twice
+
+
+@pytest.mark.slow
+def test_the_bag_reruns_the_loop_and_keeps_roscos_debug_channels(loop_bag, tmp_path):
+    bag_path, done = loop_bag
+    assert done.returncode == 0
+    config = Bag(bag_path).config
+    assert config["parameters"]["initial_state"] == list(INITIAL)
+    assert config["parameters"]["wave_source"] == "none"
+    assert config["turbine_parameters"]["wind_speed_m_s"] == 13.0
+    params = tmp_path / "run.yaml"
+    info = fowt_sim("info", bag_path, "--params-file", params, timeout=120)
+    assert info.returncode == 0, info.stderr
+    assert "closed-loop" in info.stderr and "--params-file" in info.stderr
+    again = tmp_path / "again"
+    rerun = fowt_sim("closed-loop", "-o", again, "--params-file", params, timeout=900)
+    assert rerun.returncode == 0, rerun.stdout + rerun.stderr
+    first, second = Bag(bag_path), Bag(again)
+    assert np.array_equal(first.motion().values, second.motion().values)  # lockstep: the same run
+    assert np.array_equal(first.scalar("/turbine/blade_pitch").values, second.scalar("/turbine/blade_pitch").values)
+    debug = Path(f"{bag_path}.logs") / "rosco" / "rosco.RO.dbg"
+    lines = debug.read_text().splitlines()
+    header = lines[1].split()
+    assert header[0] == "Time" and "FA_AccF" in header and "NacIMU_FA_AccF" in header
+    rows = np.array([[float(v) for v in line.split()] for line in lines[3:]])
+    assert len(rows) >= 3.0 / load_turbine().controller_dt_s - 1  # every controller step of the run
+    rerun_debug = (Path(f"{again}.logs") / "rosco" / "rosco.RO.dbg").read_text().splitlines()
+    assert rerun_debug[1:] == lines[1:]  # the rerun's own, beside its bag: the same channels, row for row
+
+
+@pytest.mark.slow
+def test_ctrl_c_ends_the_command_with_a_summary_and_a_readable_bag(tmp_path):
+    """Ctrl-C at a terminal: SIGINT to the command and its three processes (one process group)."""
+    bag_path = tmp_path / "loop"
+    listener = Listener({"/clock": Clock})
+    command = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "closed-loop", "-o", str(bag_path),
+                                "--duration", "600"], cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True, start_new_session=True)
+    try:
+        assert clock_after(listener, 1.0, 600.0)
+        os.killpg(command.pid, signal.SIGINT)
+        out, err = command.communicate(timeout=120)
+    finally:
+        if command.poll() is None:
+            os.killpg(command.pid, signal.SIGKILL)
+        listener.close()
+    assert command.returncode == 130, out + err
+    assert "Traceback" not in out + err
+    assert re.fullmatch(r"closed loop interrupted: [\d.]+ s simulated in [\d.]+ s .*\n", out), out
+    assert Bag(bag_path).series("/platform/odom").time_s[-1] >= 1.0  # closed, readable
+
+
+@pytest.mark.slow
+def test_controller_lost_open_loop_goes_on_after_the_turbine_is_killed(tmp_path):
+    bag_path = tmp_path / "loop"
+    listener = Listener({"/clock": Clock})
+    command = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "closed-loop", "-o", str(bag_path),
+                                "--duration", "12", "--controller-lost", "open_loop", "--lockstep-timeout", "1"],
+                               cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert clock_after(listener, 2.0, 600.0)
+        turbine = [pid for pid in child_pids(command.pid) if b"turbine" in Path(f"/proc/{pid}/cmdline").read_bytes()]
+        assert len(turbine) == 1
+        os.kill(turbine[0], signal.SIGKILL)
+        out, err = command.communicate(timeout=600)
+    finally:
+        if command.poll() is None:
+            command.kill()
+        listener.close()
+    assert "closed loop: 12.0 s simulated" in out, out + err
+    node_log = (tmp_path / "loop.logs" / "node.log").read_text()
+    assert "going on open loop" in node_log
+    assert Bag(bag_path).series("/platform/odom").time_s[-1] == pytest.approx(12.0)
+
+
+def child_pids(pid: int) -> list[int]:
+    """The process ids whose parent is ``pid`` (from /proc)."""
+    children = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid:
+            children.append(int(stat.parent.name))
+    return children
+
+
+def test_the_loop_has_no_wall_clock_limit():
+    """A 3-hour closed loop at under 3x real time takes over an hour: the wrapper waits for
+    the platform node, however long (a limit only when the caller gives one)."""
+    assert inspect.signature(closed_loop.run).parameters["timeout_s"].default is None
+
+
+@pytest.mark.slow
+def test_one_wind_speed_default_everywhere():
+    from fowt_hydro_sim.cli.turbine import parser
+    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.turbine.wind import Wind
+
+    args = parser().parse_args(["-o", "x"])
+    assert args.wind_speed_m_s == TurbineSettings.wind_speed_m_s == Wind.speed_m_s == 13.0
+    assert args.wind_end_m_s == TurbineSettings.wind_end_m_s == Wind.end_m_s == 13.0
+
+
+@pytest.mark.slow
+def test_the_turbine_answers_each_stamp_once(tmp_path):
+    """An odometry sent again (same stamp): the wrench again, the turbine's state not twice."""
+    from geometry_msgs.msg import Vector3Stamped, WrenchStamped
+    from nav_msgs.msg import Odometry
+
+    import msg_adapters as adapt
+
+    listener = Listener({"/turbine/rotor_speed": Vector3Stamped, topics.EXTERNAL_WRENCH: WrenchStamped})
+    odometry = listener.publisher(Odometry, topics.MOTION["odom"][0])
+    turbine = start("turbine")
+    try:
+        assert listener.wait_for(lambda: odometry.get_subscription_count() == 1 and listener.node.count_publishers(
+            "/turbine/rotor_speed") == 1, 120.0), finish(turbine, 5)
+        time.sleep(0.5)
+        zero = np.zeros(6)
+        for t in (0.0, 0.0, 0.05):
+            wrenches = len(listener.messages[topics.EXTERNAL_WRENCH]) + 1
+            odometry.publish(adapt.odometry_msg(t, zero, zero))
+            assert listener.wait_for(lambda n=wrenches: len(listener.messages[topics.EXTERNAL_WRENCH]) >= n, 60.0)
+        time.sleep(0.5)
+    finally:
+        finish(turbine, 5)
+        listener.close()
+    stamps = [m.header.stamp.sec + 1e-9 * m.header.stamp.nanosec for m in listener.messages["/turbine/rotor_speed"]]
+    assert stamps == pytest.approx([0.0, 0.05])
+    wrench = [m.header.stamp.sec + 1e-9 * m.header.stamp.nanosec for m in listener.messages[topics.EXTERNAL_WRENCH]]
+    assert wrench == pytest.approx([0.0, 0.0, 0.05])
+
+
+@pytest.mark.slow
+def test_a_slow_controller_gets_each_odometry_once(tmp_path):
+    """A controller answering 0.8 s after each odometry (a loaded machine): the node waits
+    without sending the state again, and its bag holds one sample per stamp."""
+    from geometry_msgs.msg import WrenchStamped
+    from nav_msgs.msg import Odometry
+
+    import msg_adapters as adapt
+
+    listener = Listener({"/platform/odom": Odometry})
+    wrench = listener.publisher(WrenchStamped, topics.EXTERNAL_WRENCH)
+    bag_path = tmp_path / "run"
+    node = start("node", lockstep=True, real_time_factor=0.0, duration_s=2.0, publish_rate_hz=2.0,
+                 record=str(bag_path), hs_m=0.01, tp_s=10.0)
+    answered: list[float] = []
+    try:
+        deadline = time.monotonic() + 300.0
+        while node.poll() is None and time.monotonic() < deadline:
+            stamps = [m.header.stamp.sec + 1e-9 * m.header.stamp.nanosec for m in listener.messages["/platform/odom"]]
+            new = [t for t in stamps if t not in answered]
+            if new:
+                time.sleep(0.8)
+                answered.append(new[0])
+                wrench.publish(adapt.wrench_msg(new[0], np.zeros(6), "hub"))
+            time.sleep(0.05)
+        output = finish(node, 60.0)
+    finally:
+        finish(node, 5.0)
+        listener.close()
+    assert node.returncode == 0, output[-3000:]
+    stamps = [m.header.stamp.sec + 1e-9 * m.header.stamp.nanosec for m in listener.messages["/platform/odom"]]
+    assert stamps == pytest.approx([0.0, 0.5, 1.0, 1.5, 2.0])
+    bag = Bag(bag_path)
+    for topic in ("/platform/odom", "/platform/pose", "/clock"):
+        assert bag.topics[topic].message_count == 5, topic

@@ -15,7 +15,7 @@ from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.discon import ControllerError
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rosco import Rosco
-from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads
+from fowt_hydro_sim.turbine.rotor import HubMotion, TurbineModel, aero_loads, hub_motion
 from fowt_hydro_sim.turbine.wind import Wind, read_series
 
 RPM = 2 * np.pi / 60
@@ -309,3 +309,58 @@ def test_bad_turbine_parameters_end_with_one_line(args: dict, message: str):
     output = finish(turbine, 60)
     assert turbine.returncode == 2 and message in output and "Traceback" not in output, output
     assert "Invalid parameter" not in output, output
+
+
+def test_the_hub_motion_from_the_platforms_twist():
+    """The thrust point at h above the reference point: fore-aft velocity u + h q (body x of
+    v + omega x r); accelerations as backward differences from the last odometry."""
+    h, dt = 150.0, 0.05
+    first = hub_motion(1.0, np.array([0.5, 0.0, 0.0, 0.0, 0.01, 0.0]), None, h)
+    assert first.velocity_m_s == pytest.approx(0.5 + h * 0.01)
+    assert first.pitch_acceleration_rad_s2 == first.fore_aft_acceleration_m_s2 == 0.0
+    second = hub_motion(1.0 + dt, np.array([0.52, 0.0, 0.0, 0.0, 0.012, 0.0]), first, h)
+    assert second.pitch_acceleration_rad_s2 == pytest.approx(0.002 / dt)
+    assert second.fore_aft_acceleration_m_s2 == pytest.approx((0.02 + h * 0.002) / dt)
+    assert hub_motion(2.0, np.ones(6), second, h, fixed=True) == HubMotion(2.0, 0.0, 0.0, 0.0, 0.0)
+
+
+_ACCELERATIONS = """
+import sys
+from pathlib import Path
+from fowt_hydro_sim.turbine.description import load_turbine
+from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
+from fowt_hydro_sim.turbine.rosco import Rosco
+from fowt_hydro_sim.turbine.rotor import TurbineModel
+turbine = load_turbine()
+rosco = Rosco(turbine.discon_path, turbine.controller_dt_s, turbine.generator_efficiency, logging_level=2)
+model = TurbineModel(turbine, RotorCoefficients(read_table(turbine.performance_path)), rosco,
+                     turbine.rated_rotor_speed_rad_s)
+try:
+    for _ in range(20):
+        model.step(13.0, 0.1, 0.002, fore_aft_acceleration_m_s2=0.3)
+finally:
+    kept = rosco.close(Path(sys.argv[1]))
+print(" ".join(sorted(p.name for p in kept)))
+"""
+
+
+@pytest.mark.slow
+def test_rosco_gets_the_fore_aft_acceleration_and_its_debug_channels_are_kept(tmp_path):
+    """ROSCO's own record of its inputs (LoggingLevel 2: its local variables, .dbg2) holds the
+    fore-aft and pitch accelerations given, and its debug channels (.dbg) are kept. In a
+    child process: ROSCO is one instance per process."""
+    import subprocess
+    import sys
+
+    from fowt_hydro_sim.testing import REPO
+    done = subprocess.run([sys.executable, "-c", _ACCELERATIONS, str(tmp_path / "debug")], cwd=REPO,
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip().splitlines()[-1] == "rosco.RO.dbg rosco.RO.dbg2"
+    lines = (tmp_path / "debug" / "rosco.RO.dbg2").read_text().splitlines()
+    names = lines[1].split()
+    rows = np.array([[float(v) for v in line.split()] for line in lines[3:]])
+    assert len(rows) == 21 and rows[0, 0] == 0.0  # its start (ROSCO zeroes the accelerations there), each step
+    assert np.allclose(rows[1:, names.index("FA_Acc_TT")], 0.3, rtol=1e-6)
+    assert np.allclose(rows[1:, names.index("NacIMU_FA_RAcc")], 0.002, rtol=1e-6)
+    assert "FA_AccF" in (tmp_path / "debug" / "rosco.RO.dbg").read_text().splitlines()[1].split()

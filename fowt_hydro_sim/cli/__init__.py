@@ -57,12 +57,19 @@ ROS_COMMANDS = {
 }
 
 
-def node_help() -> str:
-    """The node's parameters with their defaults, meanings and ranges (from its settings)."""
-    from fowt_hydro_sim.ros.node import NodeSettings
+# the ROS node commands and the settings (module, class) their parameters come from
+NODE_SETTINGS = {"node": ("fowt_hydro_sim.ros.node", "NodeSettings"),
+                 "controller": ("fowt_hydro_sim.ros.thrust_controller", "ControllerSettings"),
+                 "turbine": ("fowt_hydro_sim.ros.turbine_node", "TurbineSettings")}
+
+
+def node_help(command: str = "node") -> str:
+    """A node command's parameters with their defaults, meanings and ranges (from its settings)."""
     from fowt_hydro_sim.settings import described
+    module, name = NODE_SETTINGS[command]
+    settings = getattr(importlib.import_module(module), name)
     lines = ["", "parameters (-p name:=value):"]
-    for name, item in described(NodeSettings).items():
+    for name, item in described(settings).items():
         default = list(item.default) if isinstance(item.default, tuple) else item.default
         limits = item.setting.range_text()
         lines.append(f"  {name} (default {default!r}{'; ' + limits if limits else ''}): {item.setting.description}")
@@ -70,9 +77,8 @@ def node_help() -> str:
 
 
 def _ros_command(name: str, argv: list[str]) -> int:
-    if name in ("node", "controller", "turbine") and any(a in ("-h", "--help") for a in argv[:1]):
-        sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n" + (node_help() + "\n" if name == "node"
-                                                                                else ""))
+    if name in NODE_SETTINGS and any(a in ("-h", "--help") for a in argv[:1]):
+        sys.stdout.write(f"usage: {ROS_COMMANDS[name].split(': ', 1)[1]}\n{node_help(name)}\n")
         return 0
     if name == "node":
         from fowt_hydro_sim.ros.node import main as run

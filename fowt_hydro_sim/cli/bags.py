@@ -36,8 +36,11 @@ def info(args: argparse.Namespace) -> int:
     bag = Bag(args.bag)
     sys.stdout.write(bag.summary() + "\n")
     if args.params_file:
-        log.info(f"{write_params_file(bag.config or {}, args.params_file)}: rerun with fowt-sim node --ros-args "
-                 f"--params-file {args.params_file}")
+        written = write_params_file(bag.config or {}, args.params_file)
+        rerun = (f"fowt-sim closed-loop -o NEW_BAG --params-file {args.params_file}"
+                 if "turbine_parameters" in (bag.config or {}) else
+                 f"fowt-sim node --ros-args --params-file {args.params_file}")
+        log.info(f"{written}: rerun with {rerun}")
     return 0
 
 
@@ -65,5 +68,6 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                        description="Print a bag's topics and run configuration; --params-file writes the node "
                                    "parameter file that reruns a recorded run.")
     p.add_argument("bag", help="bag directory")
-    p.add_argument("--params-file", help="write the node parameters reproducing the run to this file")
+    p.add_argument("--params-file", help="write the node parameters reproducing the run to this file (a closed "
+                                          "loop's: both nodes', for fowt-sim closed-loop --params-file)")
     p.set_defaults(func=info)

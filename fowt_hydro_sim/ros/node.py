@@ -75,7 +75,7 @@ MESSAGE_CLASSES = {topics.type_name(c): c for c in (AccelStamped, Clock, Odometr
                                                     TwistStamped, WrenchStamped)}
 
 OUTPUTS = topics.outputs(PUBLISHED)  # every published load component has its topic
-WAVE_SOURCES = ("internal", "topic", "bag")
+WAVE_SOURCES = ("internal", "topic", "bag", "none")
 CONTROLLER_LOST = ("stop", "open_loop")  # lockstep: what the node does when its controller is gone
 BATCH_S = 5.0  # simulated seconds stepped per compiled call when running as fast as possible
 MAX_LATENESS_S = 0.5  # further behind the wall-clock schedule, pacing restarts from now
@@ -132,7 +132,8 @@ class NodeSettings:
     heading_deg: float = like(SeaState, "heading_deg")
     seed: int = like(SeaState, "seed", note=" of the internal waves")
     wave_source: str = setting("internal", "internal: synthesised from the sea state; topic: /waves/elevation; "
-                                           "bag: /waves/elevation of wave_bag", choices=WAVE_SOURCES)
+                                           "bag: /waves/elevation of wave_bag; none: still water",
+                               choices=WAVE_SOURCES)
     wave_bag: str = setting("", "bag whose /waves/elevation drives the model (wave_source bag)")
     wave_point_xy: tuple[float, float] = setting((0.0, 0.0), "where the /waves/elevation samples are measured "
                                                              "(world x, y) [m]")
@@ -217,7 +218,7 @@ class SimulatorNode(Node):
         self.model.reset(motion=np.array(s.initial_state))
         self._feed: WaveFeed | None = None
         self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
-        if s.wave_source != "internal":
+        if s.wave_source in ("topic", "bag"):
             self._feed = WaveFeed(self.model, s.wave_point_xy, s.world_frame_id, s.wave_sample_dt_s, s.preview_s,
                                   s.sea_state.heading_deg)
             self._last_sample_wall = time.monotonic()
@@ -247,7 +248,7 @@ class SimulatorNode(Node):
         self.get_logger().info(
             f"{platform.name}, drag {s.drag_model}, waves {s.wave_source}"
             + (f" (Hs {s.sea_state.hs_m:g} m, Tp {s.sea_state.tp_s:g} s, seed {s.sea_state.seed})"
-               if s.wave_source == "internal" else
+               if s.wave_source == "internal" else " (still water)" if s.wave_source == "none" else
                f" ({topics.ELEVATION} {'of ' + s.wave_bag if s.wave_bag else ''} at {s.wave_point_xy}, "
                f"kinematics {self._feed.delay_s:g} s behind the samples)")
             + f", dt {s.dt_s:g} s, real-time factor {s.real_time_factor:g}"
@@ -436,14 +437,17 @@ class SimulatorNode(Node):
         time.sleep(0.5)  # let discovery finish on the controller's side too
 
     def _wait_for_lockstep(self, time_s: float) -> bool:
-        """Wait for a wrench stamped ``time_s``, sending the state again every 0.5 s. A
-        controller gone (its wrench publisher left the graph, or controller_timeouts
-        timeouts in a row) is said once; then False (stop) or open loop, as
-        controller_lost says."""
+        """Wait for a wrench stamped ``time_s``; a controller that subscribes to the odometry
+        meanwhile (after it was sent: a controller started or restarted) is sent it again
+        (only the odometry, not recorded: a slow controller has it already, and the run's
+        outputs stay one sample per stamp). A controller gone (its wrench publisher left the
+        graph, or controller_timeouts timeouts in a row) is said once; then False (stop) or
+        open loop, as controller_lost says."""
         s = self.settings
         if self._open_loop:
             return True
         deadline = time.monotonic() + s.lockstep_timeout_s
+        subscribers = self._pub["odom"].get_subscription_count()  # those that have the odometry of time_s
         with self._lock:
             while self._wrench[2] < time_s - 1e-9 and not self._stop.is_set():
                 if self.count_publishers(topics.EXTERNAL_WRENCH) == 0:
@@ -457,9 +461,23 @@ class SimulatorNode(Node):
                                               f"{s.lockstep_timeout_s:g} s; stepping with the last one")
                     return True
                 if not self._lock.wait(timeout=min(remaining, 0.5)):
-                    self._publish_now()
+                    now = self._pub["odom"].get_subscription_count()
+                    if now > subscribers:
+                        self._resend_odometry()
+                    subscribers = min(subscribers, now)
         self._timeouts = 0
         return True
+
+    def _resend_odometry(self) -> None:
+        """The odometry of the current state once more, unrecorded."""
+        _, blocks = self._outputs_now()
+        publisher = self._pub["odom"]
+        data = next(iter(cdr.messages(blocks[self._output_names.index("odom")])))
+        with publisher.handle:
+            try:
+                publisher.handle.publish_raw(data)
+            except _rclpy.RCLError as exc:
+                self._dropped(publisher.topic_name, exc)
 
     def _controller_lost(self, time_s: float, why: str) -> bool:
         """Say once that the controller is gone; False if the stepping stops."""

@@ -181,7 +181,24 @@ def parser() -> argparse.ArgumentParser:
                                                             "except /rosout and /parameter_events)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing bag at DIR")
     p.add_argument("--duration", type=float, metavar="S", help="stop after S wall seconds (default: when stopped)")
+    p.add_argument("--config", metavar="FILE", help="YAML mapping stored in the bag as its run configuration, beside "
+                                                    "the recorder's own entry (fowt-sim info shows it; default: none)")
     return p
+
+
+def read_config(path: str) -> dict:
+    """The run configuration in the YAML file ``path`` (a mapping); ValueError says why not."""
+    import yaml
+
+    try:
+        config = yaml.safe_load(Path(path).read_text())
+    except OSError as exc:
+        raise ValueError(f"--config {path}: cannot be read ({exc.strerror or exc})") from None
+    except yaml.YAMLError as exc:
+        raise ValueError(f"--config {path}: not YAML ({str(exc).splitlines()[0]})") from None
+    if not isinstance(config, dict):
+        raise ValueError(f"--config {path}: not a YAML mapping")
+    return config
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -198,6 +215,11 @@ def main(argv: list[str] | None = None) -> int:
         log.error(f"fowt-sim record: --duration must be a positive number of seconds, got {args.duration:g}")
         return 2
     topics = [t if t.startswith("/") else "/" + t for t in dict.fromkeys(args.topics)] if args.topics else None
+    try:
+        run = read_config(args.config) if args.config else {}
+    except ValueError as exc:
+        log.error(f"fowt-sim record: {exc}")
+        return 2
 
     import rclpy
     from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
@@ -219,7 +241,7 @@ def main(argv: list[str] | None = None) -> int:
 
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
-    config = {"recorder": {"topics": topics or "all",
+    config = {**run, "recorder": {"topics": topics or "all",
                            "started_wall": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")}}
     hint = " (--overwrite replaces a bag)" if not args.overwrite and Path(args.output).exists() else ""
     try:

@@ -28,7 +28,10 @@ def run_config(parameters: dict, platform_yaml: str, sea_state: dict) -> dict:
 
 def write_params_file(config: dict, path: str | Path) -> Path:
     """A ROS parameter file for ``fowt-sim node --ros-args --params-file`` that reruns the
-    recorded run (not recording again), with its platform written beside it."""
+    recorded run (not recording again), with its platform written beside it. A closed loop's
+    configuration (with ``turbine_parameters``) adds the turbine node's section
+    (``fowt_turbine``, its platform the same file): ``fowt-sim closed-loop --params-file``
+    reruns it."""
     path = Path(path)
     if "parameters" not in config or "platform_yaml" not in config:
         raise InputError("the bag's configuration has no node parameters (not recorded by fowt-sim node)")
@@ -36,6 +39,11 @@ def write_params_file(config: dict, path: str | Path) -> Path:
     platform_file.write_text(config["platform_yaml"])
     parameters = {**config["parameters"], "platform": str(platform_file.resolve()), "record": "",
                   "record_overwrite": False}
-    path.write_text(yaml.safe_dump({"fowt_hydro_sim": {"ros__parameters": parameters}}, sort_keys=False))
+    document = {"fowt_hydro_sim": {"ros__parameters": parameters}}
+    if "turbine_parameters" in config:
+        document["fowt_turbine"] = {"ros__parameters": {**config["turbine_parameters"],
+                                                        "platform": str(platform_file.resolve()),
+                                                        "wait_for_subscribers": 0, "rosco_debug_dir": ""}}
+    path.write_text(yaml.safe_dump(document, sort_keys=False))
     return path
 

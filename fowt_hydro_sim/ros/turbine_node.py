@@ -31,9 +31,11 @@ from fowt_hydro_sim.turbine.description import load_turbine
 from fowt_hydro_sim.turbine.discon import ControllerError
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rosco import Rosco
-from fowt_hydro_sim.turbine.rotor import TurbineModel, aero_loads, steady_operating_point
-from fowt_hydro_sim.turbine.wind import WIND_KINDS, Wind, check_series, read_series, series_wind
+from fowt_hydro_sim.turbine.rotor import HubMotion, TurbineModel, aero_loads, hub_motion, steady_operating_point
+from fowt_hydro_sim.turbine.wind import DEFAULT_WIND_M_S, WIND_KINDS, Wind, check_series, read_series, series_wind
 from msg_adapters import topics
+
+STAMP_TOLERANCE_S = 1e-9  # odometry stamps closer than this are the same time
 
 
 @dataclass(frozen=True)
@@ -47,8 +49,9 @@ class TurbineSettings:
     wind: str = setting("steady", "wind input: steady, step, ramp (from wind_speed_m_s to wind_end_m_s at "
                                   "wind_start_s, ramp over wind_ramp_s), file (wind_file), bag (wind_topic of "
                                   "wind_bag)", choices=(*WIND_KINDS, "bag"))
-    wind_speed_m_s: float = setting(11.0, "hub-height wind speed (before the step or ramp) [m/s]", ge=0.0, le=80.0)
-    wind_end_m_s: float = setting(11.0, "wind speed after the step or ramp [m/s]", ge=0.0, le=80.0)
+    wind_speed_m_s: float = setting(DEFAULT_WIND_M_S, "hub-height wind speed (before the step or ramp) [m/s]",
+                                    ge=0.0, le=80.0)
+    wind_end_m_s: float = setting(DEFAULT_WIND_M_S, "wind speed after the step or ramp [m/s]", ge=0.0, le=80.0)
     wind_start_s: float = setting(0.0, "time of the step or start of the ramp [s]", ge=0.0)
     wind_ramp_s: float = setting(60.0, "duration of the ramp [s]", gt=0.0)
     wind_file: str = setting("", "CSV of time [s] and hub-height wind speed [m/s] (wind file)")
@@ -61,16 +64,22 @@ class TurbineSettings:
     rotor_speed_rad_s: float = setting(0.5, "initial rotor speed (rotor_start given) [rad/s]", ge=0.0)
     pitch_rad: float = setting(0.0, "initial blade pitch (rotor_start given) [rad]", ge=-0.5, le=1.6)
     fixed_platform: bool = setting(False, "ignore the platform's motion (a turbine on a fixed foundation)")
-    rosco_logging: int = setting(0, "ROSCO's LoggingLevel (debug files in its temporary folder)", ge=0, le=3)
+    rosco_logging: int = setting(0, "ROSCO's LoggingLevel: 0 none, 1 its debug channels (rosco.RO.dbg), 2 and its "
+                                    "local variables (.dbg2), 3 and the swap array (.dbg3)", ge=0, le=3)
+    rosco_debug_dir: str = setting("", "folder where ROSCO's debug files are copied when the node ends "
+                                       "(rosco_logging > 0); empty: not kept")
     wait_for_subscribers: int = setting(0, "before answering the first odometry, wait (at most 60 wall seconds) "
                                            "until this many subscribers are connected to each /turbine/ topic (a "
-                                           "recorder started alongside, so that its bag misses no sample)", ge=0)
+                                           "recorder started alongside, so that its bag misses no sample) and one "
+                                           "to the wrench", ge=0)
 
     def __post_init__(self) -> None:
         if self.wind == "file" and not self.wind_file:
             raise ConfigError("parameter wind_file: wind file needs the path of a CSV of time and speed")
         if self.wind == "bag" and not self.wind_bag:
             raise ConfigError("parameter wind_bag: wind bag needs the path of a bag with a wind speed topic")
+        if self.rosco_debug_dir and not self.rosco_logging:
+            raise ConfigError("parameter rosco_debug_dir: ROSCO writes debug files only with rosco_logging > 0")
 
     def make_wind(self) -> Wind:
         if self.wind == "file":
@@ -100,7 +109,7 @@ class TurbineNode(Node):
                            s.rosco_logging, pitch_rad=start[1])
         self.model = TurbineModel(self.turbine, self.coefficients, self.rosco, *start)
         self.failed = False
-        self._last = None  # (stamp, pitch rate) of the last odometry answered
+        self._last: HubMotion | None = None  # the hub's motion at the last odometry answered
         qos = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
         self._wrench = self.create_publisher(WrenchStamped, topics.EXTERNAL_WRENCH, qos)
         self._state = {name: self.create_publisher(Vector3Stamped, topic, qos)
@@ -111,36 +120,36 @@ class TurbineNode(Node):
             f"{self.thrust_height_m:g} m" + (", platform held fixed" if s.fixed_platform else ""))
 
     def wait_for_subscribers(self, timeout_s: float = 60.0) -> None:
-        """Until each turbine quantity topic has ``wait_for_subscribers`` subscribers (DDS
-        discovers them without spinning, so no odometry is answered meanwhile)."""
+        """Until each turbine quantity topic has ``wait_for_subscribers`` subscribers and the
+        wrench one (the platform node: its first wrench is not lost to discovery); DDS
+        discovers them without spinning, so no odometry is answered meanwhile."""
         count = self.settings.wait_for_subscribers
         deadline = time.monotonic() + timeout_s
-        while count and min(p.get_subscription_count() for p in self._state.values()) < count:
+        while count and (min(p.get_subscription_count() for p in self._state.values()) < count
+                         or self._wrench.get_subscription_count() < 1):
             if time.monotonic() > deadline:
                 self.get_logger().warning(f"wait_for_subscribers: fewer than {count} subscribers after "
                                           f"{timeout_s:g} s; answering anyway")
                 return
             time.sleep(0.05)
 
-    def _hub_motion(self, msg: Odometry) -> tuple[float, float, float]:
-        """(time, fore-aft velocity of the thrust point, pitch acceleration) from the odometry."""
-        t, twist = adapt.body_twist_from_odometry(msg)
-        if self.settings.fixed_platform:
-            return t, 0.0, 0.0
-        hub = np.array([0.0, 0.0, self.thrust_height_m])
-        velocity = twist[:3] + np.cross(twist[3:], hub)
-        last_t, last_rate = self._last or (t, twist[4])
-        acceleration = (twist[4] - last_rate) / (t - last_t) if t > last_t else 0.0
-        return t, float(velocity[0]), float(acceleration)
-
     def _on_odometry(self, msg: Odometry) -> None:
         if self.failed:
             return
-        t, hub_velocity, pitch_acceleration = self._hub_motion(msg)
+        t, twist = adapt.body_twist_from_odometry(msg)
+        if self._last is not None and t <= self._last.time_s + STAMP_TOLERANCE_S:
+            # the odometry of a stamp already answered (sent again while the platform waited): its wrench again,
+            # not the turbine's state (the bag would hold it twice at one stamp); an older one is ignored
+            if t >= self._last.time_s - STAMP_TOLERANCE_S:
+                self._publish_wrench(self._last.time_s)
+            return
+        motion = hub_motion(t, twist, self._last, self.thrust_height_m, self.settings.fixed_platform)
         model, dt = self.model, self.model.dt_s
         try:
-            while model.state.time_s + dt <= t + 1e-9:
-                model.step(self.wind.at(model.state.time_s + dt), hub_velocity, pitch_acceleration)
+            while model.state.time_s + dt <= t + STAMP_TOLERANCE_S:
+                model.step(self.wind.at(model.state.time_s + dt), motion.velocity_m_s,
+                           motion.pitch_acceleration_rad_s2,
+                           fore_aft_acceleration_m_s2=motion.fore_aft_acceleration_m_s2)
         except ControllerError as exc:
             self.get_logger().error(f"{exc}; the turbine stops answering")
             self.failed = True
@@ -148,17 +157,20 @@ class TurbineNode(Node):
         if self._last is None:  # the first odometry: the loads of the initial state
             s = model.state
             s.wind_m_s = self.wind.at(t)
-            s.relative_wind_m_s = s.wind_m_s - hub_velocity
+            s.relative_wind_m_s = s.wind_m_s - motion.velocity_m_s
             s.thrust_n, s.aero_torque_nm = aero_loads(self.turbine, self.coefficients, s.relative_wind_m_s,
                                                       s.rotor_speed_rad_s, s.pitch_rad)
-        self._last = (t, adapt.body_twist_from_odometry(msg)[1][4])
+        self._last = motion
         self._publish(t)
 
-    def _publish(self, t: float) -> None:
+    def _publish_wrench(self, t: float) -> None:
         thrust, torque = self.model.hub_wrench()
         offset = self.thrust_height_m - float(self.hub_point_m[2])  # thrust point above the platform's hub point
         wrench = np.array([thrust, 0.0, 0.0, torque, offset * thrust, 0.0])
         self._wrench.publish(adapt.wrench_msg(t, wrench, "hub"))
+
+    def _publish(self, t: float) -> None:
+        self._publish_wrench(t)
         s = self.model.state
         values = {"rotor_speed": s.rotor_speed_rad_s, "generator_torque": s.generator_torque_nm,
                   "generator_power": self.model.generator_power_w(), "blade_pitch": s.pitch_rad,
@@ -185,7 +197,9 @@ def main(args: list[str] | None = None) -> int:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
-        node.rosco.close()
+        copies = node.rosco.close(node.settings.rosco_debug_dir or None)
+        if copies:
+            log.info(f"ROSCO's debug files: {', '.join(map(str, copies))}")
         node.destroy_node()
         rclpy.try_shutdown()
     return 1 if node.failed else 0

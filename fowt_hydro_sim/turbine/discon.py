@@ -78,6 +78,7 @@ class Discon:
         s[MESSAGE_LENGTH], s[INFILE_LENGTH] = MESSAGE_SIZE // 2, len(self._infile)
         s[OUTNAME_LENGTH], s[51] = len(self._outname), MESSAGE_SIZE // 2
         s[STATUS] = 0
+        self.finished = False  # the last call (status -1) made: the library closed its files
         self._call("starting")
 
     @property
@@ -106,4 +107,13 @@ class Discon:
         s[NACELLE_FORE_AFT_ANGULAR_ACCELERATION_RAD_S2] = nacelle_angular_acceleration_rad_s2
         s[TOWER_TOP_FORE_AFT_ACCELERATION_M_S2] = tower_top_acceleration_m_s2
         self._call(f"at t = {t_s:.3f} s")
+        self.finished = last
         return float(s[DEMANDED_TORQUE_NM]), float(s[DEMANDED_PITCH_RAD]), float(s[DEMANDED_YAW_RATE_RAD_S])
+
+    def finish(self) -> None:
+        """The last call (status -1) with the last measurements, if not made yet: the library
+        ends its run (ROSCO closes its debug files)."""
+        if not self.finished:
+            self.swap[STATUS] = -1
+            self.finished = True
+            self._call(f"finishing at t = {float(self.swap[TIME_S]):.3f} s")

@@ -7,12 +7,16 @@ DISCON.IN and writes its debug files under a folder of its own (a copy of the DI
 with the performance table's path made absolute, debug output off unless asked)."""
 from __future__ import annotations
 
+import logging
 import re
+import shutil
 import tempfile
 from pathlib import Path
 
 from fowt_hydro_sim.physics.config import ConfigError
-from fowt_hydro_sim.turbine.discon import Discon
+from fowt_hydro_sim.turbine.discon import ControllerError, Discon
+
+log = logging.getLogger("fowt_hydro_sim.rosco")
 
 
 def discon_copy(source: Path, folder: Path, logging_level: int = 0) -> Path:
@@ -50,12 +54,32 @@ class Rosco:
 
     def step(self, t_s: float, wind_m_s: float, rotor_speed_rad_s: float, generator_speed_rad_s: float,
              pitch_rad: float, generator_torque_nm: float, pitch_acceleration_rad_s2: float = 0.0,
-             last: bool = False) -> tuple[float, float]:
-        """One controller call (status 1, or -1 for the last); ``discon.ControllerError`` if ROSCO fails."""
+             last: bool = False, fore_aft_acceleration_m_s2: float = 0.0) -> tuple[float, float]:
+        """One controller call (status 1, or -1 for the last); ``discon.ControllerError`` if ROSCO fails.
+        ``pitch_acceleration_rad_s2`` is the nacelle's fore-aft angular acceleration (ROSCO's
+        NacIMU_FA_RAcc, its Fl_Mode 2), ``fore_aft_acceleration_m_s2`` the tower top's fore-aft
+        translational acceleration (FA_Acc_TT: Fl_Mode 1 and the tower damper TD_Mode)."""
         torque, pitch, _ = self._discon.call(t_s, wind_m_s, rotor_speed_rad_s, generator_speed_rad_s, pitch_rad,
                                              generator_torque_nm, self._efficiency,
-                                             nacelle_angular_acceleration_rad_s2=pitch_acceleration_rad_s2, last=last)
+                                             nacelle_angular_acceleration_rad_s2=pitch_acceleration_rad_s2,
+                                             tower_top_acceleration_m_s2=fore_aft_acceleration_m_s2, last=last)
         return torque, pitch
 
-    def close(self) -> None:
-        self._folder.cleanup()
+    def close(self, debug_dir: str | Path | None = None) -> list[Path]:
+        """End ROSCO's run and remove its folder; with ``debug_dir``, its debug files
+        (``rosco.RO.dbg``, ``.dbg2``, ``.dbg3``, as its LoggingLevel wrote them: time series of
+        its internal channels, one column each) are copied there first; the copies."""
+        copies = []
+        try:
+            if debug_dir:
+                try:
+                    self._discon.finish()  # ROSCO writes and closes its debug files at its last call
+                except ControllerError as exc:
+                    log.warning(f"{exc}; its debug files are kept as they are")
+                target = Path(debug_dir)
+                target.mkdir(parents=True, exist_ok=True)
+                for path in sorted(Path(self._folder.name).glob("rosco.RO.dbg*")):
+                    copies.append(Path(shutil.copy2(path, target / path.name)))
+        finally:
+            self._folder.cleanup()
+        return copies

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
 from scipy.optimize import brentq
 
 from fowt_hydro_sim.turbine.description import TurbineDescription
@@ -29,6 +30,33 @@ class TurbineState:
 
     def generator_speed_rad_s(self, gearbox_ratio: float) -> float:
         return self.rotor_speed_rad_s * gearbox_ratio
+
+
+@dataclass(frozen=True)
+class HubMotion:
+    """The thrust point's motion at one odometry: what the rotor and ROSCO see."""
+
+    time_s: float
+    pitch_rate_rad_s: float  # the platform's body pitch rate
+    velocity_m_s: float  # fore-aft (body x) velocity of the thrust point
+    pitch_acceleration_rad_s2: float  # the platform's pitch acceleration (ROSCO's NacIMU_FA_RAcc)
+    fore_aft_acceleration_m_s2: float  # fore-aft acceleration of the thrust point (ROSCO's FA_Acc_TT)
+
+
+def hub_motion(t: float, twist: np.ndarray, last: HubMotion | None, thrust_height_m: float,
+               fixed: bool = False) -> HubMotion:
+    """The thrust point's motion from the platform's body twist (v, omega) at time ``t``: its
+    fore-aft velocity, body x of v + omega x r (r = (0, 0, ``thrust_height_m``)), and the pitch
+    and fore-aft accelerations as backward differences from the ``last`` odometry answered
+    (zero at the first one); all zero with ``fixed`` (a fixed foundation)."""
+    if fixed:
+        return HubMotion(t, 0.0, 0.0, 0.0, 0.0)
+    velocity = float((twist[:3] + np.cross(twist[3:], np.array([0.0, 0.0, thrust_height_m])))[0])
+    rate = float(twist[4])
+    if last is None or t <= last.time_s:
+        return HubMotion(t, rate, velocity, 0.0, 0.0)
+    dt = t - last.time_s
+    return HubMotion(t, rate, velocity, (rate - last.pitch_rate_rad_s) / dt, (velocity - last.velocity_m_s) / dt)
 
 
 def aero_loads(turbine: TurbineDescription, coefficients: RotorCoefficients, relative_wind_m_s: float,
@@ -91,10 +119,11 @@ class TurbineModel:
         return self.turbine.controller_dt_s
 
     def step(self, wind_m_s: float, hub_velocity_m_s: float = 0.0, pitch_acceleration_rad_s2: float = 0.0,
-             last: bool = False) -> TurbineState:
+             last: bool = False, fore_aft_acceleration_m_s2: float = 0.0) -> TurbineState:
         """Advance one controller step to ``time_s + dt``: the wind there (``wind_m_s``) and the
         hub's fore-aft velocity give the loads on the rotor, the drivetrain accelerates, ROSCO
-        answers, the actuator moves the blades."""
+        answers (also given the platform's pitch acceleration and the hub's fore-aft
+        acceleration, for its floating feedback and tower damper), the actuator moves the blades."""
         s, t = self.state, self.turbine
         time_s = s.time_s + self.dt_s
         relative = wind_m_s - hub_velocity_m_s
@@ -102,7 +131,7 @@ class TurbineModel:
         speed = drivetrain_step(t, s.rotor_speed_rad_s, torque, s.generator_torque_nm, self.dt_s)
         generator_torque, command = self.controller.step(
             time_s, relative, speed, speed * t.gearbox_ratio, s.pitch_rad, s.generator_torque_nm,
-            pitch_acceleration_rad_s2, last)
+            pitch_acceleration_rad_s2, last, fore_aft_acceleration_m_s2=fore_aft_acceleration_m_s2)
         self.state = TurbineState(time_s, speed, actuate_pitch(t, s.pitch_rad, command, self.dt_s),
                                   generator_torque, wind_m_s, relative, thrust, torque)
         return self.state

@@ -11,6 +11,7 @@ from fowt_hydro_sim.physics.config import ConfigError
 
 WIND_KINDS = ("steady", "step", "ramp", "file")
 MAX_WIND_M_S = 80.0  # beyond: not a wind speed
+DEFAULT_WIND_M_S = 13.0  # the one default hub-height wind speed (turbine node, closed loop): above rated
 
 
 @dataclass(frozen=True)
@@ -19,8 +20,8 @@ class Wind:
     ``ramp_s``; or the series (``time_s``, ``series_m_s``) interpolated, held at its ends."""
 
     kind: str = "steady"
-    speed_m_s: float = 11.0
-    end_m_s: float = 11.0
+    speed_m_s: float = DEFAULT_WIND_M_S
+    end_m_s: float = DEFAULT_WIND_M_S
     start_s: float = 0.0
     ramp_s: float = 60.0
     time_s: tuple[float, ...] = ()
