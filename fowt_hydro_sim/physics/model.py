@@ -165,7 +165,8 @@ class PlatformModel:
         n_points = len(self.geometry.points_m)
         self._blocks: BlocksAhead | None = None  # the blocked table's blocks
         self._ring_blocks = [None, None]  # the block held in each half of the ring table
-        if waves is None or waves.frequency_hz.size == 0:
+        if waves is None or waves.frequency_hz.size == 0 or not waves.periodic:
+            # components on no common grid: summed directly by prescribed_motion_loads only
             table = np.zeros((4, n_points, 7))
             step, self._elevation = 1.0, np.zeros((4, 1, 1))
         else:
@@ -275,6 +276,9 @@ class PlatformModel:
         blocks from the one the current time needs), after synthesising them; all of them
         for a whole-period table. When the run goes on past them, the block after is made
         ahead meanwhile (in the worker: a batch run's next part then finds it made)."""
+        if self.waves is not None and self.waves.frequency_hz.size and not self.waves.periodic:
+            raise ConfigError("wave components on no common frequency grid are summed directly, for prescribed "
+                              "motion only (fowt-sim loads); the time loop needs them on one")
         if self._blocks is None:
             return n_steps
         m = self._blocks.block_rows
@@ -438,6 +442,9 @@ class PlatformModel:
     def wave_elevation(self, time_s: float | np.ndarray) -> np.ndarray:
         """Elevation at the reference point (0, 0), from the model's wave table."""
         t = np.atleast_1d(np.asarray(time_s, dtype=float))
+        if self.waves is not None and self.waves.frequency_hz.size and not self.waves.periodic:
+            env = self.platform.environment
+            return self.waves.elevation(0.0, 0.0, t, env.water_depth_m, env.gravity_m_s2)
         return np.array([interpolate_table(self._elevation, self.wave_table_step_s, x)[0, 0]
                          for x in t])
 
@@ -525,7 +532,8 @@ class PlatformModel:
         surfaces = self._surfaces(time_s, motion)
         out = np.zeros((n, N_LOADS, 6))
         params_of("user", self._data.component_params)[:] = 0.0  # its row: below
-        per_time = self.options.kinematics == "displaced" or self.options.stretching == "wheeler"
+        per_time = self.options.kinematics == "displaced" or self.options.stretching == "wheeler" or (
+            self.waves is not None and not self.waves.periodic)  # summed directly at each time
         if per_time and self.waves is not None and self.waves.frequency_hz.size:
             data = self._data._replace(waves=self._moving_table(time_s, motion))
             dynamics.prescribed_motion_loads(time_s, states, acceleration, data, surfaces, out)
