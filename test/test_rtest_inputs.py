@@ -106,3 +106,17 @@ def test_components_summed_directly_give_the_loads_of_the_same_sea_on_a_grid(tmp
     assert np.all(error[:5] < 2e-3), error  # Mz is zero on the axisymmetric column
     with pytest.raises(ConfigError, match="summed directly, for prescribed motion only"):
         PlatformModel(platform, direct, options=HYDRODYN).run(1.0)
+
+
+def test_deck_of_the_newer_layout_imports_without_its_potential_flow_lines(tmp_path):
+    """hd_MHstLMod1_compare's deck has FKMod and GeoFile after NAddDOF (a layout newer than
+    openfast-io's, which reads it out of step): imported without them, its one tapered,
+    tilted circular member as written (D 8 m at (-5, 3, -21), 6 m at (2, 6, 18), MDivSize 3,
+    every coefficient 0)."""
+    out = tmp_path / "compare.yaml"
+    assert main(["platform", "import", str(RTEST / "hd_MHstLMod1_compare" / "hydrodyn_input.dat"), "-o", str(out),
+                 "--water-depth", "200"]) == 0
+    (member,) = yaml.safe_load(out.read_text())["members"]
+    assert (member["end_a_m"], member["end_b_m"]) == ([-5.0, 3.0, -21.0], [2.0, 6.0, 18.0])
+    assert (member["diameter_m"], member["diameter_b_m"], member["strip_length_m"]) == (8.0, 6.0, 3.0)
+    assert member["zones"] == [{"name": "all", "cd": 0.0, "ca": 0.0, "cp": 0.0}]

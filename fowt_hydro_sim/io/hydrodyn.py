@@ -25,7 +25,8 @@ which lack some of the lines openfast-io reads (NAddDOF, HstMod; ExctnDisp, Exct
 PtfmYMod, PtfmRefY, PtfmYCutOff, NExctnHdg), are read with those lines added at the value
 that keeps the older meaning (no additional DOF, hydrostatics up to the still water level;
 the potential-flow settings, unused since potential flow is refused, at HydroDyn's example
-values). A deck openfast-io still cannot read is refused in one line naming the last field
+values); decks of the newer layout are read without its potential-flow lines FKMod and
+GeoFile. A deck openfast-io still cannot read is refused in one line naming the last field
 it read, and the integer switches the import uses must read as integers.
 
 A HydroDyn deck has no structural mass and no mooring: the platform written floats freely
@@ -50,6 +51,8 @@ from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
 _ADDED_LINES = (("ExctnDisp", "ExctnMod", "0"), ("ExctnCutOff", "ExctnDisp", "10"), ("PtfmYMod", "ExctnCutOff", "0"),
                 ("PtfmRefY", "PtfmYMod", "0"), ("PtfmYCutOff", "PtfmRefY", "0.01"), ("NExctnHdg", "PtfmYCutOff", "36"),
                 ("NAddDOF", "PtfmCOByt", "0"), ("HstMod", "AMMod", "0"))
+# lines of newer layouts openfast-io does not read: potential-flow settings (PotMod 1 only, refused)
+_DROPPED_LINES = ("FKMod", "GeoFile")
 # integer fields the import uses: a deck read out of step gives them text or a fraction
 _INTEGER_FIELDS = ("PotMod", "NBody", "NBodyMod", "NAxCoef", "NJoints", "NPropSetsCyl", "NPropSetsRec",
                    "NCoefDpthCyl", "NCoefDpthRec", "NCoefMembersCyl", "NCoefMembersRec", "NMembers", "NFillGroups",
@@ -58,9 +61,10 @@ _INTEGER_FIELDS = ("PotMod", "NBody", "NBodyMod", "NAxCoef", "NJoints", "NPropSe
 
 def v5_layout(text: str) -> str:
     """A HydroDyn deck's text in the layout openfast-io reads: each line of ``_ADDED_LINES`` the
-    deck lacks is added after the field it follows (when that field is there); a deck of the
-    current layout is unchanged."""
-    lines = text.splitlines(keepends=True)
+    deck lacks is added after the field it follows (when that field is there), and the lines
+    of ``_DROPPED_LINES`` are left out; a deck of openfast-io's layout is unchanged."""
+    lines = [line for line in text.splitlines(keepends=True)
+             if len(line.split()) < 2 or line.split()[1] not in _DROPPED_LINES]
     for added, after, value in _ADDED_LINES:
         names = [line.split()[1] if len(line.split()) > 1 else "" for line in lines]
         if added not in names and after in names:
