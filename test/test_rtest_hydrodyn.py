@@ -604,8 +604,8 @@ def test_free_surface_hydrostatics_in_still_water_equal_the_nonlinear_member_hyd
 def test_fowt_sim_loads_with_free_surface_hydrostatics_in_a_regular_wave(tmp_path, capsys):
     """``fowt-sim loads --stretching vertical --hydrostatics free_surface`` with a .Comp wave: the
     hydrostatic columns are the free-surface integral along the prescribed motion (global axes,
-    about the displaced reference point); HydroDyn's total includes them. A platform with a
-    circular member and a time-stepping run are refused in one line."""
+    about the displaced reference point); HydroDyn's total includes them. A time-stepping run is
+    refused in one line."""
     platform = rectangular_column()
     platform_file = tmp_path / "column.yaml"
     platform_file.write_text(yaml.safe_dump(platform_document(platform)))
@@ -631,8 +631,6 @@ def test_fowt_sim_loads_with_free_surface_hydrostatics_in_a_regular_wave(tmp_pat
     got = np.column_stack([table[f"hydrostatic_{axis}"] for axis in ("Fx", "Fy", "Fz", "Mx", "My", "Mz")])
     assert np.allclose(got, expected, rtol=1e-7, atol=1e-6 * np.max(np.abs(expected[:, 2])))
     assert np.ptp(got[:, 2]) > 1e-3 * np.mean(got[:, 2])  # the wave moves the wetted surface
-    assert main(["loads", "--motion", str(tmp_path / "prp.dat"), "--still-water", "--hydrostatics", "free_surface",
-                 "-o", str(tmp_path / "w.csv")]) == 2
     from fowt_hydro_sim.physics.config import RunConfig
     with pytest.raises(ConfigError, match="prescribed motion only"):
         RunConfig(hydrostatics="free_surface")

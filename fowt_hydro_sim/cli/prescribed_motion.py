@@ -27,7 +27,7 @@ def loads(args: argparse.Namespace) -> int:
     if args.still_water:
         waves = None
     elif args.waves_comp:
-        waves, _ = comp_file_waves(args.waves_comp)
+        waves, _ = comp_file_waves(args.waves_comp, direct_sum=True)
     else:
         sea, case = options.sea_state(args)
         waves, _ = sea_state_waves(sea, float(motion.time_s[-1]), case)
@@ -49,7 +49,8 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace the output file")
     waves = p.add_mutually_exclusive_group()
     waves.add_argument("--still-water", action="store_true", help="no waves")
-    waves.add_argument("--waves-comp", type=Path, help="OpenFAST wave components file (.Comp)")
+    waves.add_argument("--waves-comp", type=Path,
+                       help="OpenFAST wave components file (.Comp; frequencies on no common grid: summed directly)")
     options.add_sea_state(p)
     p.add_argument("--wave-table-dt", type=float, default=None,
                    help="kinematics table step [s] (default: chosen for 1e-3 interpolation error)")

@@ -20,9 +20,14 @@ horizontal, as HydroDyn's Morison_DirCosMtrx; checked against HydroDyn's MHstLMo
 the r-test case hd_MHstLMod2_RectMmbr). MHstLMod is not read: member hydrostatics are a run
 option (``hydrostatics``: nonlinear for MHstLMod 1, free_surface for MHstLMod 2).
 
-Decks of the HydroDyn v4 layout (OpenFAST 4.0, as in the OpenFAST r-test), which lack the
-v5 lines NAddDOF and HstMod, are read with those lines added at their v4 meaning (0: no
-additional DOF, hydrostatics up to the still water level).
+Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts before it),
+which lack some of the lines openfast-io reads (NAddDOF, HstMod; ExctnDisp, ExctnCutOff,
+PtfmYMod, PtfmRefY, PtfmYCutOff, NExctnHdg), are read with those lines added at the value
+that keeps the older meaning (no additional DOF, hydrostatics up to the still water level;
+the potential-flow settings, unused since potential flow is refused, at HydroDyn's example
+values); decks of the newer layout are read without its potential-flow lines FKMod and
+GeoFile. A deck openfast-io still cannot read is refused in one line naming the last field
+it read, and the integer switches the import uses must read as integers.
 
 A HydroDyn deck has no structural mass and no mooring: the platform written floats freely
 (mass = rho V at the centre of buoyancy; one mooring line without stiffness or
@@ -31,8 +36,10 @@ needs; give it real mass properties before simulating it.
 """
 from __future__ import annotations
 
+import gc
 import math
 import tempfile
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -40,20 +47,33 @@ import numpy as np
 
 from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
 
+# (field, the field it follows, value): lines older layouts lack, in the order to add them
+_ADDED_LINES = (("ExctnDisp", "ExctnMod", "0"), ("ExctnCutOff", "ExctnDisp", "10"), ("PtfmYMod", "ExctnCutOff", "0"),
+                ("PtfmRefY", "PtfmYMod", "0"), ("PtfmYCutOff", "PtfmRefY", "0.01"), ("NExctnHdg", "PtfmYCutOff", "36"),
+                ("NAddDOF", "PtfmCOByt", "0"), ("HstMod", "AMMod", "0"))
+# lines of newer layouts openfast-io does not read: potential-flow settings (PotMod 1 only, refused)
+_DROPPED_LINES = ("FKMod", "GeoFile")
+# integer fields the import uses: a deck read out of step gives them text or a fraction
+_INTEGER_FIELDS = ("PotMod", "NBody", "NBodyMod", "NAxCoef", "NJoints", "NPropSetsCyl", "NPropSetsRec",
+                   "NCoefDpthCyl", "NCoefDpthRec", "NCoefMembersCyl", "NCoefMembersRec", "NMembers", "NFillGroups",
+                   "NMGDepths")
+
 
 def v5_layout(text: str) -> str:
-    """A HydroDyn deck's text in the v5 layout: a v4 deck (no NAddDOF and HstMod lines) gets
-    them after PtfmCOByt and AMMod, with the v4 behaviour (0, 0); a v5 deck is unchanged."""
-    lines = text.splitlines(keepends=True)
-    names = [line.split()[1] if len(line.split()) > 1 else "" for line in lines]
-    for after, added in (("AMMod", "HstMod"), ("PtfmCOByt", "NAddDOF")):  # the later one first
+    """A HydroDyn deck's text in the layout openfast-io reads: each line of ``_ADDED_LINES`` the
+    deck lacks is added after the field it follows (when that field is there), and the lines
+    of ``_DROPPED_LINES`` are left out; a deck of openfast-io's layout is unchanged."""
+    lines = [line for line in text.splitlines(keepends=True)
+             if len(line.split()) < 2 or line.split()[1] not in _DROPPED_LINES]
+    for added, after, value in _ADDED_LINES:
+        names = [line.split()[1] if len(line.split()) > 1 else "" for line in lines]
         if added not in names and after in names:
-            lines.insert(names.index(after) + 1, f"             0   {added}        - (added by fowt-sim: v4 deck)\n")
+            lines.insert(names.index(after) + 1, f"{value:>14}   {added}        - (added by fowt-sim: older layout)\n")
     return "".join(lines)
 
 
 def read_deck(path: str | Path) -> dict[str, Any]:
-    """The deck as openfast-io reads it; ConfigError if it cannot be read."""
+    """The deck as openfast-io reads it; ConfigError naming the field if it cannot be read."""
     try:
         from openfast_io.FAST_reader import InputReader_OpenFAST
     except ImportError:
@@ -63,13 +83,28 @@ def read_deck(path: str | Path) -> dict[str, Any]:
     reader = InputReader_OpenFAST()
     try:
         text = v5_layout(path.read_text())
-        with tempfile.TemporaryDirectory() as folder:
-            deck = Path(folder) / path.name
-            deck.write_text(text)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot be read ({type(exc).__name__}: {exc})") from None
+    failure = ""
+    with tempfile.TemporaryDirectory() as folder, warnings.catch_warnings():
+        warnings.simplefilter("ignore", ResourceWarning)  # openfast-io leaves its file open
+        deck = Path(folder) / path.name
+        deck.write_text(text)
+        try:
             reader.read_HydroDyn(str(deck))
-    except (OSError, ValueError, IndexError, KeyError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{path}: cannot be read as a HydroDyn v5 input file ({type(exc).__name__}: {exc})") from None
-    return reader.fst_vt["HydroDyn"]
+        except Exception as exc:  # openfast-io raises bare Exception, TypeError, ... on a misread deck
+            failure = f"{type(exc).__name__}: {exc}"
+        gc.collect()  # the failed read's open file, inside the warnings filter
+    hd = reader.fst_vt["HydroDyn"]
+    for name in _INTEGER_FIELDS:
+        if name in hd and not isinstance(hd[name], int):
+            raise ConfigError(f"{path}: field {name} reads as {hd[name]!r}, not an integer (a HydroDyn deck of "
+                              "another layout, read out of step)")
+    if failure:
+        last = list(hd)[-1] if hd else "none"
+        raise ConfigError(f"{path}: not a HydroDyn deck of a layout openfast-io reads: it stopped after field "
+                          f"{last} ({failure})")
+    return hd
 
 
 def _refuse_unsupported(hd: dict, source: str) -> None:

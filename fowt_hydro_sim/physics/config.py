@@ -29,7 +29,7 @@ WETTED_LENGTHS = ("displaced", "undisplaced")
 LOAD_DIRECTIONS = ("rotating", "fixed")
 HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
-STRETCHING = ("none", "vertical", "wheeler")
+STRETCHING = ("none", "vertical", "extrapolation", "wheeler")
 SLOW_DRIFTS = ("newman", "none")
 
 
@@ -243,8 +243,8 @@ class HydroOptions:
                   "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
                   "member hydrostatics, MHstLMod 1), or free_surface, the still-water pressure -rho g z over "
                   "the displaced member surfaces up to the instantaneous free surface (a plane per element; "
-                  "HydroDyn's MHstLMod 2 with wave stretching; rectangular members, prescribed motion only: "
-                  "fowt-sim loads)", choices=HYDROSTATICS)
+                  "HydroDyn's MHstLMod 2 with wave stretching for rectangular members, MHstLMod 1 with wave "
+                  "stretching for circular ones; prescribed motion only: fowt-sim loads)", choices=HYDROSTATICS)
     kinematics: str = setting(
         "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
                        "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
@@ -252,9 +252,10 @@ class HydroOptions:
     stretching: str = setting(
         "none", "wave stretching of the Morison loads: none (strips wetted up to z = 0, HydroDyn's WaveStMod 0) "
                 "or vertical (each strip and end plate wetted up to the instantaneous elevation eta at its x, "
-                "y, kinematics above z = 0 those at z = 0: WaveStMod 1) or wheeler (wetted up to eta, the "
-                "kinematics at z taken at z' = d (z - eta) / (d + eta): WaveStMod 3); prescribed motion only: "
-                "fowt-sim loads",
+                "y, kinematics above z = 0 those at z = 0: WaveStMod 1) or extrapolation (wetted up to eta, "
+                "the kinematics above z = 0 those at z = 0 plus z times their vertical gradient there: WaveStMod "
+                "2) or wheeler (wetted up to eta, the kinematics at z taken at z' = d (z - eta) / (d + eta): "
+                "WaveStMod 3); prescribed motion only: fowt-sim loads",
         choices=STRETCHING)
     slow_drift: str = setting(
         "newman", "second-order slow-drift surge force: Newman's approximation from the platform's mean-drift "

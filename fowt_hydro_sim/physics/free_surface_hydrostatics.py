@@ -1,22 +1,40 @@
-"""Member hydrostatics up to the instantaneous free surface, HydroDyn's MHstLMod 2.
+"""Member hydrostatics up to the instantaneous free surface: HydroDyn's MHstLMod 2 (rectangular
+members) and MHstLMod 1 with wave stretching (circular members).
 
 The pressure is the still-water hydrostatic pressure p = -rho g z (z up from the still water
 line; negative, a suction, between z = 0 and a crest), integrated over the part of each member
 surface below the free surface. As HydroDyn does, the free surface is a plane near each piece
-of surface: for the side walls of each element (the member cut into ``n_elements`` equal
-lengths) the plane through (x, y, eta(x, y)) at the element's midpoint, normal to the wave
-surface there; for each end plate the plane at its end node. A load F = -int p n dA acts on
-each wetted face, moments about the origin.
+of surface, through (x, y, eta(x, y)) and normal to the wave surface there (central
+differences of eta); A load F = -int p n dA acts on each wetted face, moments about the origin.
 
-Here each face is a planar polygon (rectangular, possibly tapered, members: the side walls of
-an element are planar quadrilaterals) clipped by its plane; the pressure is linear in z, so
-the force and moment integrands are at most quadratic and the edge-midpoint rule on a fan of
-triangles integrates them exactly. This is an independent computation of what HydroDyn's
+Rectangular members (MHstLMod 2): for the side walls of each element (the member cut into
+``n_elements`` equal lengths) the plane at the element's midpoint; for each end plate the plane
+at its end node. Each face is a planar polygon (the side walls of an element are planar
+quadrilaterals) clipped by its plane; the pressure is linear in z, so the force and moment
+integrands are at most quadratic and the edge-midpoint rule on a fan of triangles integrates
+them exactly. This is an independent computation of what HydroDyn's
 ``getElementHstLds_Mod2_Rec`` and ``GetEndPlateHstLds_Rec`` integrate in closed form along the
 element (adaptive Simpson, relative tolerance 1e-6).
 
-Pure numpy, no numba (about 1 ms per element and time step): ``HydroOptions(hydrostatics=
-"free_surface")`` for a prescribed motion (``fowt-sim loads``), not a time-stepping path.
+Circular members, possibly tapered (MHstLMod 1 with stretching, HydroDyn's
+``getElementHstLds_Mod1``): an element whose two nodes are below the elevation over them is
+wetted whole (its whole side wall, whatever the surface between); an element whose lower node
+is below and upper node above is wetted up to the plane through the point where its axis
+crosses the surface (found by linear interpolation of z - eta between the nodes), normal to the
+surface there (central differences over the section's radius at that point), from its lower
+node up, past its upper node if the tilted plane reaches beyond it; where the plane dips below
+the lower node, the part of the wall there above the plane is taken off (HydroDyn's closed form
+for the truncated cone counts it negative: with the element below wetted whole, the two give
+the wall below the plane); an element whose lower node is dry carries no load. The end plates
+take the plane at their node (central differences over their radius). Whole walls and discs
+are closed forms (Archimedes for the frustum less its end discs); a cut wall is integrated
+here along the axis (adaptive Gauss-Kronrod, split where the plane meets the section's rim) of
+closed-form integrals over each section's wetted arc, where HydroDyn writes the element's load
+in closed form (the truncated cone's volume and waterplane ellipse).
+
+Pure numpy and scipy, no numba (about 1 ms per element and time step): ``HydroOptions(
+hydrostatics="free_surface")`` for a prescribed motion (``fowt-sim loads``), not a
+time-stepping path.
 """
 from __future__ import annotations
 
@@ -25,9 +43,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import integrate
 
 from fowt_hydro_sim.frames import rotation_matrix as rotation_matrices
-from fowt_hydro_sim.physics.config import ConfigError
 
 Elevation = Callable[[float, float, float], float]
 """eta(t, x, y) in m."""
@@ -43,6 +61,16 @@ class RectangularMember:
     side_a_m: tuple[float, float]
     side_b_m: tuple[float, float]
     spin_deg: float
+    n_elements: int
+
+
+@dataclass(frozen=True)
+class CircularMember:
+    """A straight circular member, its diameter varying linearly from end a to end b."""
+
+    end_a_m: tuple[float, float, float]
+    end_b_m: tuple[float, float, float]
+    diameter_m: tuple[float, float]
     n_elements: int
 
 
@@ -147,24 +175,189 @@ def member_wrench(member: RectangularMember, eta: Elevation, t: float, rho: floa
     return out
 
 
-def platform_members(platform) -> list[RectangularMember]:
-    """The platform's members for these hydrostatics (width = HydroDyn's side A, along the
-    section's direction d1 before the spin, height = side B; taper and spin as the platform
-    gives them; one element per strip length, HydroDyn's MDivSize); ConfigError naming a
-    circular member (not implemented)."""
+# ------------------------------------------------------------------ circular members
+def _circle_axes(k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two unit vectors normal to the axis k: a horizontal one and one with z >= 0."""
+    y = np.array([0.0, 1.0, 0.0]) if abs(k[2]) > 1.0 - 1e-12 else np.array([-k[1], k[0], 0.0]) / math.hypot(k[0], k[1])
+    z = np.cross(k, y)
+    return (-y, -z) if z[2] < 0 else (y, z)
+
+
+def _wet_arcs(centres: np.ndarray, radii: np.ndarray, y: np.ndarray, z: np.ndarray, point: np.ndarray,
+              normal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For sections (n, 3) of radii (n,), the angles theta1, theta2 of the rim part
+    centre + radius (cos t y + sin t z) below the plane through ``point`` with upward ``normal``
+    (an empty arc: theta1 == theta2)."""
+    a, b = radii * (y @ normal), radii * (z @ normal)
+    c = (point - centres) @ normal  # wet where a cos t + b sin t <= c
+    m = np.hypot(a, b)
+    phi = np.arctan2(b, a)
+    beta = np.arccos(np.clip(c / np.where(m > 0, m, 1.0), -1.0, 1.0))
+    whole, dry = c >= m, c <= -m
+    t1 = np.where(whole | dry, 0.0, phi + beta)
+    t2 = np.where(whole, 2 * np.pi, np.where(dry, 0.0, phi + 2 * np.pi - beta))
+    return t1, t2
+
+
+def _wall_sections(centres: np.ndarray, radii: np.ndarray, taper: float, k: np.ndarray, y: np.ndarray,
+                   z: np.ndarray, t1: np.ndarray, t2: np.ndarray) -> np.ndarray:
+    """(n, 6): d(wrench)/ds / (rho g) of p = -rho g z on the arcs [t1, t2] of the side wall at
+    sections (n, 3) of radii (n,): int z (n, r x n) dA with n dA = (u - taper k) R dt ds,
+    u = cos t y + sin t z, r = centre + R u."""
+    s1, s2, c1, c2 = np.sin(t1), np.sin(t2), np.cos(t1), np.cos(t2)
+    dt, d2 = t2 - t1, 0.25 * (np.sin(2 * t2) - np.sin(2 * t1))
+    one, cos, sin = dt, s2 - s1, c1 - c2
+    cos2, sincos, sin2 = 0.5 * dt + d2, 0.5 * (s2 * s2 - s1 * s1), 0.5 * dt - d2
+    z0, zy, zz = centres[:, 2], radii * y[2], radii * z[2]  # z on the rim: z0 + zy cos + zz sin
+    z_u = ((z0 * cos + zy * cos2 + zz * sincos)[:, None] * y
+           + (z0 * sin + zy * sincos + zz * sin2)[:, None] * z)  # int z u dt
+    z_1 = z0 * one + zy * cos + zz * sin  # int z dt
+    along = z_u - taper * z_1[:, None] * k
+    force = radii[:, None] * along
+    # r x n = centre x (u - taper k) - R taper u x k
+    moment = radii[:, None] * (np.cross(centres, along) - (radii * taper)[:, None] * np.cross(z_u, k))
+    return np.hstack([force, moment])
+
+
+# Gauss-Legendre nodes on [0, 1], used through s = s0 + (s1 - s0) (1 - cos(pi tau)) / 2, which
+# smooths the square-root behaviour of the wetted arc where the plane meets a section's rim
+_TAU, _WEIGHT = np.polynomial.legendre.leggauss(48)
+_TAU, _WEIGHT = 0.5 * (_TAU + 1.0), 0.5 * _WEIGHT
+
+
+def _full_disc(centre: np.ndarray, radius: float, outward: np.ndarray) -> np.ndarray:
+    """int z (n, r x n) dA over a whole disc: z linear over it, int u u^T dA = pi R^4 / 4 (1 - n n^T)."""
+    area = math.pi * radius * radius
+    return np.concatenate([area * centre[2] * outward,
+                           area * centre[2] * np.cross(centre, outward)
+                           + 0.25 * area * radius * radius * np.cross([0.0, 0.0, 1.0], outward)])
+
+
+def _disc_wrench(centre: np.ndarray, radius: float, outward: np.ndarray, y: np.ndarray, z: np.ndarray,
+                 point: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """int z (n, r x n) dA / 1 over the part of the disc (centre, radius, in the plane of y, z)
+    below the plane through ``point`` with upward ``normal``; n the disc's outward normal."""
+    n_in = normal - (normal @ outward) * outward  # the plane's normal within the disc
+    size = float(np.linalg.norm(n_in))
+    height = (point - centre) @ normal
+    if size < 1e-12:
+        if height < 0.0:
+            return np.zeros(6)
+        e, limit = y, radius  # whole disc
+    else:
+        e, limit = n_in / size, height / size  # wet where u . e <= limit
+    if limit >= radius:
+        return _full_disc(centre, radius, outward)
+    if limit <= -radius:
+        return np.zeros(6)
+    v_dir = np.cross(outward, e)
+    w_z, v_z = e[2], v_dir[2]
+
+    def slab(u: float) -> np.ndarray:  # int over v in the chord at u of z (1, r)
+        half = math.sqrt(max(radius * radius - u * u, 0.0))
+        zc = centre[2] + u * w_z  # z at v = 0; z = zc + v v_z
+        length, v2 = 2 * half, 2 * half**3 / 3
+        first = zc * length * (centre + u * e) + v_z * v2 * v_dir
+        return np.concatenate([[zc * length], first])
+
+    moments, _ = integrate.quad_vec(slab, -radius, limit, epsabs=0.0, epsrel=1e-12)
+    return np.concatenate([moments[0] * outward, np.cross(moments[1:], outward)])
+
+
+def _circular_element(lower: np.ndarray, k: np.ndarray, r_lower: float, taper: float, s_end: float,
+                      plane: tuple[np.ndarray, np.ndarray] | None) -> np.ndarray:
+    """int z (n, r x n) dA over an element's side wall from its lower section along k: up to
+    s_end whole (plane None), or below the plane, from s = 0 up to where it leaves the cone."""
+    y, z = _circle_axes(k)
+    if plane is None:  # the frustum's Archimedes load less its two end discs
+        r0, r1 = r_lower, r_lower + taper * s_end
+        sum_r = r0 * r0 + r0 * r1 + r1 * r1
+        volume = math.pi * s_end * sum_r / 3
+        centroid = lower + k * s_end * (r0 * r0 + 2 * r0 * r1 + 3 * r1 * r1) / (4 * sum_r)
+        solid = np.concatenate([[0.0, 0.0, volume], volume * np.cross(centroid, [0.0, 0.0, 1.0])])
+        return solid - _full_disc(lower, r0, -k) - _full_disc(lower + s_end * k, r1, k)
+    point, normal = plane
+    # g(s) = (point - c(s)) . n and the rim's reach m(s) = R(s) |n_perp|, both linear in s: the
+    # section is wet whole while g >= m, dry once g <= -m
+    kn, g0 = k @ normal, (point - lower) @ normal
+    perp = math.sqrt(max(1.0 - kn * kn, 0.0))
+
+    def root(sign: float) -> float | None:  # g - sign m = 0
+        slope = -kn - sign * taper * perp
+        return None if abs(slope) < 1e-12 else (sign * r_lower * perp - g0) / slope
+
+    dry, whole = root(-1.0), root(1.0)
+    top = s_end if dry is None else max(dry, 0.0)
+    bottom = 0.0 if whole is None else min(whole, 0.0)
+    breaks = sorted({bottom, 0.0, top, *([whole] if whole is not None and 0.0 < whole < top else [])})
+    total = np.zeros(6)
+    for s0, s1 in zip(breaks[:-1], breaks[1:]):
+        if s1 <= s0:
+            continue
+        half = 0.5 * (s1 - s0)
+        at = s0 + half * (1.0 - np.cos(np.pi * _TAU))
+        weight = _WEIGHT * half * np.pi * np.sin(np.pi * _TAU)
+        centres, radii = lower + np.outer(at, k), r_lower + taper * at
+        wet = _wall_sections(centres, radii, taper, k, y, z, *_wet_arcs(centres, radii, y, z, point, normal))
+        if s1 <= 0.0:  # below the lower section: minus the part above the plane
+            full = np.full(at.size, 2 * np.pi)
+            wet = wet - _wall_sections(centres, radii, taper, k, y, z, np.zeros(at.size), full)
+        total += weight @ wet
+    return total
+
+
+def circular_member_wrench(member: CircularMember, eta: Elevation, t: float, rho: float, g: float,
+                           rotation: np.ndarray | None = None, position_m: np.ndarray | None = None) -> np.ndarray:
+    """Hydrostatic wrench (6,) about the origin on a circular member up to the free surface as
+    HydroDyn's MHstLMod 1 with stretching wets it (module docstring); the member is displaced by
+    x -> position + rotation x (at rest by default)."""
+    rotation = np.eye(3) if rotation is None else rotation
+    position_m = np.zeros(3) if position_m is None else position_m
+    a = position_m + rotation @ np.asarray(member.end_a_m, float)
+    b = position_m + rotation @ np.asarray(member.end_b_m, float)
+    length = float(np.linalg.norm(b - a))
+    k = (b - a) / length
+    dl = length / member.n_elements
+    r_a, r_b = 0.5 * member.diameter_m[0], 0.5 * member.diameter_m[1]
+    taper = (r_b - r_a) / length
+    nodes = a + np.outer(np.arange(member.n_elements + 1) * dl, k)
+    radii = r_a + taper * np.arange(member.n_elements + 1) * dl
+    zeta = np.array([eta(t, n[0], n[1]) for n in nodes])
+    out = np.zeros(6)
+    for i in range(member.n_elements):
+        wet_lower, wet_upper = nodes[i, 2] < zeta[i], nodes[i + 1, 2] < zeta[i + 1]
+        if wet_lower and wet_upper:
+            out += _circular_element(nodes[i], k, radii[i], taper, dl, None)
+        elif wet_lower:
+            ratio = (zeta[i] - nodes[i, 2]) / ((zeta[i] - nodes[i, 2]) - (zeta[i + 1] - nodes[i + 1, 2]))
+            crossing = nodes[i] + ratio * dl * k
+            _, normal = surface_plane(eta, t, crossing[0], crossing[1], radii[i] + taper * ratio * dl)
+            out += _circular_element(nodes[i], k, radii[i], taper, dl, (crossing, normal))
+    y, z = _circle_axes(k)
+    for node, radius, outward in ((nodes[0], radii[0], -k), (nodes[-1], radii[-1], k)):
+        point, normal = surface_plane(eta, t, node[0], node[1], radius)
+        out += _disc_wrench(node, radius, outward, y, z, point, normal)
+    return rho * g * out
+
+
+def platform_members(platform) -> list[RectangularMember | CircularMember]:
+    """The platform's members for these hydrostatics (rectangular: width = HydroDyn's side A,
+    along the section's direction d1 before the spin, height = side B; taper and spin as the
+    platform gives them; circular: the diameters at both ends; one element per strip length,
+    HydroDyn's MDivSize)."""
     members = []
     for m in platform.members:
-        if m.section != "rectangular":
-            raise ConfigError(f"hydrostatics 'free_surface': member {m.name} is {m.section}: implemented for "
-                              "rectangular members only")
         length = math.dist(m.end_a_m, m.end_b_m)
+        n = max(1, math.ceil(length / m.strip_length_m - 1e-9))
+        if m.section == "circular":
+            members.append(CircularMember(m.end_a_m, m.end_b_m, (m.diameter_at(0.0), m.diameter_at(1.0)), n))
+            continue
         (w0, h0), (w1, h1) = m.sides_at(0.0), m.sides_at(1.0)
-        members.append(RectangularMember(m.end_a_m, m.end_b_m, (w0, w1), (h0, h1), m.spin_deg,
-                                         max(1, math.ceil(length / m.strip_length_m - 1e-9))))
+        members.append(RectangularMember(m.end_a_m, m.end_b_m, (w0, w1), (h0, h1), m.spin_deg, n))
     return members
 
 
-def prescribed_motion_wrenches(members: list[RectangularMember], eta: Elevation, time_s: np.ndarray,
+def prescribed_motion_wrenches(members: list[RectangularMember | CircularMember], eta: Elevation, time_s: np.ndarray,
                                motion: np.ndarray, rho: float, g: float) -> np.ndarray:
     """(n, 6) hydrostatic loads along a prescribed motion (n, 6: x y z, roll pitch yaw), global
     axes, moments about the displaced reference point."""
@@ -172,7 +365,8 @@ def prescribed_motion_wrenches(members: list[RectangularMember], eta: Elevation,
     out = np.zeros((len(time_s), 6))
     for i, t in enumerate(time_s):
         position = np.asarray(motion[i, 0:3], float)
-        total = sum(member_wrench(m, eta, float(t), rho, g, rotations[:, :, i], position) for m in members)
+        total = sum((circular_member_wrench if isinstance(m, CircularMember) else member_wrench)(
+            m, eta, float(t), rho, g, rotations[:, :, i], position) for m in members)
         out[i, 0:3] = total[0:3]
         out[i, 3:6] = total[3:6] - np.cross(position, total[0:3])
     return out

@@ -73,6 +73,7 @@ from fowt_hydro_sim.physics.waves.kinematics import (
     BlockSynthesis,
     KinematicsTable,
     complex_amplitudes,
+    extrapolated_kinematics,
     moving_point_kinematics,
     period_table,
     table_step,
@@ -155,8 +156,9 @@ class PlatformModel:
         self.dt_s = float(dt_s)
         self.drag_model = drag_model
         self.options = options or HydroOptions()
-        # Wheeler stretching takes each point above z = 0 at its own stretched depth
-        self.geometry: Discretisation = discretise(platform, points_above_water=self.options.stretching == "wheeler")
+        # Wheeler and extrapolation stretching take each point above z = 0 at its own height
+        self.geometry: Discretisation = discretise(
+            platform, points_above_water=self.options.stretching in ("wheeler", "extrapolation"))
         bands = platform.drag_bands if drag_model == "filtered" else ()
         self.drag_bands = tuple(b.name for b in bands)
         self.filter_bank: StateSpace = bank_state_space(bands)
@@ -165,7 +167,8 @@ class PlatformModel:
         n_points = len(self.geometry.points_m)
         self._blocks: BlocksAhead | None = None  # the blocked table's blocks
         self._ring_blocks = [None, None]  # the block held in each half of the ring table
-        if waves is None or waves.frequency_hz.size == 0:
+        if waves is None or waves.frequency_hz.size == 0 or not waves.periodic:
+            # components on no common grid: summed directly by prescribed_motion_loads only
             table = np.zeros((4, n_points, 7))
             step, self._elevation = 1.0, np.zeros((4, 1, 1))
         else:
@@ -275,6 +278,9 @@ class PlatformModel:
         blocks from the one the current time needs), after synthesising them; all of them
         for a whole-period table. When the run goes on past them, the block after is made
         ahead meanwhile (in the worker: a batch run's next part then finds it made)."""
+        if self.waves is not None and self.waves.frequency_hz.size and not self.waves.periodic:
+            raise ConfigError("wave components on no common frequency grid are summed directly, for prescribed "
+                              "motion only (fowt-sim loads); the time loop needs them on one")
         if self._blocks is None:
             return n_steps
         m = self._blocks.block_rows
@@ -438,6 +444,9 @@ class PlatformModel:
     def wave_elevation(self, time_s: float | np.ndarray) -> np.ndarray:
         """Elevation at the reference point (0, 0), from the model's wave table."""
         t = np.atleast_1d(np.asarray(time_s, dtype=float))
+        if self.waves is not None and self.waves.frequency_hz.size and not self.waves.periodic:
+            env = self.platform.environment
+            return self.waves.elevation(0.0, 0.0, t, env.water_depth_m, env.gravity_m_s2)
         return np.array([interpolate_table(self._elevation, self.wave_table_step_s, x)[0, 0]
                          for x in t])
 
@@ -525,7 +534,8 @@ class PlatformModel:
         surfaces = self._surfaces(time_s, motion)
         out = np.zeros((n, N_LOADS, 6))
         params_of("user", self._data.component_params)[:] = 0.0  # its row: below
-        per_time = self.options.kinematics == "displaced" or self.options.stretching == "wheeler"
+        per_time = (self.options.kinematics == "displaced" or self.options.stretching in ("wheeler", "extrapolation")
+                    or (self.waves is not None and not self.waves.periodic))  # summed directly at each time
         if per_time and self.waves is not None and self.waves.frequency_hz.size:
             data = self._data._replace(waves=self._moving_table(time_s, motion))
             dynamics.prescribed_motion_loads(time_s, states, acceleration, data, surfaces, out)
@@ -584,7 +594,8 @@ class PlatformModel:
         points' positions at t_i: what the kernel's table look-up then returns at t_i. The
         points are displaced (x + R p; WaveDisp 1) or not, as ``options.kinematics`` says; a
         point's z is at most 0 or, with Wheeler stretching, at most the elevation eta over
-        it and taken at d (z - eta) / (d + eta). The times must be multiples of one step."""
+        it and taken at d (z - eta) / (d + eta), or, with extrapolation stretching, at most
+        max(eta, 0) and above z = 0 extrapolated from there. The times must be multiples of one step."""
         step = float(time_s[1] - time_s[0]) if time_s.size > 1 else 1.0
         rows = np.round(time_s / step).astype(np.int64)
         if time_s.size < 2 or step <= 0 or np.max(np.abs(rows * step - time_s)) > 1e-6 * step or rows[0] < 0:
@@ -597,15 +608,20 @@ class PlatformModel:
         else:
             world = np.repeat(points[None], time_s.size, axis=0)
         env = self.platform.environment
-        if self.options.stretching == "wheeler":
+        kinematics = moving_point_kinematics
+        if self.options.stretching in ("wheeler", "extrapolation"):
             depth = env.water_depth_m
             eta = np.stack([self.waves.elevation_at(world[i, :, 0:2], t, depth, env.gravity_m_s2)
                             for i, t in enumerate(time_s)])
-            world[:, :, 2] = depth * (np.minimum(world[:, :, 2], eta) - eta) / (depth + eta)
+            if self.options.stretching == "wheeler":
+                world[:, :, 2] = depth * (np.minimum(world[:, :, 2], eta) - eta) / (depth + eta)
+            else:  # extrapolated above z = 0, up to eta at most
+                world[:, :, 2] = np.minimum(world[:, :, 2], np.maximum(eta, 0.0))
+                kinematics = extrapolated_kinematics
         else:
             world[:, :, 2] = np.minimum(world[:, :, 2], 0.0)  # no kinematics above the water line
-        values = moving_point_kinematics(self.waves, world.reshape(-1, 3), np.repeat(time_s, len(points)),
-                                         env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
+        values = kinematics(self.waves, world.reshape(-1, 3), np.repeat(time_s, len(points)),
+                            env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
         table = np.zeros((rows[-1] + 3, len(points), 7))
         table[rows] = values.reshape(time_s.size, len(points), 7)
         return WaveTable(table, step)

@@ -43,8 +43,10 @@ def sea_state_waves(sea: SeaState, duration_s: float, load_case: str | None = No
                                      "load_case": load_case}
 
 
-def comp_file_waves(path: Path) -> tuple[WaveComponents, dict]:
-    return read_comp_file(path), {"source": "components", "file": str(path)}
+def comp_file_waves(path: Path, direct_sum: bool = False) -> tuple[WaveComponents, dict]:
+    """A ``.Comp`` file's components (``direct_sum``: those on no common frequency grid too,
+    for prescribed motion) and their description."""
+    return read_comp_file(path, direct_sum), {"source": "components", "file": str(path)}
 
 
 def elevation_record_waves(path: Path, point_xy_m: tuple[float, float], heading_deg: float,

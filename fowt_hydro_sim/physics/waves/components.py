@@ -6,7 +6,10 @@ s_i = x cos(beta_i) + y sin(beta_i), beta the direction the component travels to
 90 deg = +y); phase 0 is a crest at the origin at t = 0; k from w^2 = g k tanh(k h).
 
 All frequencies are integer multiples of 1 / ``period_s``: the sea repeats every
-``period_s`` seconds, and its kinematics can be computed by an inverse FFT.
+``period_s`` seconds, and its kinematics can be computed by an inverse FFT. Components on no
+common frequency grid (a ``.Comp`` file's frequencies as printed) have ``period_s`` 0: they
+do not repeat, and are summed directly, component by component, at every point and time
+(``fowt-sim loads`` only).
 """
 from __future__ import annotations
 
@@ -43,7 +46,8 @@ def wavenumber(omega_rad_s: np.ndarray, depth_m: float, gravity_m_s2: float) -> 
 
 @dataclass(frozen=True)
 class WaveComponents:
-    """Long-crested or directional linear wave components."""
+    """Long-crested or directional linear wave components (``period_s`` 0: on no common
+    frequency grid, summed directly)."""
 
     frequency_hz: np.ndarray
     amplitude_m: np.ndarray
@@ -57,8 +61,13 @@ class WaveComponents:
             if len(getattr(self, name)) != n:
                 raise ValueError(f"wave components: {name} has {len(getattr(self, name))} values, expected {n}")
         harmonics = self.frequency_hz * self.period_s
-        if n and np.max(np.abs(harmonics - np.round(harmonics))) > 1e-6:
+        if self.period_s and n and np.max(np.abs(harmonics - np.round(harmonics))) > 1e-6:
             raise ValueError(f"wave components: frequencies are not multiples of 1/{self.period_s:g} s")
+
+    @property
+    def periodic(self) -> bool:
+        """Whether the components are harmonics of 1 / period_s (else summed directly)."""
+        return self.period_s > 0
 
     @property
     def harmonic(self) -> np.ndarray:
@@ -132,20 +141,23 @@ def synthesize(sea: SeaState, period_s: float) -> WaveComponents:
     return WaveComponents(f, amplitude, phase, direction, period_s)
 
 
-def read_comp_file(path: str | Path) -> WaveComponents:
+def read_comp_file(path: str | Path, direct_sum: bool = False) -> WaveComponents:
     """Components from an OpenFAST SeaState ``.Comp`` file (WaveMod = 7).
 
     Lines holding a non-numeric word are headers; data lines are omega (rad/s), wave height
-    H = 2a (m), direction (deg), phase (deg).
+    H = 2a (m), direction (deg), phase (deg), separated by blanks or commas. Frequencies on no
+    common grid (multiples of one step, to 1e-6 of a step) are refused, or with ``direct_sum``
+    kept as written with ``period_s`` 0 (summed directly: each point and time costs one cosine
+    per component instead of an interpolation in a table).
     """
     path = Path(path)
     rows = []
     try:
         lines = path.read_text().splitlines()
-    except OSError as exc:
-        raise ConfigError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot be read ({getattr(exc, 'strerror', None) or exc})") from None
     for number, line in enumerate(lines, 1):
-        words = line.split()
+        words = line.replace(",", " ").split()
         try:
             values = [float(w) for w in words]
         except ValueError:
@@ -161,7 +173,14 @@ def read_comp_file(path: str | Path) -> WaveComponents:
     if not np.all(np.isfinite(data)) or np.any(data[:, 0] <= 0) or np.any(data[:, 1] < 0):
         raise ConfigError(f"{path}: frequencies must be positive and heights non-negative and finite")
     f = data[:, 0] / (2 * np.pi)
-    period = _common_period(f, path)
+    period = _common_period(f)
+    if period is None:
+        if not direct_sum:
+            raise ConfigError(f"{path}: wave frequencies are not on a common grid (multiples of one frequency "
+                              "step): the time loop's kinematics tables need one (fowt-sim loads sums such "
+                              "components directly)")
+        log.info("%s: %d wave frequencies on no common grid: summed directly", path, f.size)
+        period = 0.0
     return WaveComponents(f, data[:, 1] / 2.0, np.deg2rad(data[:, 3]), np.deg2rad(data[:, 2]), period)
 
 
@@ -173,14 +192,14 @@ def write_comp_file(path: str | Path, waves: WaveComponents, header: str = "") -
     Path(path).write_text("\n".join(lines) + "\n")
 
 
-def _common_period(f_hz: np.ndarray, source: object) -> float:
-    """The longest period of which every frequency is a harmonic (1 / the frequencies' GCD)."""
+def _common_period(f_hz: np.ndarray) -> float | None:
+    """The longest period of which every frequency is a harmonic (1 / the frequencies' GCD),
+    or None if they are on no common grid."""
     gaps = np.diff(np.unique(np.concatenate([[0.0], f_hz])))
     df = np.min(gaps)
     harmonics = f_hz / df
     if np.max(np.abs(harmonics - np.round(harmonics))) > 1e-6 * max(1.0, harmonics.max()):
-        raise ConfigError(f"{source}: wave frequencies are not on a common grid (multiples of one "
-                          f"frequency step); the repeat period cannot be set")
+        return None
     return float(1.0 / df)
 
 

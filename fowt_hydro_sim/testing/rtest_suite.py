@@ -1,0 +1,184 @@
+"""The OpenFAST r-test HydroDyn cases of ``test/data/openfast_rtest/manifest.yaml`` run through
+the command line as a user would (``fowt-sim platform import``, then ``fowt-sim loads``), and
+compared with HydroDyn's baselines channel by channel.
+
+Relative RMS of a channel: RMS(ours - HydroDyn) / RMS(HydroDyn) over the baseline's rows. A
+channel whose baseline RMS is below 1e-6 of the largest of its kind (forces, moments) is
+round-off: it agrees when ours is below that too.
+
+``python -m fowt_hydro_sim.testing.rtest_suite`` prints the table of every case (Markdown,
+as docs/validation_rtest.md holds it).
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import sys
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from fowt_hydro_sim.cli import main
+from fowt_hydro_sim.physics.waves.components import read_comp_file
+from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing.references import read_hydrodyn_out
+
+RTEST = REPO / "test" / "data" / "openfast_rtest"
+MANIFEST = RTEST / "manifest.yaml"
+CHANNELS = ("HydroFxi", "HydroFyi", "HydroFzi", "HydroMxi", "HydroMyi", "HydroMzi")
+ROUND_OFF = 1e-6
+
+
+@dataclass(frozen=True)
+class Case:
+    """One manifest entry (paths resolved in the case's folder)."""
+
+    name: str
+    deck: Path
+    driver: Path
+    waves: Path | None  # None: still water
+    options: tuple[str, ...]
+    baseline: Path
+    tolerance: float
+    expect: str  # "pass", "refused: FIELD" or "gap: WHY"
+    environment: dict[str, str] = field(default_factory=dict)  # driver values the driver file lacks
+
+    @property
+    def expected_refusal(self) -> str | None:
+        """The deck field the case is refused for, if it is."""
+        return self.expect.split(":", 1)[1].strip() if self.expect.startswith("refused:") else None
+
+
+@dataclass
+class Result:
+    """A case's outcome: its relative RMS per channel (None: round-off on both sides) or the
+    one-line refusal."""
+
+    case: Case
+    rows: int = 0
+    errors: dict[str, float | None] = field(default_factory=dict)
+    elevation_error_m: float | None = None  # |Wave1Elev ours - HydroDyn| at most, if printed
+    refusal: str = ""
+
+    @property
+    def passed(self) -> bool:
+        """Every channel within the case's tolerance."""
+        return not self.refusal and bool(self.errors) and all(
+            e is None or e < self.case.tolerance for e in self.errors.values())
+
+    @property
+    def status(self) -> str:
+        """pass, fail or refused."""
+        if self.refusal:
+            return "refused"
+        return "pass" if self.passed else "fail"
+
+
+def load_manifest(path: Path = MANIFEST) -> list[Case]:
+    """The manifest's cases."""
+    cases = []
+    for entry in yaml.safe_load(path.read_text())["cases"]:
+        folder = path.parent / entry["name"]
+        waves = None if entry["waves"] == "still" else folder / entry["waves"]
+        cases.append(Case(entry["name"], folder / entry["deck"], folder / entry["driver"], waves,
+                          tuple(str(o) for o in entry["options"]), folder / entry["baseline"],
+                          float(entry["tolerance"]), str(entry["expect"]),
+                          {k: str(v) for k, v in entry.get("environment", {}).items()}))
+    return cases
+
+
+def driver_settings(path: Path) -> dict[str, str]:
+    """A HydroDyn driver file's ``value name`` lines as {name: value} (quotes removed)."""
+    settings = {}
+    for line in path.read_text().splitlines():
+        words = line.split()
+        if len(words) >= 2:
+            settings.setdefault(words[1], words[0].strip('"'))
+    return settings
+
+
+def _cli(arguments: list[str]) -> tuple[int, str]:
+    """``fowt-sim`` in this process: its exit code and the last line it wrote to stderr."""
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        code = main(arguments)
+    lines = err.getvalue().strip().splitlines()
+    message = lines[-1].split(": error: ", 1)[-1] if lines else ""
+    return code, message.replace(f"{RTEST}/", "")
+
+
+def run_case(case: Case, folder: Path) -> Result:
+    """Import the case's deck and run its loads in ``folder``; compare with the baseline."""
+    driver = {**case.environment, **driver_settings(case.driver)}
+    reference = read_hydrodyn_out(case.baseline)
+    time_s = reference["Time"]
+    platform = folder / f"{case.name}.yaml"
+    code, message = _cli(["platform", "import", str(case.deck), "-o", str(platform), "--overwrite",
+                          "--water-depth", driver["WtrDpth"], "--water-density", driver["WtrDens"],
+                          "--gravity", driver["Gravity"]])
+    if code:
+        return Result(case, refusal=message)
+    mode = int(driver["PRPInputsMod"])
+    if mode == 2:
+        motion = case.driver.parent / driver["PRPInputsFile"]
+    elif mode == 0:
+        motion = folder / f"{case.name}_rest.dat"
+        rest = np.zeros((time_s.size, 19))
+        rest[:, 0] = time_s
+        np.savetxt(motion, rest)
+    else:
+        return Result(case, refusal=f"{case.driver}: PRPInputsMod {mode}: the suite runs 0 and 2 only")
+    out = folder / f"{case.name}_loads.csv"
+    waves = ["--still-water"] if case.waves is None else ["--waves-comp", str(case.waves)]
+    code, message = _cli(["loads", "--platform", str(platform), "--motion", str(motion), *waves, *case.options,
+                          "-o", str(out), "--overwrite"])
+    if code:
+        return Result(case, refusal=message)
+    table = np.genfromtxt(out, delimiter=",", names=True)
+    rows = [int(np.argmin(np.abs(table["Time"] - t))) for t in time_s]
+    if np.max(np.abs(table["Time"][rows] - time_s)) > 1e-6:
+        return Result(case, refusal=f"{case.name}: the loads' times miss the baseline's")
+    result = Result(case, rows=time_s.size)
+    scales = {kind: max(np.sqrt(np.mean(reference[c] ** 2)) for c in CHANNELS if c[5] == kind) for kind in "FM"}
+    for channel in CHANNELS:
+        ours, theirs = table[channel][rows], reference[channel]
+        scale = scales[channel[5]]
+        rms = float(np.sqrt(np.mean(theirs**2)))
+        if rms <= ROUND_OFF * scale:
+            ours_rms = float(np.sqrt(np.mean(ours**2)))
+            result.errors[channel] = None if ours_rms <= ROUND_OFF * scale else ours_rms / scale
+        else:
+            result.errors[channel] = float(np.sqrt(np.mean((ours - theirs) ** 2)) / rms)
+    if "Wave1Elev" in reference and case.waves is not None:
+        waves_read = read_comp_file(case.waves, direct_sum=True)
+        eta = waves_read.elevation(0.0, 0.0, time_s, float(driver["WtrDpth"]), float(driver["Gravity"]))
+        result.elevation_error_m = float(np.max(np.abs(eta - reference["Wave1Elev"])))
+    return result
+
+
+def table(results: list[Result]) -> str:
+    """The suite's table (Markdown)."""
+    head = "| case | rows | " + " | ".join(c[5:7] for c in CHANNELS) + " | tolerance | result |"
+    lines = [head, "|" + "---|" * (len(CHANNELS) + 4)]
+    for r in results:
+        if r.refusal:
+            cells = ["-"] * len(CHANNELS)
+            outcome = f"refused: {r.refusal}" if r.case.expected_refusal else f"{r.case.expect}; refused: {r.refusal}"
+        else:
+            cells = ["round-off" if e is None else f"{e:.2e}" for e in r.errors.values()]
+            outcome = r.status if r.case.expect == "pass" or r.passed else f"{r.status} ({r.case.expect})"
+        lines.append(f"| {r.case.name} | {r.rows} | " + " | ".join(cells) + f" | {r.case.tolerance:g} | {outcome} |")
+    return "\n".join(lines)
+
+
+def run_all(cases: list[Case] | None = None) -> list[Result]:
+    """Every case of the manifest, in a temporary folder."""
+    with tempfile.TemporaryDirectory() as folder:
+        return [run_case(case, Path(folder)) for case in cases or load_manifest()]
+
+
+if __name__ == "__main__":
+    sys.stdout.write(table(run_all()) + "\n")
