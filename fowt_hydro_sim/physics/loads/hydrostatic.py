@@ -104,7 +104,8 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     submerged = strips.centre_m[:, 2] < 0.0  # strips are cut at the water line
     volumes = strips.volume_m3[submerged]
     volume = float(volumes.sum())
-    centre = volumes @ strips.volume_centre_m[submerged] / volume
+    # (a potential-flow hull without Morison members displaces nothing here)
+    centre = volumes @ strips.volume_centre_m[submerged] / volume if volume > 0 else np.zeros(3)
     try:
         area, first, second = _waterplane(platform)
     except ConfigError as exc:  # refused where linear hydrostatics are asked for (parameters)
@@ -203,6 +204,8 @@ def member_records(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
         records.append(record)
         tables += [fine] if m.tapered else [fine, coarse]
         first += len(fine) + (0 if m.tapered else len(coarse))
+    if not records:  # no member: nothing displaced
+        return np.zeros(0), np.zeros((1, 9))
     return np.concatenate(records), np.concatenate(tables)
 
 
