@@ -148,3 +148,18 @@ def test_radiation_none_keeps_the_infinite_frequency_added_mass(volturnus):
     radiation_load.wrench(0.0, y, np.eye(3), params, table, out, mass)
     assert not out.any()
     assert np.array_equal(mass, wamit_data(plain.potential_flow, plain.environment).radiation.added_mass_inf_si)
+
+
+def test_newman_drift_of_a_regular_wave_is_the_12d_diagonal(volturnus):
+    """The drift component (Newman's approximation) of volturnus_s in a regular wave of 2 m at
+    1.25 rad/s is the constant a^2 F(w, w), F the surge QTF's diagonal of the .12d file (read
+    here, not from the YAML), within 1e-4."""
+    from fowt_hydro_sim.physics.loads.drift import newman_force
+    period = 25 * 2 * np.pi / 1.25
+    waves = WaveComponents(np.array([25 / period]), np.array([2.0]), np.array([0.3]), np.array([0.0]), period)
+    samples, _ = newman_force(waves, volturnus.drift_coefficients_n_m2)
+    qtf = wamit.read_12d(ROOT.with_name(ROOT.name + ".12d"), RHO, G)
+    k = int(np.argmin(np.abs(qtf.omega_rad_s - 1.25)))
+    expected = 4.0 * qtf.mean_drift()[0, k, 0]
+    assert np.allclose(samples[:, 0], expected, rtol=1e-4)
+    assert np.allclose(samples[:, 1], 0.0, atol=1e-6 * expected)
