@@ -163,3 +163,42 @@ def test_newman_drift_of_a_regular_wave_is_the_12d_diagonal(volturnus):
     expected = 4.0 * qtf.mean_drift()[0, k, 0]
     assert np.allclose(samples[:, 0], expected, rtol=1e-4)
     assert np.allclose(samples[:, 1], 0.0, atol=1e-6 * expected)
+
+
+@pytest.mark.slow
+@pytest.mark.ros
+def test_the_node_runs_volturnus_s_as_the_offline_model():
+    """``fowt-sim node`` with ``platform:=volturnus_s`` (20 s of lc5.2 as fast as possible): its
+    poses are the offline model's, bit for bit in position (the radiation memory's ring is
+    stepped the same way one dt at a time as in a batch run)."""
+    pytest.importorskip("rclpy")
+    import time
+
+    from geometry_msgs.msg import PoseStamped
+
+    import msg_adapters as adapt
+    from fowt_hydro_sim.physics.config import load_case
+    from fowt_hydro_sim.physics.model import PlatformModel
+    from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
+    from fowt_hydro_sim.testing.ros import Listener, finish, start
+
+    listener = Listener({"/platform/pose": PoseStamped})
+    node = start("node", platform="volturnus_s", drag_model="constant", duration_s=20.0, real_time_factor=0.0,
+                 load_case="lc5.2", seed=3, wait_for_subscribers=1)
+    try:
+        listener.wait_for(lambda: node.poll() is not None, 180.0)
+        output = finish(node, 10)
+        time.sleep(0.3)
+    finally:
+        listener.close()
+    assert "duration 20 s reached" in output, output
+    rows = dict(adapt.motion_from_pose(msg) for msg in listener.messages["/platform/pose"])
+    t = np.array(sorted(rows))
+    motion = np.array([rows[k] for k in t])
+    sea = load_case("lc5.2").sea_state
+    sea = type(sea)(sea.hs_m, sea.tp_s, sea.gamma, seed=3)
+    offline = PlatformModel(load_platform("volturnus_s"), synthesize(sea, repeat_period(sea, 20.0)),
+                            dt_s=0.05).run(20.0, output_interval_s=0.05)
+    index = np.rint(t / 0.05).astype(int)
+    assert len(t) > 300 and np.abs(motion[:, 2]).max() > 0.05
+    np.testing.assert_array_equal(motion[:, :3], offline.motion[index, :3])
