@@ -202,3 +202,60 @@ def test_the_node_runs_volturnus_s_as_the_offline_model():
     index = np.rint(t / 0.05).astype(int)
     assert len(t) > 300 and np.abs(motion[:, 2]).max() > 0.05
     np.testing.assert_array_equal(motion[:, :3], offline.motion[index, :3])
+
+
+HYDRODYN_DECK = DATA / "IEA-15-240-RWT-UMaineSemi_HydroDyn.dat"
+
+
+def _deck_copy(folder: Path, **fields: str) -> Path:
+    """The VolturnUS-S HydroDyn deck in ``folder`` with some switches changed (``NAME=value``)
+    and its HydroData beside it (a link to the packaged files)."""
+    lines = HYDRODYN_DECK.read_text().splitlines()
+    for name, value in fields.items():
+        k = next(i for i, line in enumerate(lines) if line.split()[1:2] == [name])
+        lines[k] = f"{value:>14}   {name}" + lines[k].split(name, 1)[1]
+    deck = folder / "deck" / "HydroDyn.dat"
+    deck.parent.mkdir()
+    deck.write_text("\n".join(lines) + "\n")
+    (deck.parent / "HydroData").symlink_to(DATA / "HydroData")
+    return deck
+
+
+@pytest.mark.slow
+def test_platform_import_refuses_the_full_qtf_in_one_line(tmp_path, capsys):
+    """The OpenFAST deck itself asks for the full difference-frequency QTF (DiffQTF 12), which
+    the model does not have: refused, naming the field; so are RdtnMod 2 and ExctnMod 2 (state
+    spaces)."""
+    from fowt_hydro_sim.cli import main
+    for fields, message in (({}, "DiffQTF 12"), ({"DiffQTF": "0", "RdtnMod": "2"}, "RdtnMod 2"),
+                            ({"DiffQTF": "0", "ExctnMod": "2"}, "ExctnMod 2")):
+        folder = tmp_path / str(len(message)) / message.split()[0]
+        folder.mkdir(parents=True)
+        deck = _deck_copy(folder, **fields)
+        assert main(["platform", "import", str(deck), "-o", str(folder / "out.yaml")]) == 2
+        err = capsys.readouterr().err.strip()
+        assert message in err and len(err.splitlines()) == 1 and "Traceback" not in err, err
+
+
+@pytest.mark.slow
+def test_platform_import_of_a_potmod_1_deck_is_the_packaged_hull(tmp_path, volturnus):
+    """The deck with NewmanApp 12 in place of DiffQTF 12, imported: its potential flow is the
+    packaged volturnus_s's (the WAMIT files found relative to the deck, as HydroDyn finds them),
+    its drift table the packaged one (the .12d diagonal), and ``fowt-sim loads`` at rest gives
+    the buoyancy rho g PtfmVol0 in the potential_hydrostatic row."""
+    from fowt_hydro_sim.cli import main
+    deck = _deck_copy(tmp_path, DiffQTF="0", NewmanApp="12")
+    out = tmp_path / "imported" / "hull.yaml"
+    out.parent.mkdir()
+    assert main(["platform", "import", str(deck), "-o", str(out), "--water-depth", "200"]) == 0
+    imported = load_platform(out)
+    assert Path(imported.potential_flow.wamit_root).resolve() == Path(volturnus.potential_flow.wamit_root).resolve()
+    assert replace(imported.potential_flow, wamit_root="") == replace(volturnus.potential_flow, wamit_root="")
+    assert np.allclose(imported.drift_coefficients_n_m2, volturnus.drift_coefficients_n_m2, atol=0.06)
+    rest = np.zeros((3, 19))
+    rest[:, 0] = [0.0, 0.05, 0.1]
+    motion, loads = tmp_path / "rest.dat", tmp_path / "loads.csv"
+    np.savetxt(motion, rest)
+    assert main(["loads", "--platform", str(out), "--motion", str(motion), "--still-water", "-o", str(loads)]) == 0
+    table = np.genfromtxt(loads, delimiter=",", names=True)
+    assert np.allclose(table["potential_hydrostatic_Fz"], RHO * G * 20206.34889, rtol=1e-8)

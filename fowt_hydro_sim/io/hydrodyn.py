@@ -6,8 +6,8 @@ The deck is read with ``openfast-io`` (``InputReader_OpenFAST().read_HydroDyn``)
 the file line by line by position: a deck of another layout is misread, not refused (its
 SeaState reader misreads newer files silently the same way). So the values read here are
 checked for what they must be (finite, known switches, joints that exist) and what the model
-cannot represent is refused with one line naming the member: potential-flow bodies and
-members, marine growth, filled members, depth-based coefficient tables (HydroDyn interpolates
+cannot represent is refused with one line naming the member: potential-flow members
+(PropPot), marine growth, filled members, depth-based coefficient tables (HydroDyn interpolates
 in depth, the model's zones are piecewise constant), Cb other than 1, rectangular members with
 different side-A and side-B Morison coefficients (which of the model's two drag and added-
 mass directions HydroDyn's CdA, CaA act in has not been checked against HydroDyn), and
@@ -23,6 +23,16 @@ option (``hydrostatics``: nonlinear for MHstLMod 1, free_surface for MHstLMod 2)
 Decks of the HydroDyn v4 layout (OpenFAST 4.0, as in the OpenFAST r-test), which lack the
 v5 lines NAddDOF and HstMod, are read with those lines added at their v4 meaning (0: no
 additional DOF, hydrostatics up to the still water level).
+
+A potential-flow deck (PotMod 1) is imported as HydroDyn runs it for one WAMIT body at the
+reference point: PotFile (resolved relative to the deck, as HydroDyn resolves it), WAMITULEN,
+PtfmVol0, PtfmCOBxt/yt, RdtnMod 1 (convolution) or 0 (no memory), RdtnTMax (the kernel's step is
+the model's: HydroDyn's RdtnDT DEFAULT), AddF0, AddCLin, AddBLin, AddBQuad, and NewmanApp from a
+``.12d`` file as the drift table (the surge QTF's diagonal, negative values set to 0). Refused,
+each in one line naming the field: PotMod 2 (FIT), NBody > 1, NAddDOF > 0, a reference point or
+rotation other than 0, ExctnMod other than 1, ExctnDisp other than 0, PtfmYMod 1, RdtnMod 2
+(state space), MnDrift, DiffQTF and SumQTF (full QTFs), NewmanApp from another file than ``.12d``
+and members with PropPot (hybrid hulls).
 
 A HydroDyn deck has no structural mass and no mooring: the platform written floats freely
 (mass = rho V at the centre of buoyancy; one mooring line without stiffness or
@@ -67,15 +77,18 @@ def read_deck(path: str | Path) -> dict[str, Any]:
             deck = Path(folder) / path.name
             deck.write_text(text)
             reader.read_HydroDyn(str(deck))
+            hd = reader.fst_vt["HydroDyn"]
+            # openfast-io resolves PotFile against the copy's folder; HydroDyn against the deck's
+            hd["PotFile"] = [str((path.parent / Path(f).relative_to(folder)).resolve()) if f.startswith(folder) else f
+                             for f in hd.get("PotFile") or []]
     except (OSError, ValueError, IndexError, KeyError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot be read as a HydroDyn v5 input file ({type(exc).__name__}: {exc})") from None
-    return reader.fst_vt["HydroDyn"]
+    return hd
 
 
 def _refuse_unsupported(hd: dict, source: str) -> None:
-    if hd["PotMod"] != 0:
-        raise ConfigError(f"{source}: PotMod {hd['PotMod']}: potential-flow bodies are not supported "
-                          "(strip theory only)")
+    if hd["PotMod"] not in (0, 1):
+        raise ConfigError(f"{source}: PotMod {hd['PotMod']}: only 0 (strip theory) and 1 (WAMIT) are supported")
     if any(hd["PropPot"]):
         raise ConfigError(f"{source}: members {[m for m, p in zip(hd['MemberID'], hd['PropPot']) if p]} use potential "
                           "flow (PropPot): not supported")
@@ -174,12 +187,91 @@ def _member(hd: dict, index: int, source: str) -> dict:
     return out
 
 
+def _first(value: Any) -> Any:
+    """A per-body field's value for the one body (openfast-io reads them as lists)."""
+    return value[0] if isinstance(value, (list, tuple, np.ndarray)) else value
+
+
+def _potential_flow(hd: dict, source: str, water_density_kg_m3: float,
+                    gravity_m_s2: float) -> tuple[dict, list[list[float]] | None]:
+    """The ``potential_flow`` mapping of a PotMod 1 deck and its drift table (None without
+    NewmanApp); ConfigError naming the field HydroDyn has that the model cannot represent."""
+    from fowt_hydro_sim.physics.hydro.wamit import WamitFormatError, read_12d
+
+    def refuse(field: str, value: Any, why: str) -> ConfigError:
+        return ConfigError(f"{source}: {field} {value}: {why}")
+
+    checks = (("NBody", 1, "one WAMIT body only"), ("NAddDOF", 0, "no additional DOF"),
+              ("PtfmRefxt", 0, "the WAMIT body at the reference point only"),
+              ("PtfmRefyt", 0, "the WAMIT body at the reference point only"),
+              ("PtfmRefzt", 0, "the WAMIT body at the reference point only"),
+              ("PtfmRefztRot", 0, "the WAMIT body unrotated only"), ("ExctnMod", 1, "DFT excitation (1) only"),
+              ("ExctnDisp", 0, "excitation at the undisplaced position (0) only"),
+              ("PtfmYMod", 0, "a static reference yaw (0) only"), ("MnDrift", 0, "mean drift alone is not supported; "
+                                                                              "NewmanApp 12 is"),
+              ("DiffQTF", 0, "the full difference-frequency QTF is not supported; NewmanApp 12 is"),
+              ("SumQTF", 0, "sum-frequency QTFs are not supported"))
+    for field, allowed, why in checks:
+        value = _first(hd.get(field, allowed))
+        if value != allowed:
+            raise refuse(field, value, why)
+    radiation = {0: "none", 1: "convolution"}.get(int(hd["RdtnMod"]))
+    if radiation is None:
+        raise refuse("RdtnMod", hd["RdtnMod"], "convolution (1) or none (0) only; the state-space form is not "
+                                               "supported")
+    root = Path(_first(hd["PotFile"]))
+    flow = {"wamit_root": str(root), "wamit_length_m": float(_first(hd["WAMITULEN"])),
+            "displaced_volume_m3": float(_first(hd["PtfmVol0"])),
+            "centre_of_buoyancy_xy_m": [float(_first(hd["PtfmCOBxt"])), float(_first(hd["PtfmCOByt"]))],
+            "radiation": radiation, "radiation_tmax_s": float(hd["RdtnTMax"]),
+            "added_force_n": [float(v) for v in np.ravel(hd["AddF0"])[:6]]}
+    for field, key in (("AddCLin", "added_stiffness"), ("AddBLin", "added_linear_damping"),
+                       ("AddBQuad", "added_quadratic_damping")):
+        matrix = np.asarray(hd[field], dtype=float)
+        if matrix.shape != (6, 6) or not np.all(np.isfinite(matrix)):
+            raise refuse(field, f"of shape {matrix.shape}", "must be a finite 6x6 matrix (one body)")
+        flow[key] = matrix.tolist()
+    newman = int(hd.get("NewmanApp", 0))
+    if newman == 0:
+        return flow, None
+    if newman != 12:
+        raise refuse("NewmanApp", newman, "the drift table is read from the .12d file only (12)")
+    try:
+        qtf = read_12d(root.with_name(root.name + ".12d"), water_density_kg_m3, gravity_m_s2,
+                       float(_first(hd["WAMITULEN"])))
+    except (WamitFormatError, ValueError) as exc:
+        raise refuse("NewmanApp", newman, str(exc)) from None
+    heading = int(np.argmin(np.abs(qtf.heading_pairs_deg).sum(axis=1)))
+    if np.any(qtf.heading_pairs_deg[heading] != 0):
+        raise refuse("NewmanApp", newman, "the .12d file has no heading-0 pair")
+    drift = np.maximum(qtf.mean_drift()[heading, :, 0], 0.0)
+    return flow, [[float(w), float(d)] for w, d in zip(qtf.omega_rad_s, drift)]
+
+
 def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: float = 1025.0,
                        gravity_m_s2: float = 9.80665, water_depth_m: float = 150.0) -> dict:
     """The platform YAML document of a deck read by ``read_deck``; ConfigError for what the
     model cannot represent."""
     _refuse_unsupported(hd, source)
     members = [_member(hd, i, source) for i in range(hd["NMembers"])]
+    if hd["PotMod"] == 1:
+        flow, drift = _potential_flow(hd, source, water_density_kg_m3, gravity_m_s2)
+        volume = flow["displaced_volume_m3"]
+        mass = water_density_kg_m3 * volume
+        inertia = mass * volume ** (2 / 3) / 4
+        document = {"name": name, "description": f"imported from the HydroDyn deck {source}: WAMIT potential flow "
+                                                 f"and {len(members)} strip-theory members; placeholder mass "
+                                                 "(rho PtfmVol0 at the reference point), no mooring",
+                    "environment": {"water_density_kg_m3": water_density_kg_m3, "gravity_m_s2": gravity_m_s2,
+                                    "water_depth_m": water_depth_m},
+                    "mass": {"mass_kg": mass, "cog_m": [*flow["centre_of_buoyancy_xy_m"], 0.0],
+                             "inertia_about_cog_kg_m2": {"ixx": inertia, "iyy": inertia, "izz": inertia}},
+                    "hub_point_m": [0.0, 0.0, 0.0], "members": members, "potential_flow": flow,
+                    "drift_coefficients_n_m2": drift,
+                    "mooring": {"stiffness_n_m": 0.0, "pretension_n": 0.0, "unstretched_length_m": 1.0,  # no load
+                                "lines": [{"fairlead_m": [0.0, 0.0, 0.0], "anchor_m": [1.0, 0.0, 0.0]}]}}
+        platform_from_dict(document, source)  # the WAMIT files exist and are complete
+        return document
     document = {"name": name, "description": f"imported from the HydroDyn deck {source}: strip-theory members only; "
                                              "placeholder mass (floating freely), no mooring",
                 "environment": {"water_density_kg_m3": water_density_kg_m3, "gravity_m_s2": gravity_m_s2,
