@@ -259,3 +259,28 @@ def test_platform_import_of_a_potmod_1_deck_is_the_packaged_hull(tmp_path, voltu
     assert main(["loads", "--platform", str(out), "--motion", str(motion), "--still-water", "-o", str(loads)]) == 0
     table = np.genfromtxt(loads, delimiter=",", names=True)
     assert np.allclose(table["potential_hydrostatic_Fz"], RHO * G * 20206.34889, rtol=1e-8)
+
+
+def test_radiation_memory_of_a_coarser_prescribed_motion_is_the_stepped_ones(volturnus):
+    """``fowt-sim loads`` evaluates the loads only at the motion's samples: sampled every 0.2 s
+    (four model steps of 0.05 s), a harmonic surge velocity at 0.5 rad/s gives the memory force
+    of the same motion evaluated at every step within 0.2 % of its amplitude (the skipped
+    steps' velocities filled linearly; read as stale ring entries, they put the force off by
+    1.3 times its amplitude)."""
+    from fowt_hydro_sim.physics.loads import ComponentInputs
+    params, table = radiation_load.parameters(ComponentInputs(volturnus, None, None, None, None, None, 0.05))
+    forces = {}
+    for every in (1, 4):
+        p, tab = params.copy(), table.copy()
+        times = np.arange(0, 6000, every) * 0.05
+        y, out, mass = np.zeros(12), np.zeros(6), np.zeros((6, 6))
+        force = np.zeros(times.size)
+        for n, time in enumerate(times):
+            y[6] = np.cos(0.5 * time)
+            out[:] = 0.0
+            radiation_load.wrench(time, y, np.eye(3), p, tab, out, mass)
+            force[n] = out[0]
+        forces[every] = force
+    fine, coarse = forces[1][::4], forces[4]
+    tail = slice(coarse.size // 2, None)
+    assert np.abs(coarse[tail] - fine[tail]).max() < 2e-3 * np.abs(fine[tail]).max()

@@ -7,7 +7,9 @@ reaction -A_inf a) and the memory effect, the convolution
 (``physics.hydro.radiation``; T = ``radiation_tmax_s``), by the trapezoidal rule on the
 model's step over the reference point's velocities at the step times. The velocities are
 kept in a ring (the last evaluation at each step time wins: the corrected state, as HydroDyn
-keeps the velocity history at its own steps); the sum over the past steps is computed once
+keeps the velocity history at its own steps; step times no evaluation reached, as with a
+prescribed motion sampled coarser than the step, are filled linearly between the evaluations
+around them; a run starts with no history); the sum over the past steps is computed once
 per step time, the current velocity's term at every evaluation. Only the couplings (i, j)
 whose damping is not negligible are summed (``potential_flow.kernel_pairs``). Zero for a
 platform without potential flow or with ``radiation: none`` (then A_inf alone)."""
@@ -55,10 +57,23 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
     if n == 0:
         return
     k = int(t / params[DT] + 0.5)
-    if k < params[LAST]:  # time went back: a new run
+    last = int(params[LAST])
+    if k < last:  # time went back: a new run, with no history before its first evaluation
         params[CACHED] = -1.0
-    params[LAST] = k
+        for c in range(6):
+            for m in range(n):
+                table[n_pairs + c, m] = 0.0
+        last = -1
     slot = (n - k % n) % n  # the ring runs backwards in time: step k - m is at slot + m (mod n)
+    if last >= 0 and k > last + 1:  # step times skipped (a prescribed motion sampled coarser than dt):
+        before = (n - last % n) % n  # their velocities linear between the last evaluation's and this one
+        for m in range(max(last + 1, k - n + 1), k):
+            fraction = (m - last) / (k - last)
+            at = (n - m % n) % n
+            for c in range(6):
+                v0 = table[n_pairs + c, before]
+                table[n_pairs + c, at] = v0 + fraction * (y[6 + c] - v0)
+    params[LAST] = k
     for c in range(6):
         table[n_pairs + c, slot] = y[6 + c]
     if params[CACHED] != k:  # the past steps' part, once per step time
