@@ -79,8 +79,9 @@ def read_deck(path: str | Path) -> dict[str, Any]:
             reader.read_HydroDyn(str(deck))
             hd = reader.fst_vt["HydroDyn"]
             # openfast-io resolves PotFile against the copy's folder; HydroDyn against the deck's
+            files = hd.get("PotFile") or []
             hd["PotFile"] = [str((path.parent / Path(f).relative_to(folder)).resolve()) if f.startswith(folder) else f
-                             for f in hd.get("PotFile") or []]
+                             for f in ([files] if isinstance(files, str) else files)]
     except (OSError, ValueError, IndexError, KeyError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot be read as a HydroDyn v5 input file ({type(exc).__name__}: {exc})") from None
     return hd
