@@ -284,3 +284,31 @@ def test_radiation_memory_of_a_coarser_prescribed_motion_is_the_stepped_ones(vol
     fine, coarse = forces[1][::4], forces[4]
     tail = slice(coarse.size // 2, None)
     assert np.abs(coarse[tail] - fine[tail]).max() < 2e-3 * np.abs(fine[tail]).max()
+
+
+def test_a_drag_only_member_loads_the_hull_with_its_drag_alone(volturnus, tmp_path):
+    """HydroDyn's PropPot member on a potential-flow hull: a vertical column (D 10 m, 20 m
+    draft, Cd 0.6, Ca 1) marked ``drag_only`` moving in surge at v = 1.5 m/s with a = 0.4 m/s^2
+    in still water carries the drag -0.5 rho Cd D T |v| v and nothing else: no inertia, added
+    mass or buoyancy (the WAMIT data hold those); unmarked, the same member has them."""
+    from fowt_hydro_sim.physics.loads import ROW
+    from fowt_hydro_sim.physics.model import PlatformModel
+    document = platform_document(volturnus)
+    document["members"] = [{"name": "column", "section": "circular", "diameter_m": 10.0, "end_a_m": [0, 0, -20.0],
+                            "end_b_m": [0, 0, 10.0], "strip_length_m": 1.0, "drag_only": True,
+                            "zones": [{"name": "all", "ca": 1.0, "cd": 0.6}]}]
+    state = np.zeros((1, 6))
+    velocity, acceleration = state.copy(), state.copy()
+    velocity[0, 0], acceleration[0, 0] = 1.5, 0.4
+    rows = {}
+    for drag_only in (True, False):
+        document["members"][0]["drag_only"] = drag_only
+        model = PlatformModel(platform_from_dict(document, "hybrid", tmp_path), None, dt_s=0.05)
+        rows[drag_only] = model.prescribed_motion_loads(np.zeros(1), state, velocity, acceleration)[0]
+    hybrid, plain = rows[True], rows[False]
+    assert hybrid[ROW["drag"], 0] == pytest.approx(-0.5 * RHO * 0.6 * 10.0 * 20.0 * 1.5**2, rel=1e-9)
+    for name in ("inertia", "added_mass", "hydrostatic"):
+        assert not np.any(hybrid[ROW[name]]), name
+    assert plain[ROW["added_mass"], 0] == pytest.approx(-RHO * np.pi * 25.0 * 20.0 * 0.4, rel=1e-9)
+    assert plain[ROW["hydrostatic"], 2] == pytest.approx(RHO * G * np.pi * 25.0 * 20.0, rel=1e-9)
+    assert np.array_equal(hybrid[ROW["potential_hydrostatic"]], plain[ROW["potential_hydrostatic"]])

@@ -6,12 +6,12 @@ The deck is read with ``openfast-io`` (``InputReader_OpenFAST().read_HydroDyn``)
 the file line by line by position: a deck of another layout is misread, not refused (its
 SeaState reader misreads newer files silently the same way). So the values read here are
 checked for what they must be (finite, known switches, joints that exist) and what the model
-cannot represent is refused with one line naming the member: potential-flow members
-(PropPot), marine growth, filled members, depth-based coefficient tables (HydroDyn interpolates
-in depth, the model's zones are piecewise constant), Cb other than 1, rectangular members with
-different side-A and side-B Morison coefficients (which of the model's two drag and added-
-mass directions HydroDyn's CdA, CaA act in has not been checked against HydroDyn), and
-tapered rectangular members with axial added mass or drag (AxCa, AxCd). Cp is the zone's
+cannot represent is refused with one line naming the member: marine growth, filled members,
+depth-based coefficient tables (HydroDyn interpolates in depth, the model's zones are piecewise
+constant), Cb other than 1, rectangular members with different side-A and side-B Morison
+coefficients (which of the model's two drag and added-mass directions HydroDyn's CdA, CaA act
+in has not been checked against HydroDyn), and tapered rectangular members with axial added
+mass or drag (AxCa, AxCd). Cp is the zone's
 ``cp``. A tapered member keeps both end sizes (circular: diameters; rectangular: side A as
 ``width_m``/``width_b_m``, side B as ``height_m``/``height_b_m``) and the member's axial
 coefficients (AxCa, AxCp, AxCd of its coefficient table: the tapered wall's axial terms,
@@ -32,7 +32,8 @@ the model's: HydroDyn's RdtnDT DEFAULT), AddF0, AddCLin, AddBLin, AddBQuad, and 
 each in one line naming the field: PotMod 2 (FIT), NBody > 1, NAddDOF > 0, a reference point or
 rotation other than 0, ExctnMod other than 1, ExctnDisp other than 0, PtfmYMod 1, RdtnMod 2
 (state space), MnDrift, DiffQTF and SumQTF (full QTFs), NewmanApp from another file than ``.12d``
-and members with PropPot (hybrid hulls).
+Members with PropPot are imported drag only (``drag_only``: no
+inertia, added mass or buoyancy of their own), as HydroDyn treats them.
 
 A HydroDyn deck has no structural mass and no mooring: the platform written floats freely
 (mass = rho V at the centre of buoyancy; one mooring line without stiffness or
@@ -90,9 +91,6 @@ def read_deck(path: str | Path) -> dict[str, Any]:
 def _refuse_unsupported(hd: dict, source: str) -> None:
     if hd["PotMod"] not in (0, 1):
         raise ConfigError(f"{source}: PotMod {hd['PotMod']}: only 0 (strip theory) and 1 (WAMIT) are supported")
-    if any(hd["PropPot"]):
-        raise ConfigError(f"{source}: members {[m for m, p in zip(hd['MemberID'], hd['PropPot']) if p]} use potential "
-                          "flow (PropPot): not supported")
     if hd["NMGDepths"] > 0:
         raise ConfigError(f"{source}: marine growth (NMGDepths {hd['NMGDepths']}) is not supported")
     if hd["NFillGroups"] > 0:
@@ -178,6 +176,8 @@ def _member(hd: dict, index: int, source: str) -> dict:
             raise ConfigError(f"{source}: member {member}: tapered rectangular member with axial AxCa "
                               f"{taper_axial['ca']:g}, AxCd {taper_axial['cd']:g}: only 0 is supported")
         size["taper_axial"] = taper_axial
+    if hd["PropPot"][index]:  # HydroDyn: the potential flow has its inertia and buoyancy, it keeps its drag
+        size["drag_only"] = True
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
            "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),
            "zones": [{"name": "all", **coefficients}]}

@@ -134,6 +134,7 @@ class Member:
     width_b_m: float | None = None  # rectangular only: the width at end b of a tapered member
     height_b_m: float | None = None  # rectangular only: the height at end b of a tapered member
     spin_deg: float = 0.0  # rectangular only: the section turned about the axis (MSpinOrient)
+    drag_only: bool = False  # HydroDyn's PropPot: drag only, the hull's potential flow has the rest
 
     @property
     def tapered(self) -> bool:
@@ -559,12 +560,22 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
         diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
+        drag_only=_flag(f, "drag_only"),
     )
     f.used.update({"end_a_plate", "end_b_plate"})
     if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
         raise ConfigError(f"{f.path}.zones: below_z_m must increase from the first zone to the last")
     f.finish()
     return member
+
+
+def _flag(f: _Fields, name: str) -> bool:
+    """An optional true/false field (default false)."""
+    value = f.data.get(name, False)
+    f.used.add(name)
+    if not isinstance(value, bool):
+        raise ConfigError(f"{f.at(name)}: must be true or false, got {value!r}")
+    return value
 
 
 def _inertia(f: _Fields) -> tuple[tuple[float, ...], ...]:
@@ -742,6 +753,8 @@ def platform_document(platform: Platform) -> dict:
                         taper_axial=vars(m.taper_axial).copy())
         if m.spin_deg:
             size["spin_deg"] = m.spin_deg
+        if m.drag_only:
+            size["drag_only"] = True
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
                   "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
                   "zones": [_zone_document(z, m.section, bands) for z in m.zones]}

@@ -154,6 +154,8 @@ def platform_members(platform) -> list[RectangularMember]:
     circular member (not implemented)."""
     members = []
     for m in platform.members:
+        if m.drag_only:  # its buoyancy is the potential flow's
+            continue
         if m.section != "rectangular":
             raise ConfigError(f"hydrostatics 'free_surface': member {m.name} is {m.section}: implemented for "
                               "rectangular members only")

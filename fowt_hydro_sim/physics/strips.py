@@ -186,6 +186,8 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                     start = mid - 0.5 * (s1 - s0) / n
                     volume, offset = prismatoid(member, start, start + (s1 - s0) / n, strip_length)
                     volume_centre = a + start * (b - a) + offset * axis
+                if member.drag_only:  # HydroDyn's PropPot: the potential flow has the inertia and buoyancy
+                    volume = 0.0
                 rows["volume"].append(volume)
                 rows["volume_centre"].append(volume_centre)
                 if member.tapered:
@@ -196,19 +198,21 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                 rows["dirs"].append([d1, d2])
                 rows["length"].append(strip_length)
                 rows["area"].append(area)
-                rows["inertia"].append([rho * (zone.cp * area + zone.ca[k] * am_area[k]) for k in range(2)])
-                rows["added"].append([rho * zone.ca[k] * am_area[k] for k in range(2)])
+                keep = 0.0 if member.drag_only else 1.0
+                rows["inertia"].append([keep * rho * (zone.cp * area + zone.ca[k] * am_area[k]) for k in range(2)])
+                rows["added"].append([keep * rho * zone.ca[k] * am_area[k] for k in range(2)])
                 rows["drag"].append([0.5 * rho * zone.cd[k].constant * width[k] for k in range(2)])
                 rows["band_drag"].append([[0.5 * rho * (zone.cd[k].bands or (0.0,) * n_bands)[b] * width[k]
                                            for k in range(2)] for b in range(n_bands)])
                 rows["filtered"].append([zone.cd[k].bands is not None for k in range(2)])
                 rows["member"].append(index)
                 rows["zone"].append(zone.name)
+        keep = 0.0 if member.drag_only else 1.0
         for centre, (pressure, added, drag) in rings:
             plates["centre"].append(centre)
             plates["normal"].append(axis)
-            plates["pressure"].append(pressure)
-            plates["added"].append(added)
+            plates["pressure"].append(keep * pressure)
+            plates["added"].append(keep * added)
             plates["drag"].append(drag)
         for plate, end, normal, fraction in ((member.end_a_plate, a, axis, 0.0), (member.end_b_plate, b, -axis, 1.0)):
             if plate is None:
@@ -218,8 +222,8 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
             radius = member.diameter_at(fraction) / 2
             plates["centre"].append(end)
             plates["normal"].append(normal)
-            plates["pressure"].append(plate.cp * math.pi * radius**2)
-            plates["added"].append(rho * plate.ca * 2.0 / 3.0 * math.pi * radius**3)
+            plates["pressure"].append(keep * plate.cp * math.pi * radius**2)
+            plates["added"].append(keep * rho * plate.ca * 2.0 / 3.0 * math.pi * radius**3)
             plates["drag"].append(0.25 * rho * plate.cd * math.pi * radius**2)
 
     strip_centres = np.array(rows["centre"]).reshape(-1, 3)  # (none: a potential-flow hull)

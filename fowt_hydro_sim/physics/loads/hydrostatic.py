@@ -74,6 +74,8 @@ def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
     of the sections of the vertical members crossing z = 0; ConfigError for a tilted one."""
     area, first, second = 0.0, np.zeros(2), np.zeros((2, 2))
     for m in platform.members:
+        if m.drag_only:  # its buoyancy is the potential flow's
+            continue
         za, zb = m.end_a_m[2], m.end_b_m[2]
         if min(za, zb) >= 0.0 or max(za, zb) <= 0.0:
             continue
@@ -193,6 +195,8 @@ def member_records(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
     its integrands are not polynomials)."""
     records, tables, first = [], [], 0
     for m in platform.members:
+        if m.drag_only:  # its buoyancy is the potential flow's
+            continue
         fine = member_lines(m)
         coarse = fine if m.tapered else member_lines(m, COARSE)
         volume, moment = submerged_volume(np.eye(3), -np.inf, fine)  # wholly under water
