@@ -312,3 +312,12 @@ def test_a_drag_only_member_loads_the_hull_with_its_drag_alone(volturnus, tmp_pa
     assert plain[ROW["added_mass"], 0] == pytest.approx(-RHO * np.pi * 25.0 * 20.0 * 0.4, rel=1e-9)
     assert plain[ROW["hydrostatic"], 2] == pytest.approx(RHO * G * np.pi * 25.0 * 20.0, rel=1e-9)
     assert np.array_equal(hybrid[ROW["potential_hydrostatic"]], plain[ROW["potential_hydrostatic"]])
+
+
+def test_a_hull_without_members_runs_with_either_drag_model(volturnus):
+    """Without Morison members there is no drag to filter: the node's default ``filtered``
+    drag model runs volturnus_s, as the ``constant`` one does, to the same numbers."""
+    from fowt_hydro_sim.physics.model import PlatformModel
+    runs = [PlatformModel(volturnus, None, dt_s=0.05, drag_model=drag).run(5.0).motion for drag in ("filtered",
+                                                                                                     "constant")]
+    assert np.array_equal(runs[0], runs[1])

@@ -145,7 +145,7 @@ class PlatformModel:
                  blocks_ahead: bool = True, user_force: UserForce | None = None):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
-        if drag_model == "filtered" and not platform.drag_bands:
+        if drag_model == "filtered" and not platform.drag_bands and platform.members:  # (no members: no drag)
             raise ConfigError(f"drag model 'filtered': platform {platform.name} has no drag_bands")
         if user_force is not None and not callable(user_force):
             raise ConfigError(f"user force: need a function f(t, position, velocity), got {user_force!r}")
