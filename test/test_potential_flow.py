@@ -321,3 +321,28 @@ def test_a_hull_without_members_runs_with_either_drag_model(volturnus):
     runs = [PlatformModel(volturnus, None, dt_s=0.05, drag_model=drag).run(5.0).motion for drag in ("filtered",
                                                                                                      "constant")]
     assert np.array_equal(runs[0], runs[1])
+
+
+def test_a_malformed_wamit_file_stops_a_run_in_one_line(volturnus, tmp_path, capsys):
+    """A WAMIT file with a word where a number belongs: ``fowt-sim simulate`` ends with exit
+    code 2 and one line naming the file and the line, no traceback."""
+    import yaml
+
+    from fowt_hydro_sim.cli import main
+    folder = tmp_path / "HydroData"
+    folder.mkdir()
+    for extension in (".1", ".hst", ".3"):
+        text = ROOT.with_name(ROOT.name + extension).read_text()
+        if extension == ".1":
+            lines = text.splitlines()
+            lines[40] = lines[40].replace(lines[40].split()[3], "oops", 1)
+            text = "\n".join(lines) + "\n"
+        (folder / ("hull" + extension)).write_text(text)
+    document = platform_document(volturnus)
+    document["potential_flow"]["wamit_root"] = str(folder / "hull")
+    platform_file = tmp_path / "hull.yaml"
+    platform_file.write_text(yaml.safe_dump(document))
+    assert main(["simulate", "--platform", str(platform_file), "--still-water", "--duration", "1",
+                 "-o", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "hull.1:41: 'oops' is not a number" in err and len(err.splitlines()) == 1, err

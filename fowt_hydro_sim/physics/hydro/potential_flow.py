@@ -23,7 +23,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from fowt_hydro_sim.physics.config import Environment, PotentialFlow
+from fowt_hydro_sim.physics.config import ConfigError, Environment, PotentialFlow
 from fowt_hydro_sim.physics.hydro import wamit
 from fowt_hydro_sim.physics.hydro.radiation import retardation_kernel
 
@@ -32,7 +32,14 @@ EXCITATION_STEP_S = 0.1  # force samples: cubic interpolation of 0.5 Hz content 
 
 @lru_cache(maxsize=4)
 def _read(root: str, rho: float, g: float, length_m: float) -> wamit.PotentialFlowData:
-    return wamit.read_potential_flow(root, rho, g, length_m)
+    try:
+        data = wamit.read_potential_flow(root, rho, g, length_m)
+    except wamit.WamitFormatError as exc:  # one line naming the file and the line
+        raise ConfigError(str(exc)) from None
+    if data.radiation.added_mass_inf_si.shape != (6, 6):
+        raise ConfigError(f"{root}: {data.radiation.added_mass_inf_si.shape[0] // 6} WAMIT bodies: one body "
+                          "(6 DOF) only")
+    return data
 
 
 def wamit_data(flow: PotentialFlow, environment: Environment) -> wamit.PotentialFlowData:
@@ -46,8 +53,6 @@ def excitation_coefficients(data: wamit.PotentialFlowData, omega_rad_s: np.ndarr
     """X (n, 6) at each (w, beta): linear in frequency (zero outside the table) and in heading
     (periodic over 360 deg)."""
     x = data.excitation
-    if x.force_per_amplitude_si.shape[-1] != 6:
-        raise ValueError("potential flow: one body (6 DOF) only")
     headings = x.heading_deg
     table = x.force_per_amplitude_si
     if headings[-1] - headings[0] >= 360.0 - 1e-9:  # -180 and 180 both: drop the repeat
@@ -92,7 +97,7 @@ def convolution_weights(flow: PotentialFlow, data: wamit.PotentialFlowData, dt_s
     r = data.radiation
     omega_max = r.omega_rad_s[-1]
     if omega_max > np.pi / dt_s:
-        raise ValueError(f"potential flow: the damping table reaches {omega_max:g} rad/s, above pi/dt = "
+        raise ConfigError(f"potential flow: the damping table reaches {omega_max:g} rad/s, above pi/dt = "
                          f"{np.pi / dt_s:g} rad/s: take dt below {np.pi / omega_max:g} s")
     kernel = retardation_kernel(r.omega_rad_s, r.damping_si, flow.radiation_tmax_s, dt_s)
     pairs = kernel_pairs(r.damping_si)

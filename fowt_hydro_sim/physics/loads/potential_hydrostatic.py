@@ -18,8 +18,6 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     if flow is None:
         return np.zeros(43), np.zeros((1, 1))
     c = wamit_data(flow, env).hydrostatics.stiffness_si
-    if c.shape != (6, 6):
-        raise ValueError("potential flow: one body (6 DOF) only")
     buoyancy = env.water_density_kg_m3 * env.gravity_m_s2 * flow.displaced_volume_m3
     x_cob, y_cob = flow.centre_of_buoyancy_xy_m
     w0 = np.array([0.0, 0.0, buoyancy, buoyancy * y_cob, -buoyancy * x_cob, 0.0])
