@@ -159,7 +159,7 @@ def test_imported_deck_held_fixed_in_waves_matches_hydrodyn(tmp_path):
 
 
 @pytest.mark.parametrize("edit, message", [
-    (lambda text: text.replace("             0   PotMod", "             1   PotMod", 1), "potential-flow"),
+    (lambda text: text.replace("             0   PotMod", "             2   PotMod", 1), "PotMod 2"),
     (lambda text: text.replace("             0   NMGDepths", "             1   NMGDepths", 1).replace(
         "(m)        (m)         (kg/m^3)", "(m)        (m)         (kg/m^3)\n-10.0      0.1         1100.0", 1),
      "marine growth"),

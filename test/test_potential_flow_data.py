@@ -9,8 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fowt_hydro_sim.io import wamit
-from fowt_hydro_sim.physics.hydro import radiation
+from fowt_hydro_sim.physics.hydro import radiation, wamit
 
 HYDRO_DATA = Path(str(resources.files("fowt_hydro_sim.physics"))) / "data" / "platforms" / "volturnus_s" / "HydroData"
 ROOT = HYDRO_DATA / "IEA-15-240-RWT-UMaineSemi"

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -20,8 +21,12 @@ def import_deck(args: argparse.Namespace) -> int:
         raise ConfigError(f"{source}: no such file")
     document = hydrodyn.platform_from_deck(hydrodyn.read_deck(source), args.name or source.stem, source.name,
                                            args.water_density, args.gravity, args.water_depth)
+    if "potential_flow" in document:  # the WAMIT files relative to the YAML, as the platform reader takes them
+        root = document["potential_flow"]["wamit_root"]
+        document["potential_flow"]["wamit_root"] = os.path.relpath(root, out.resolve().parent)
     out.write_text(yaml.safe_dump(document, sort_keys=False))
-    sys.stdout.write(f"wrote {out}: {len(document['members'])} members (placeholder mass, no mooring)\n")
+    flow = " and WAMIT potential flow" if "potential_flow" in document else ""
+    sys.stdout.write(f"wrote {out}: {len(document['members'])} members{flow} (placeholder mass, no mooring)\n")
     return 0
 
 

@@ -6,12 +6,12 @@ The deck is read with ``openfast-io`` (``InputReader_OpenFAST().read_HydroDyn``)
 the file line by line by position: a deck of another layout is misread, not refused (its
 SeaState reader misreads newer files silently the same way). So the values read here are
 checked for what they must be (finite, known switches, joints that exist) and what the model
-cannot represent is refused with one line naming the member: potential-flow bodies and
-members, marine growth, filled members, depth-based coefficient tables (HydroDyn interpolates
-in depth, the model's zones are piecewise constant), Cb other than 1, rectangular members with
-different side-A and side-B Morison coefficients (which of the model's two drag and added-
-mass directions HydroDyn's CdA, CaA act in has not been checked against HydroDyn), and
-tapered rectangular members with axial added mass or drag (AxCa, AxCd). Cp is the zone's
+cannot represent is refused with one line naming the member: marine growth, filled members,
+depth-based coefficient tables (HydroDyn interpolates in depth, the model's zones are piecewise
+constant), Cb other than 1, rectangular members with different side-A and side-B Morison
+coefficients (which of the model's two drag and added-mass directions HydroDyn's CdA, CaA act
+in has not been checked against HydroDyn), and tapered rectangular members with axial added
+mass or drag (AxCa, AxCd). Cp is the zone's
 ``cp``. A tapered member keeps both end sizes (circular: diameters; rectangular: side A as
 ``width_m``/``width_b_m``, side B as ``height_m``/``height_b_m``) and the member's axial
 coefficients (AxCa, AxCp, AxCd of its coefficient table: the tapered wall's axial terms,
@@ -24,10 +24,21 @@ Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts b
 which lack some of the lines openfast-io reads (NAddDOF, HstMod; ExctnDisp, ExctnCutOff,
 PtfmYMod, PtfmRefY, PtfmYCutOff, NExctnHdg), are read with those lines added at the value
 that keeps the older meaning (no additional DOF, hydrostatics up to the still water level;
-the potential-flow settings, unused since potential flow is refused, at HydroDyn's example
-values); decks of the newer layout are read without its potential-flow lines FKMod and
+the potential-flow settings at HydroDyn's example values, ExctnDisp 0 as before it
+existed); decks of the newer layout are read without its potential-flow lines FKMod and
 GeoFile. A deck openfast-io still cannot read is refused in one line naming the last field
 it read, and the integer switches the import uses must read as integers.
+
+A potential-flow deck (PotMod 1) is imported as HydroDyn runs it for one WAMIT body at the
+reference point: PotFile (resolved relative to the deck, as HydroDyn resolves it), WAMITULEN,
+PtfmVol0, PtfmCOBxt/yt, RdtnMod 1 (convolution) or 0 (no memory), RdtnTMax (the kernel's step is
+the model's: HydroDyn's RdtnDT DEFAULT), AddF0, AddCLin, AddBLin, AddBQuad, and NewmanApp from a
+``.12d`` file as the drift table (the surge QTF's diagonal, negative values set to 0). Refused,
+each in one line naming the field: PotMod 2 (FIT), NBody > 1, NAddDOF > 0, a reference point or
+rotation other than 0, ExctnMod other than 1, ExctnDisp other than 0, PtfmYMod 1, RdtnMod 2
+(state space), MnDrift, DiffQTF and SumQTF (full QTFs), NewmanApp from another file than ``.12d``
+Members with PropPot are imported drag only (``drag_only``: no
+inertia, added mass or buoyancy of their own), as HydroDyn treats them.
 
 A HydroDyn deck has no structural mass and no mooring: the platform written floats freely
 (mass = rho V at the centre of buoyancy; one mooring line without stiffness or
@@ -51,7 +62,7 @@ from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
 _ADDED_LINES = (("ExctnDisp", "ExctnMod", "0"), ("ExctnCutOff", "ExctnDisp", "10"), ("PtfmYMod", "ExctnCutOff", "0"),
                 ("PtfmRefY", "PtfmYMod", "0"), ("PtfmYCutOff", "PtfmRefY", "0.01"), ("NExctnHdg", "PtfmYCutOff", "36"),
                 ("NAddDOF", "PtfmCOByt", "0"), ("HstMod", "AMMod", "0"))
-# lines of newer layouts openfast-io does not read: potential-flow settings (PotMod 1 only, refused)
+# lines of newer layouts openfast-io does not read: potential-flow settings the import does not use
 _DROPPED_LINES = ("FKMod", "GeoFile")
 # integer fields the import uses: a deck read out of step gives them text or a fraction
 _INTEGER_FIELDS = ("PotMod", "NBody", "NBodyMod", "NAxCoef", "NJoints", "NPropSetsCyl", "NPropSetsRec",
@@ -104,16 +115,16 @@ def read_deck(path: str | Path) -> dict[str, Any]:
         last = list(hd)[-1] if hd else "none"
         raise ConfigError(f"{path}: not a HydroDyn deck of a layout openfast-io reads: it stopped after field "
                           f"{last} ({failure})")
+    # openfast-io resolves PotFile against the copy's folder; HydroDyn against the deck's
+    files = hd.get("PotFile") or []
+    hd["PotFile"] = [str((path.parent / Path(f).relative_to(folder)).resolve()) if f.startswith(folder) else f
+                     for f in ([files] if isinstance(files, str) else files)]
     return hd
 
 
 def _refuse_unsupported(hd: dict, source: str) -> None:
-    if hd["PotMod"] != 0:
-        raise ConfigError(f"{source}: PotMod {hd['PotMod']}: potential-flow bodies are not supported "
-                          "(strip theory only)")
-    if any(hd["PropPot"]):
-        raise ConfigError(f"{source}: members {[m for m, p in zip(hd['MemberID'], hd['PropPot']) if p]} use potential "
-                          "flow (PropPot): not supported")
+    if hd["PotMod"] not in (0, 1):
+        raise ConfigError(f"{source}: PotMod {hd['PotMod']}: only 0 (strip theory) and 1 (WAMIT) are supported")
     if hd["NMGDepths"] > 0:
         raise ConfigError(f"{source}: marine growth (NMGDepths {hd['NMGDepths']}) is not supported")
     if hd["NFillGroups"] > 0:
@@ -199,6 +210,8 @@ def _member(hd: dict, index: int, source: str) -> dict:
             raise ConfigError(f"{source}: member {member}: tapered rectangular member with axial AxCa "
                               f"{taper_axial['ca']:g}, AxCd {taper_axial['cd']:g}: only 0 is supported")
         size["taper_axial"] = taper_axial
+    if hd["PropPot"][index]:  # HydroDyn: the potential flow has its inertia and buoyancy, it keeps its drag
+        size["drag_only"] = True
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
            "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),
            "zones": [{"name": "all", **coefficients}]}
@@ -209,12 +222,91 @@ def _member(hd: dict, index: int, source: str) -> dict:
     return out
 
 
+def _first(value: Any) -> Any:
+    """A per-body field's value for the one body (openfast-io reads them as lists)."""
+    return value[0] if isinstance(value, (list, tuple, np.ndarray)) else value
+
+
+def _potential_flow(hd: dict, source: str, water_density_kg_m3: float,
+                    gravity_m_s2: float) -> tuple[dict, list[list[float]] | None]:
+    """The ``potential_flow`` mapping of a PotMod 1 deck and its drift table (None without
+    NewmanApp); ConfigError naming the field HydroDyn has that the model cannot represent."""
+    from fowt_hydro_sim.physics.hydro.wamit import WamitFormatError, read_12d
+
+    def refuse(field: str, value: Any, why: str) -> ConfigError:
+        return ConfigError(f"{source}: {field} {value}: {why}")
+
+    checks = (("NBody", 1, "one WAMIT body only"), ("NAddDOF", 0, "no additional DOF"),
+              ("PtfmRefxt", 0, "the WAMIT body at the reference point only"),
+              ("PtfmRefyt", 0, "the WAMIT body at the reference point only"),
+              ("PtfmRefzt", 0, "the WAMIT body at the reference point only"),
+              ("PtfmRefztRot", 0, "the WAMIT body unrotated only"), ("ExctnMod", 1, "DFT excitation (1) only"),
+              ("ExctnDisp", 0, "excitation at the undisplaced position (0) only"),
+              ("PtfmYMod", 0, "a static reference yaw (0) only"), ("MnDrift", 0, "mean drift alone is not supported; "
+                                                                              "NewmanApp 12 is"),
+              ("DiffQTF", 0, "the full difference-frequency QTF is not supported; NewmanApp 12 is"),
+              ("SumQTF", 0, "sum-frequency QTFs are not supported"))
+    for field, allowed, why in checks:
+        value = _first(hd.get(field, allowed))
+        if value != allowed:
+            raise refuse(field, value, why)
+    radiation = {0: "none", 1: "convolution"}.get(int(hd["RdtnMod"]))
+    if radiation is None:
+        raise refuse("RdtnMod", hd["RdtnMod"], "convolution (1) or none (0) only; the state-space form is not "
+                                               "supported")
+    root = Path(_first(hd["PotFile"]))
+    flow = {"wamit_root": str(root), "wamit_length_m": float(_first(hd["WAMITULEN"])),
+            "displaced_volume_m3": float(_first(hd["PtfmVol0"])),
+            "centre_of_buoyancy_xy_m": [float(_first(hd["PtfmCOBxt"])), float(_first(hd["PtfmCOByt"]))],
+            "radiation": radiation, "radiation_tmax_s": float(hd["RdtnTMax"]),
+            "added_force_n": [float(v) for v in np.ravel(hd["AddF0"])[:6]]}
+    for field, key in (("AddCLin", "added_stiffness"), ("AddBLin", "added_linear_damping"),
+                       ("AddBQuad", "added_quadratic_damping")):
+        matrix = np.asarray(hd[field], dtype=float)
+        if matrix.shape != (6, 6) or not np.all(np.isfinite(matrix)):
+            raise refuse(field, f"of shape {matrix.shape}", "must be a finite 6x6 matrix (one body)")
+        flow[key] = matrix.tolist()
+    newman = int(hd.get("NewmanApp", 0))
+    if newman == 0:
+        return flow, None
+    if newman != 12:
+        raise refuse("NewmanApp", newman, "the drift table is read from the .12d file only (12)")
+    try:
+        qtf = read_12d(root.with_name(root.name + ".12d"), water_density_kg_m3, gravity_m_s2,
+                       float(_first(hd["WAMITULEN"])))
+    except (WamitFormatError, ValueError) as exc:
+        raise refuse("NewmanApp", newman, str(exc)) from None
+    heading = int(np.argmin(np.abs(qtf.heading_pairs_deg).sum(axis=1)))
+    if np.any(qtf.heading_pairs_deg[heading] != 0):
+        raise refuse("NewmanApp", newman, "the .12d file has no heading-0 pair")
+    drift = np.maximum(qtf.mean_drift()[heading, :, 0], 0.0)
+    return flow, [[float(w), float(d)] for w, d in zip(qtf.omega_rad_s, drift)]
+
+
 def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: float = 1025.0,
                        gravity_m_s2: float = 9.80665, water_depth_m: float = 150.0) -> dict:
     """The platform YAML document of a deck read by ``read_deck``; ConfigError for what the
     model cannot represent."""
     _refuse_unsupported(hd, source)
     members = [_member(hd, i, source) for i in range(hd["NMembers"])]
+    if hd["PotMod"] == 1:
+        flow, drift = _potential_flow(hd, source, water_density_kg_m3, gravity_m_s2)
+        volume = flow["displaced_volume_m3"]
+        mass = water_density_kg_m3 * volume
+        inertia = mass * volume ** (2 / 3) / 4
+        document = {"name": name, "description": f"imported from the HydroDyn deck {source}: WAMIT potential flow "
+                                                 f"and {len(members)} strip-theory members; placeholder mass "
+                                                 "(rho PtfmVol0 at the reference point), no mooring",
+                    "environment": {"water_density_kg_m3": water_density_kg_m3, "gravity_m_s2": gravity_m_s2,
+                                    "water_depth_m": water_depth_m},
+                    "mass": {"mass_kg": mass, "cog_m": [*flow["centre_of_buoyancy_xy_m"], 0.0],
+                             "inertia_about_cog_kg_m2": {"ixx": inertia, "iyy": inertia, "izz": inertia}},
+                    "hub_point_m": [0.0, 0.0, 0.0], "members": members, "potential_flow": flow,
+                    "drift_coefficients_n_m2": drift,
+                    "mooring": {"stiffness_n_m": 0.0, "pretension_n": 0.0, "unstretched_length_m": 1.0,  # no load
+                                "lines": [{"fairlead_m": [0.0, 0.0, 0.0], "anchor_m": [1.0, 0.0, 0.0]}]}}
+        platform_from_dict(document, source)  # the WAMIT files exist and are complete
+        return document
     document = {"name": name, "description": f"imported from the HydroDyn deck {source}: strip-theory members only; "
                                              "placeholder mass (floating freely), no mooring",
                 "environment": {"water_density_kg_m3": water_density_kg_m3, "gravity_m_s2": gravity_m_s2,

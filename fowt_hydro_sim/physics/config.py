@@ -31,6 +31,7 @@ HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
 STRETCHING = ("none", "vertical", "extrapolation", "wheeler")
 SLOW_DRIFTS = ("newman", "none")
+RADIATION_MODELS = ("convolution", "none")
 
 
 class SampleError(InputError):
@@ -133,6 +134,7 @@ class Member:
     width_b_m: float | None = None  # rectangular only: the width at end b of a tapered member
     height_b_m: float | None = None  # rectangular only: the height at end b of a tapered member
     spin_deg: float = 0.0  # rectangular only: the section turned about the axis (MSpinOrient)
+    drag_only: bool = False  # HydroDyn's PropPot: drag only, the hull's potential flow has the rest
 
     @property
     def tapered(self) -> bool:
@@ -172,6 +174,33 @@ class Mooring:
 
 
 @dataclass(frozen=True)
+class PotentialFlow:
+    """A hull's potential-flow hydrodynamics from WAMIT files, as HydroDyn's PotMod 1 takes them
+    (one body, its WAMIT origin at the platform's reference point, z up)."""
+
+    wamit_root: str  # the WAMIT files' common path without extension (.1, .3, .hst); absolute once read
+    wamit_length_m: float  # WAMITULEN: the length WAMIT's dimensionless output is scaled with [m]
+    displaced_volume_m3: float  # PtfmVol0: the volume displaced at rest [m^3]
+    centre_of_buoyancy_xy_m: tuple[float, float]  # PtfmCOBxt, PtfmCOByt [m]
+    radiation: str = "convolution"  # the memory effect: convolution of the retardation kernel, or none
+    radiation_tmax_s: float = 60.0  # RdtnTMax: the kernel's length [s]
+    added_force_n: tuple[float, ...] = (0.0,) * 6  # AddF0 [N, N m]
+    added_stiffness: tuple[tuple[float, ...], ...] = ((0.0,) * 6,) * 6  # AddCLin [N/m, N/rad, N m/m, N m/rad]
+    added_linear_damping: tuple[tuple[float, ...], ...] = ((0.0,) * 6,) * 6  # AddBLin [N s/m, ... N m s/rad]
+    added_quadratic_damping: tuple[tuple[float, ...], ...] = ((0.0,) * 6,) * 6  # AddBQuad [N s^2/m^2, ...]
+
+
+@dataclass(frozen=True)
+class LinearMooring:
+    """A mooring as a constant wrench at rest and a 6x6 stiffness about the reference point:
+    F = force_at_rest - stiffness q (world axes, small motions)."""
+
+    force_at_rest_n: tuple[float, ...]  # [N, N m]
+    stiffness: tuple[tuple[float, ...], ...]  # [N/m, N/rad, N m/m, N m/rad]
+    source: str = ""  # where the numbers come from
+
+
+@dataclass(frozen=True)
 class Platform:
     """A floating platform: environment, mass properties, Morison members and mooring
     (``load_platform`` reads one from a YAML file or the packaged platforms)."""
@@ -186,6 +215,8 @@ class Platform:
     drag_bands: tuple[DragBand, ...] = ()  # the ``filtered`` drag model's bands
     # head-sea mean surge drift per unit amplitude squared, (w [rad/s], D [N/m^2]) ascending in w
     drift_coefficients_n_m2: tuple[tuple[float, float], ...] = ()
+    potential_flow: PotentialFlow | None = None  # a WAMIT hull (HydroDyn's PotMod 1)
+    linear_mooring: LinearMooring | None = None  # a mooring given as a 6x6 stiffness
 
 
 @dataclass(frozen=True)
@@ -530,12 +561,22 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
         diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
+        drag_only=_flag(f, "drag_only"),
     )
     f.used.update({"end_a_plate", "end_b_plate"})
     if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
         raise ConfigError(f"{f.path}.zones: below_z_m must increase from the first zone to the last")
     f.finish()
     return member
+
+
+def _flag(f: _Fields, name: str) -> bool:
+    """An optional true/false field (default false)."""
+    value = f.data.get(name, False)
+    f.used.add(name)
+    if not isinstance(value, bool):
+        raise ConfigError(f"{f.at(name)}: must be true or false, got {value!r}")
+    return value
 
 
 def _inertia(f: _Fields) -> tuple[tuple[float, ...], ...]:
@@ -564,8 +605,73 @@ def _drift_coefficients(f: _Fields) -> tuple[tuple[float, float], ...]:
     return tuple((float(w), float(d)) for w, d in pairs)
 
 
-def platform_from_dict(data: Any, source: str = "platform") -> Platform:
-    """Validate a parsed platform YAML document."""
+def _matrix6(f: _Fields, name: str) -> tuple[tuple[float, ...], ...]:
+    """A 6x6 matrix field (six rows of six numbers); zeros when absent."""
+    value = f.data.get(name)
+    f.used.add(name)
+    if value is None:
+        return ((0.0,) * 6,) * 6
+    try:
+        matrix = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{f.at(name)}: must be six rows of six numbers") from None
+    if matrix.shape != (6, 6) or not np.all(np.isfinite(matrix)):
+        raise ConfigError(f"{f.at(name)}: must be six rows of six finite numbers, got shape {matrix.shape}")
+    return tuple(tuple(float(v) for v in row) for row in matrix)
+
+
+def _potential_flow(f: _Fields, base_dir: Path | None) -> PotentialFlow | None:
+    """``potential_flow:`` (PotentialFlow); the WAMIT root is taken relative to ``base_dir``."""
+    if f.data.get("potential_flow") is None:
+        f.used.add("potential_flow")
+        return None
+    p = f.sub("potential_flow")
+    root = Path(p.text("wamit_root"))
+    if not root.is_absolute():
+        root = (base_dir or Path.cwd()) / root
+    for extension in (".1", ".3", ".hst"):
+        if not root.with_name(root.name + extension).is_file():
+            raise ConfigError(f"{p.at('wamit_root')}: no WAMIT file {root.name + extension} in {root.parent}")
+    cob = p.vector("centre_of_buoyancy_xy_m", 2, (0.0, 0.0))
+    flow = PotentialFlow(
+        wamit_root=str(root.resolve()), wamit_length_m=p.number("wamit_length_m", 1.0, positive=True),
+        displaced_volume_m3=p.number("displaced_volume_m3", positive=True), centre_of_buoyancy_xy_m=cob,
+        radiation=p.text("radiation", "convolution", choices=RADIATION_MODELS),
+        radiation_tmax_s=p.number("radiation_tmax_s", 60.0, positive=True),
+        added_force_n=p.vector("added_force_n", 6, (0.0,) * 6),
+        added_stiffness=_matrix6(p, "added_stiffness"), added_linear_damping=_matrix6(p, "added_linear_damping"),
+        added_quadratic_damping=_matrix6(p, "added_quadratic_damping"))
+    p.finish()
+    return flow
+
+
+def _linear_mooring(f: _Fields) -> LinearMooring | None:
+    """``linear_mooring:`` (LinearMooring)."""
+    if f.data.get("linear_mooring") is None:
+        f.used.add("linear_mooring")
+        return None
+    m = f.sub("linear_mooring")
+    mooring = LinearMooring(m.vector("force_at_rest_n", 6), _matrix6(m, "stiffness"), m.text("source", ""))
+    m.finish()
+    return mooring
+
+
+def _potential_flow_document(flow: PotentialFlow) -> dict:
+    out: dict = {"wamit_root": flow.wamit_root, "wamit_length_m": flow.wamit_length_m,
+                 "displaced_volume_m3": flow.displaced_volume_m3,
+                 "centre_of_buoyancy_xy_m": list(flow.centre_of_buoyancy_xy_m), "radiation": flow.radiation,
+                 "radiation_tmax_s": flow.radiation_tmax_s, "added_force_n": list(flow.added_force_n)}
+    for name in ("added_stiffness", "added_linear_damping", "added_quadratic_damping"):
+        out[name] = [list(row) for row in getattr(flow, name)]
+    return out
+
+
+NO_LINES = Mooring(stiffness_n_m=0.0, pretension_n=0.0, unstretched_length_m=1.0, lines=())
+
+
+def platform_from_dict(data: Any, source: str = "platform", base_dir: Path | None = None) -> Platform:
+    """Validate a parsed platform YAML document (a potential-flow hull's WAMIT files relative to
+    ``base_dir``, default the working directory)."""
     f = _Fields(data, source)
     env_f = f.sub("environment", {})
     env = Environment(env_f.number("water_density_kg_m3", 1025.0, positive=True),
@@ -576,20 +682,33 @@ def platform_from_dict(data: Any, source: str = "platform") -> Platform:
     mass = MassProperties(m.number("mass_kg", positive=True), m.vector("cog_m"),
                           _inertia(m.sub("inertia_about_cog_kg_m2")))
     m.finish()
-    mo = f.sub("mooring")
-    lines = []
-    for line in mo.items("lines"):
-        lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
-        line.finish()
-    mooring = Mooring(mo.number("stiffness_n_m", non_negative=True), mo.number("pretension_n", non_negative=True),
-                      mo.number("unstretched_length_m", positive=True), tuple(lines))
-    mo.finish()
+    linear_mooring = _linear_mooring(f)
+    if f.data.get("mooring") is None and linear_mooring is not None:
+        f.used.add("mooring")
+        mooring = NO_LINES
+    else:
+        mo = f.sub("mooring")
+        lines = []
+        for line in mo.items("lines"):
+            lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
+            line.finish()
+        mooring = Mooring(mo.number("stiffness_n_m", non_negative=True),
+                          mo.number("pretension_n", non_negative=True),
+                          mo.number("unstretched_length_m", positive=True), tuple(lines))
+        mo.finish()
     drag_bands = _drag_bands(f)
     band_names = tuple(b.name for b in drag_bands)
+    potential_flow = _potential_flow(f, base_dir)
+    if potential_flow is not None and not f.data.get("members"):
+        f.used.add("members")
+        members: tuple[Member, ...] = ()  # a potential-flow hull needs no Morison member
+    else:
+        members = tuple(_member(x, band_names) for x in f.items("members"))
     platform = Platform(
         name=f.text("name"), description=f.text("description", ""), environment=env, mass=mass,
-        hub_point_m=f.vector("hub_point_m"), members=tuple(_member(x, band_names) for x in f.items("members")),
-        mooring=mooring, drag_bands=drag_bands, drift_coefficients_n_m2=_drift_coefficients(f))
+        hub_point_m=f.vector("hub_point_m"), members=members,
+        mooring=mooring, drag_bands=drag_bands, drift_coefficients_n_m2=_drift_coefficients(f),
+        potential_flow=potential_flow, linear_mooring=linear_mooring)
     f.used.update(k for k in f.data if k.endswith(("_zones", "_end")))  # YAML anchors' holders
     f.finish()
     return platform
@@ -635,6 +754,8 @@ def platform_document(platform: Platform) -> dict:
                         taper_axial=vars(m.taper_axial).copy())
         if m.spin_deg:
             size["spin_deg"] = m.spin_deg
+        if m.drag_only:
+            size["drag_only"] = True
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
                   "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
                   "zones": [_zone_document(z, m.section, bands) for z in m.zones]}
@@ -645,7 +766,7 @@ def platform_document(platform: Platform) -> dict:
         members.append(member)
     (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = platform.mass.inertia_about_cog_kg_m2
     mooring = platform.mooring
-    return {
+    document = {
         "name": platform.name, "description": platform.description,
         "environment": dict(vars(platform.environment)),
         "mass": {"mass_kg": platform.mass.mass_kg, "cog_m": list(platform.mass.cog_m),
@@ -659,6 +780,15 @@ def platform_document(platform: Platform) -> dict:
                     "lines": [{"fairlead_m": list(line.fairlead_m), "anchor_m": list(line.anchor_m)}
                               for line in mooring.lines]},
     }
+    if platform.potential_flow is not None:
+        document["potential_flow"] = _potential_flow_document(platform.potential_flow)
+    if platform.linear_mooring is not None:
+        lm = platform.linear_mooring
+        document["linear_mooring"] = {"force_at_rest_n": list(lm.force_at_rest_n),
+                                      "stiffness": [list(row) for row in lm.stiffness], "source": lm.source}
+        if not mooring.lines:
+            del document["mooring"]
+    return document
 
 
 def _read_yaml(path: Path) -> Any:
@@ -691,7 +821,7 @@ def platform_path(name_or_path: str | Path = "windmoor12") -> Path:
 def load_platform(name_or_path: str | Path = "windmoor12") -> Platform:
     """A packaged platform by name (``windmoor12``) or a platform YAML file."""
     path = platform_path(name_or_path)
-    return platform_from_dict(_read_yaml(path), path.name)
+    return platform_from_dict(_read_yaml(path), path.name, path.parent)
 
 
 def load_cases() -> dict[str, LoadCase]:

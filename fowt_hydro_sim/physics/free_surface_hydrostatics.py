@@ -347,6 +347,8 @@ def platform_members(platform) -> list[RectangularMember | CircularMember]:
     HydroDyn's MDivSize)."""
     members = []
     for m in platform.members:
+        if m.drag_only:  # its buoyancy is the potential flow's
+            continue
         length = math.dist(m.end_a_m, m.end_b_m)
         n = max(1, math.ceil(length / m.strip_length_m - 1e-9))
         if m.section == "circular":

@@ -146,7 +146,7 @@ class PlatformModel:
                  blocks_ahead: bool = True, user_force: UserForce | None = None):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
-        if drag_model == "filtered" and not platform.drag_bands:
+        if drag_model == "filtered" and not platform.drag_bands and platform.members:  # (no members: no drag)
             raise ConfigError(f"drag model 'filtered': platform {platform.name} has no drag_bands")
         if user_force is not None and not callable(user_force):
             raise ConfigError(f"user force: need a function f(t, position, velocity), got {user_force!r}")
@@ -205,7 +205,7 @@ class PlatformModel:
         bank = self.filter_bank
         mass = self.platform.mass
         params, tables = component_data(ComponentInputs(self.platform, self.geometry, self.hydrostatics,
-                                                        self.extension, self.options, self.waves))
+                                                        self.extension, self.options, self.waves, self.dt_s))
         strip_6x6 = added_mass_about(s.centre_m, strip_3x3)
         wet = np.empty(len(s.length_m))
         wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(len(s.length_m)), wet)

@@ -186,6 +186,8 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                     start = mid - 0.5 * (s1 - s0) / n
                     volume, offset = prismatoid(member, start, start + (s1 - s0) / n, strip_length)
                     volume_centre = a + start * (b - a) + offset * axis
+                if member.drag_only:  # HydroDyn's PropPot: the potential flow has the inertia and buoyancy
+                    volume = 0.0
                 rows["volume"].append(volume)
                 rows["volume_centre"].append(volume_centre)
                 if member.tapered:
@@ -196,19 +198,21 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                 rows["dirs"].append([d1, d2])
                 rows["length"].append(strip_length)
                 rows["area"].append(area)
-                rows["inertia"].append([rho * (zone.cp * area + zone.ca[k] * am_area[k]) for k in range(2)])
-                rows["added"].append([rho * zone.ca[k] * am_area[k] for k in range(2)])
+                keep = 0.0 if member.drag_only else 1.0
+                rows["inertia"].append([keep * rho * (zone.cp * area + zone.ca[k] * am_area[k]) for k in range(2)])
+                rows["added"].append([keep * rho * zone.ca[k] * am_area[k] for k in range(2)])
                 rows["drag"].append([0.5 * rho * zone.cd[k].constant * width[k] for k in range(2)])
                 rows["band_drag"].append([[0.5 * rho * (zone.cd[k].bands or (0.0,) * n_bands)[b] * width[k]
                                            for k in range(2)] for b in range(n_bands)])
                 rows["filtered"].append([zone.cd[k].bands is not None for k in range(2)])
                 rows["member"].append(index)
                 rows["zone"].append(zone.name)
+        keep = 0.0 if member.drag_only else 1.0
         for centre, (pressure, added, drag) in rings:
             plates["centre"].append(centre)
             plates["normal"].append(axis)
-            plates["pressure"].append(pressure)
-            plates["added"].append(added)
+            plates["pressure"].append(keep * pressure)
+            plates["added"].append(keep * added)
             plates["drag"].append(drag)
         for plate, end, normal, fraction in ((member.end_a_plate, a, axis, 0.0), (member.end_b_plate, b, -axis, 1.0)):
             if plate is None:
@@ -218,11 +222,11 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
             radius = member.diameter_at(fraction) / 2
             plates["centre"].append(end)
             plates["normal"].append(normal)
-            plates["pressure"].append(plate.cp * math.pi * radius**2)
-            plates["added"].append(rho * plate.ca * 2.0 / 3.0 * math.pi * radius**3)
+            plates["pressure"].append(keep * plate.cp * math.pi * radius**2)
+            plates["added"].append(keep * rho * plate.ca * 2.0 / 3.0 * math.pi * radius**3)
             plates["drag"].append(0.25 * rho * plate.cd * math.pi * radius**2)
 
-    strip_centres = np.array(rows["centre"])
+    strip_centres = np.array(rows["centre"]).reshape(-1, 3)  # (none: a potential-flow hull)
     plate_centres = np.array(plates["centre"]).reshape(-1, 3)
     undisplaced = np.round(np.vstack([strip_centres, plate_centres]), 9)
     if not points_above_water:  # kinematics above the water line are those at z = 0: one point
@@ -231,16 +235,18 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
     index = index.ravel()
     n = len(strip_centres)
     strips = Strips(
-        centre_m=strip_centres, axis=np.array(rows["axis"]), directions=np.array(rows["dirs"]),
-        length_m=np.array(rows["length"]), area_m2=np.array(rows["area"]),
-        inertia_kg_m=np.array(rows["inertia"]), added_mass_kg_m=np.array(rows["added"]),
-        drag_kg_m2=np.array(rows["drag"]),
+        centre_m=strip_centres, axis=np.array(rows["axis"]).reshape(-1, 3),
+        directions=np.array(rows["dirs"]).reshape(-1, 2, 3),
+        length_m=np.array(rows["length"], dtype=float), area_m2=np.array(rows["area"], dtype=float),
+        inertia_kg_m=np.array(rows["inertia"]).reshape(-1, 2), added_mass_kg_m=np.array(rows["added"]).reshape(-1, 2),
+        drag_kg_m2=np.array(rows["drag"]).reshape(-1, 2),
         band_drag_kg_m2=np.array(rows["band_drag"]).reshape(n, n_bands, 2),
-        filtered=np.array(rows["filtered"], dtype=bool), member=np.array(rows["member"]),
+        filtered=np.array(rows["filtered"], dtype=bool).reshape(-1, 2), member=np.array(rows["member"], dtype=int),
         zone=tuple(rows["zone"]), kinematics_point=index[:n], volume_m3=np.array(rows["volume"]),
         volume_centre_m=np.array(rows["volume_centre"]).reshape(-1, 3))
     end_plates = EndPlates(
         centre_m=plate_centres, normal=np.array(plates["normal"]).reshape(-1, 3),
-        pressure_area_m2=np.array(plates["pressure"]), added_mass_kg=np.array(plates["added"]),
-        drag_kg_m=np.array(plates["drag"]), kinematics_point=index[n:])
+        pressure_area_m2=np.array(plates["pressure"], dtype=float),
+        added_mass_kg=np.array(plates["added"], dtype=float),
+        drag_kg_m=np.array(plates["drag"], dtype=float), kinematics_point=index[n:])
     return Discretisation(strips, end_plates, points)

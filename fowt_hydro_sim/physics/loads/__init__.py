@@ -65,6 +65,17 @@ COMPONENTS = (
                   True, True, "external"),
     LoadComponent("drift", "second-order slow drift (Newman's approximation from the platform's drift table; "
                            "zero with slow_drift none, streamed waves or no table)", True, True, "drift"),
+    LoadComponent("potential_hydrostatic", "a potential-flow hull's hydrostatics: rho g PtfmVol0 at the centre of "
+                                           "buoyancy minus the WAMIT .hst restoring C q", True, True,
+                  "potential_hydrostatic"),
+    LoadComponent("radiation", "a potential-flow hull's radiation: A_inf on the mass side (-A_inf a) and the "
+                               "memory convolution of the retardation kernel from B(w)", True, True, "radiation"),
+    LoadComponent("excitation", "a potential-flow hull's first-order wave excitation from the WAMIT .3 file",
+                  True, True, "excitation"),
+    LoadComponent("added_matrices", "HydroDyn's additional preload, stiffness and damping of a potential-flow hull "
+                                    "(AddF0, AddCLin, AddBLin, AddBQuad)", True, True, "added_matrices"),
+    LoadComponent("linear_mooring", "a mooring given as a wrench at rest and a 6x6 stiffness (F0 - K q)", True, True,
+                  "linear_mooring"),
     LoadComponent("extension", "loads beyond the Morison model (the gap diagnosis's effects)", False, False,
                   "extension"),
     LoadComponent("user", "a Python force passed to the model (PlatformModel user_force)", False, False, "user"),
@@ -92,6 +103,7 @@ class ComponentInputs(NamedTuple):
     extension: Extension
     options: HydroOptions
     waves: WaveComponents | None = None
+    dt_s: float = 0.05  # the model's time step (a radiation kernel's step)
 
 
 def component_data(inputs: ComponentInputs) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:

@@ -74,6 +74,8 @@ def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
     of the sections of the vertical members crossing z = 0; ConfigError for a tilted one."""
     area, first, second = 0.0, np.zeros(2), np.zeros((2, 2))
     for m in platform.members:
+        if m.drag_only:  # its buoyancy is the potential flow's
+            continue
         za, zb = m.end_a_m[2], m.end_b_m[2]
         if min(za, zb) >= 0.0 or max(za, zb) <= 0.0:
             continue
@@ -104,7 +106,8 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     submerged = strips.centre_m[:, 2] < 0.0  # strips are cut at the water line
     volumes = strips.volume_m3[submerged]
     volume = float(volumes.sum())
-    centre = volumes @ strips.volume_centre_m[submerged] / volume
+    # (a potential-flow hull without Morison members displaces nothing here)
+    centre = volumes @ strips.volume_centre_m[submerged] / volume if volume > 0 else np.zeros(3)
     try:
         area, first, second = _waterplane(platform)
     except ConfigError as exc:  # refused where linear hydrostatics are asked for (parameters)
@@ -192,6 +195,8 @@ def member_records(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
     its integrands are not polynomials)."""
     records, tables, first = [], [], 0
     for m in platform.members:
+        if m.drag_only:  # its buoyancy is the potential flow's
+            continue
         fine = member_lines(m)
         coarse = fine if m.tapered else member_lines(m, COARSE)
         volume, moment = submerged_volume(np.eye(3), -np.inf, fine)  # wholly under water
@@ -203,6 +208,8 @@ def member_records(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
         records.append(record)
         tables += [fine] if m.tapered else [fine, coarse]
         first += len(fine) + (0 if m.tapered else len(coarse))
+    if not records:  # no member: nothing displaced
+        return np.zeros(0), np.zeros((1, 9))
     return np.concatenate(records), np.concatenate(tables)
 
 

@@ -1,0 +1,115 @@
+"""Benchmark: the time loop of a potential-flow hull (volturnus_s) in an irregular sea against
+the Morison hull windmoor12 in the same sea, in one process, alternating, best of
+``--repeats``; and, with ``--baseline PATH``, windmoor12 on another checkout of the package
+(e.g. the code before potential flow) in a subprocess, alternating with this one's, so that
+both speeds are taken at the same machine load (their ratio is the figure).
+
+Printed per case: seconds for the record, real-time factor, surge std (a sanity check that
+the run moved), and the ratios. The time loop is ``PlatformModel.run`` with the kinematics
+already in memory (the kernel alone, on one core), as ``benchmarks/platform_model.py`` times it.
+Run: PYTHONPATH=. python benchmarks/potential_flow.py [--duration S] [--repeats N] [--load-case LC]
+     [--baseline /path/to/other/checkout]
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import os
+import subprocess
+import sys
+import time
+
+from fowt_hydro_sim.physics.config import load_case, load_platform
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
+from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable, table_step
+
+BASELINE_PROBE = """
+import sys, time
+from fowt_hydro_sim.physics.config import load_case, load_platform
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
+from fowt_hydro_sim.physics.waves.kinematics import KinematicsTable
+duration, case, dt, repeats = float(sys.argv[1]), sys.argv[2], float(sys.argv[3]), int(sys.argv[4])
+platform, sea = load_platform("windmoor12"), load_case(case).sea_state
+waves = synthesize(sea, repeat_period(sea, duration))
+probe = PlatformModel(platform, waves, dt_s=dt)
+env = platform.environment
+table = KinematicsTable.build(waves, probe.geometry.points_m, probe.wave_table_step_s, env.water_depth_m,
+                              env.gravity_m_s2, env.water_density_kg_m3)
+model = PlatformModel(platform, waves, dt_s=dt, kinematics=table)
+model.run(10.0)
+for _ in range(repeats):
+    sys.stdin.readline()
+    model.reset()
+    start = time.perf_counter()
+    model.run(duration, output_interval_s=0.25)
+    print(time.perf_counter() - start, flush=True)
+"""
+
+
+def time_loop_model(name: str, waves, dt: float, radiation: str | None = None) -> PlatformModel:
+    """A model of the packaged platform ``name`` with the waves' kinematics in memory
+    (``radiation`` overrides a potential-flow hull's radiation model)."""
+    platform = load_platform(name)
+    if radiation is not None:
+        platform = dataclasses.replace(platform, potential_flow=dataclasses.replace(platform.potential_flow,
+                                                                                    radiation=radiation))
+    probe = PlatformModel(platform, None, dt_s=dt)
+    env = platform.environment
+    table = KinematicsTable.build(waves, probe.geometry.points_m, table_step(waves), env.water_depth_m,
+                                  env.gravity_m_s2, env.water_density_kg_m3)
+    return PlatformModel(platform, waves, dt_s=dt, kinematics=table)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--duration", type=float, default=3600.0, help="simulated seconds")
+    parser.add_argument("--load-case", default="lc5.3")
+    parser.add_argument("--dt", type=float, default=0.05)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--baseline", help="another checkout's root: its windmoor12 time loop, alternated with ours")
+    args = parser.parse_args()
+
+    sea = load_case(args.load_case).sea_state
+    waves = synthesize(sea, repeat_period(sea, args.duration))
+    cases = {"windmoor12 (Morison, constant drag)": time_loop_model("windmoor12", waves, args.dt),
+             "volturnus_s (potential flow, convolution)": time_loop_model("volturnus_s", waves, args.dt),
+             "volturnus_s (potential flow, no memory)": time_loop_model("volturnus_s", waves, args.dt, "none")}
+    for model in cases.values():  # compile / load the kernels' cache
+        model.run(10.0)
+    baseline = None
+    if args.baseline:
+        env = {**os.environ, "PYTHONPATH": args.baseline}
+        baseline = subprocess.Popen([sys.executable, "-c", BASELINE_PROBE, str(args.duration), args.load_case,
+                                     str(args.dt), str(args.repeats)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                    text=True, env=env, cwd=args.baseline)
+    best = {name: float("inf") for name in cases}
+    surge = {}
+    baseline_best = float("inf")
+    for _ in range(args.repeats):
+        for name, model in cases.items():
+            model.reset()
+            start = time.perf_counter()
+            surge[name] = model.run(args.duration, output_interval_s=0.25).motion[:, 0].std()
+            best[name] = min(best[name], time.perf_counter() - start)
+        if baseline is not None:
+            baseline.stdin.write("\n")
+            baseline.stdin.flush()
+            baseline_best = min(baseline_best, float(baseline.stdout.readline()))
+    if baseline is not None:
+        baseline.wait()
+    print(f"{args.load_case} (Hs {sea.hs_m:g} m, Tp {sea.tp_s:g} s, {waves.frequency_hz.size} wave components), "
+          f"dt {args.dt:g} s, {args.duration:g} s simulated, time loop, best of {args.repeats}, "
+          f"load average {os.getloadavg()[0]:.1f}")
+    reference = best["windmoor12 (Morison, constant drag)"]
+    for name, seconds in best.items():
+        print(f"  {name:45s}{seconds:8.2f} s{args.duration / seconds:9.0f}x real time  "
+              f"time / windmoor12's {seconds / reference:5.2f}  surge std {surge[name]:.3f} m")
+    if baseline is not None:
+        print(f"  {'windmoor12 on ' + args.baseline:45s}{baseline_best:8.2f} s{args.duration / baseline_best:9.0f}x "
+              f"real time  this checkout's windmoor12 time / baseline's {reference / baseline_best:5.2f}")
+
+
+if __name__ == "__main__":
+    main()
