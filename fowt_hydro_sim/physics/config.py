@@ -21,6 +21,8 @@ from fowt_hydro_sim.errors import ConfigError, InputError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, like, setting, validate
 
 DRAG_MODELS = ("constant", "filtered")
+# the mooring's models: linear springs, MoorPy's quasi-static catenary, MoorDyn's lumped-mass lines
+MOORING_MODELS = ("spring", "moorpy", "moordyn")
 SPECTRA = ("jonswap", "pierson_moskowitz")
 DEFAULT_PLATFORM = "windmoor12"
 FILTER_KINDS = ("lowpass", "highpass", "bandpass", "allpass")
@@ -165,10 +167,31 @@ class MooringLine:
 
 @dataclass(frozen=True)
 class Mooring:
-    stiffness_n_m: float
-    pretension_n: float
-    unstretched_length_m: float
-    lines: tuple[MooringLine, ...]
+    """The platform's mooring: ``model`` says which lines the model uses (``MOORING_MODELS``).
+    ``spring``: the linear springs of the fields below; ``moorpy`` and ``moordyn``: the lines
+    of the MoorDyn input file ``file`` (an absolute path; relative to the platform YAML in
+    the YAML), its fairleads and anchors included. A platform may give both, so that a run
+    can choose (``RunConfig.mooring``)."""
+
+    stiffness_n_m: float = 0.0
+    pretension_n: float = 0.0
+    unstretched_length_m: float = 0.0
+    lines: tuple[MooringLine, ...] = ()
+    model: str = "spring"
+    file: str | None = None
+
+    def chosen(self, model: str) -> Mooring:
+        """This mooring with ``model`` in use ("" or None: as it is), or ConfigError if the
+        platform does not define that model's lines."""
+        model = model or self.model
+        if model not in MOORING_MODELS:
+            raise ConfigError(f"mooring {model!r}: must be one of {', '.join(MOORING_MODELS)}")
+        if model == "spring" and not self.lines:
+            raise ConfigError("mooring spring: the platform has no spring lines (mooring.lines)")
+        if model != "spring" and self.file is None:
+            raise ConfigError(f"mooring {model}: the platform has no MoorDyn input file (mooring.file)")
+        return Mooring(self.stiffness_n_m, self.pretension_n, self.unstretched_length_m, self.lines, model,
+                       self.file)
 
 
 @dataclass(frozen=True)
@@ -302,6 +325,9 @@ class RunConfig:
     load_directions: str = like(HydroOptions, "load_directions")
     hydrostatics: str = like(HydroOptions, "hydrostatics")
     slow_drift: str = like(HydroOptions, "slow_drift")
+    mooring: str = setting("", "mooring lines: spring, moorpy (quasi-static catenary) or moordyn (lumped-mass "
+                               "dynamics) of the platform's mooring section; empty = the platform's own choice",
+                           choices=MOORING_MODELS, unset="")
 
     @property
     def hydro_options(self) -> HydroOptions:
@@ -563,8 +589,36 @@ def _drift_coefficients(f: _Fields) -> tuple[tuple[float, float], ...]:
     return tuple((float(w), float(d)) for w, d in pairs)
 
 
-def platform_from_dict(data: Any, source: str = "platform") -> Platform:
-    """Validate a parsed platform YAML document."""
+def _mooring(f: _Fields, folder: Path | None) -> Mooring:
+    """The mooring section: ``model`` (default spring), ``file`` (a MoorDyn input file, relative
+    to ``folder``, the platform YAML's), and the spring fields (needed for model spring)."""
+    model = f.text("model", "spring", MOORING_MODELS)
+    file = None
+    if f.data.get("file") is not None:
+        path = Path(f.text("file"))
+        path = path if path.is_absolute() or folder is None else folder / path
+        if not path.is_file():
+            raise ConfigError(f"{f.at('file')}: {path}: no such file")
+        file = str(path.resolve())
+    f.used.add("file")
+    spring = model == "spring" or "lines" in f.data
+    lines = []
+    for line in f.items("lines") if spring else ():
+        lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
+        line.finish()
+    mooring = Mooring(f.number("stiffness_n_m", non_negative=True) if spring else 0.0,
+                      f.number("pretension_n", non_negative=True) if spring else 0.0,
+                      f.number("unstretched_length_m", positive=True) if spring else 0.0,
+                      tuple(lines), model, file)
+    f.finish()
+    if model != "spring" and file is None:
+        raise ConfigError(f"{f.at('file')}: missing (mooring model {model} reads a MoorDyn input file)")
+    return mooring
+
+
+def platform_from_dict(data: Any, source: str = "platform", folder: Path | None = None) -> Platform:
+    """Validate a parsed platform YAML document (``folder``: where relative file paths in it,
+    e.g. the mooring's MoorDyn file, are taken from)."""
     f = _Fields(data, source)
     env_f = f.sub("environment", {})
     env = Environment(env_f.number("water_density_kg_m3", 1025.0, positive=True),
@@ -575,14 +629,7 @@ def platform_from_dict(data: Any, source: str = "platform") -> Platform:
     mass = MassProperties(m.number("mass_kg", positive=True), m.vector("cog_m"),
                           _inertia(m.sub("inertia_about_cog_kg_m2")))
     m.finish()
-    mo = f.sub("mooring")
-    lines = []
-    for line in mo.items("lines"):
-        lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
-        line.finish()
-    mooring = Mooring(mo.number("stiffness_n_m", non_negative=True), mo.number("pretension_n", non_negative=True),
-                      mo.number("unstretched_length_m", positive=True), tuple(lines))
-    mo.finish()
+    mooring = _mooring(f.sub("mooring"), folder)
     drag_bands = _drag_bands(f)
     band_names = tuple(b.name for b in drag_bands)
     platform = Platform(
@@ -653,11 +700,22 @@ def platform_document(platform: Platform) -> dict:
         "drag_bands": [_band_document(b) for b in bands] or None,
         "drift_coefficients_n_m2": [list(pair) for pair in platform.drift_coefficients_n_m2] or None,
         "members": members,
-        "mooring": {"stiffness_n_m": mooring.stiffness_n_m, "pretension_n": mooring.pretension_n,
+        "mooring": _mooring_document(mooring),
+    }
+
+
+def _mooring_document(mooring: Mooring) -> dict:
+    out: dict = {}
+    if mooring.model != "spring":
+        out.update(model=mooring.model, file=mooring.file)
+    elif mooring.file is not None:
+        out["file"] = mooring.file
+    if mooring.lines:
+        out.update({"stiffness_n_m": mooring.stiffness_n_m, "pretension_n": mooring.pretension_n,
                     "unstretched_length_m": mooring.unstretched_length_m,
                     "lines": [{"fairlead_m": list(line.fairlead_m), "anchor_m": list(line.anchor_m)}
-                              for line in mooring.lines]},
-    }
+                              for line in mooring.lines]})
+    return out
 
 
 def _read_yaml(path: Path) -> Any:
@@ -690,7 +748,7 @@ def platform_path(name_or_path: str | Path = "windmoor12") -> Path:
 def load_platform(name_or_path: str | Path = "windmoor12") -> Platform:
     """A packaged platform by name (``windmoor12``) or a platform YAML file."""
     path = platform_path(name_or_path)
-    return platform_from_dict(_read_yaml(path), path.name)
+    return platform_from_dict(_read_yaml(path), path.name, path.parent)
 
 
 def load_cases() -> dict[str, LoadCase]:
