@@ -102,6 +102,7 @@ class MoorDynLines:
     def __init__(self, file: str | Path):
         import moordyn
 
+        self._md = moordyn  # held: closing at interpreter exit imports nothing
         self.file = Path(file)
         self._folder = Path(tempfile.mkdtemp(prefix="fowt_moordyn_"))
         self._system = None
@@ -136,12 +137,13 @@ class MoorDynLines:
             self.close()
             raise
         self.moordyn_s = 0.0  # wall seconds spent in MoorDyn's steps
+        self.moordyn_cpu_s = 0.0  # and this process's CPU seconds
         self._time = 0.0
         self._x = np.zeros(3 * len(self._points))
         self._forces = np.zeros((len(self._points), 3))
         self._previous: tuple[float, np.ndarray] | None = None
-        self.times: list[float] = []  # committed times and each line's (fairlead, anchor) tension
-        self.tensions: list[np.ndarray] = []
+        self.times: list[float] = []  # the committed times
+        self._raw: list[tuple] = []  # at each committed time: _raw_tensions
 
     def _messages(self) -> str:
         try:
@@ -156,14 +158,16 @@ class MoorDynLines:
     def close(self) -> None:
         """Free MoorDyn's system and remove its folder."""
         if self._system is not None:
-            import moordyn
             with _quiet():
-                moordyn.Close(self._system)
+                self._md.Close(self._system)
             self._system = None
         shutil.rmtree(self._folder, ignore_errors=True)
 
     def __del__(self) -> None:
-        self.close()
+        try:
+            self.close()
+        except Exception:  # noqa: BLE001 (at interpreter exit the file functions may be gone: nothing left to free)
+            pass
 
     def _kinematics(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Fairlead positions and velocities (world, flattened) and lever arms (n, 3) at state y."""
@@ -190,18 +194,25 @@ class MoorDynLines:
         self._log.write_text("")
         self._time, self._x, self._previous = t, x, None
         self._forces = np.array([moordyn.GetPointForce(p) for p in self._points], dtype=float)
-        self.times, self.tensions = [t], [self._line_tensions()]
+        self.times, self._raw = [t], [self._raw_tensions()]
 
-    def _line_tensions(self) -> np.ndarray:
-        """(lines, 2): each line's fairlead tension (the magnitude of the force on its coupled
-        point) and anchor tension [N]."""
-        import moordyn
+    def _raw_tensions(self) -> tuple:
+        """What the tensions are made of at the committed step: the coupled points' forces and
+        MoorDyn's anchor forces (horizontal, vertical)."""
+        _, _, anchor_h, anchor_v = self._md.GetFASTtens(self._system, self.n_lines)
+        return self._forces, anchor_h, anchor_v
 
-        _, _, anchor_h, anchor_v = moordyn.GetFASTtens(self._system, self.n_lines)
-        out = np.empty((self.n_lines, 2))
-        for i, k in enumerate(self._line_points):
-            out[i, 0] = np.linalg.norm(self._forces[k]) if k >= 0 else np.nan
-            out[i, 1] = np.hypot(anchor_h[i], anchor_v[i])
+    @property
+    def tensions(self) -> list[np.ndarray]:
+        """At each committed time: (lines, 2) each line's fairlead tension (the magnitude of
+        the force on its coupled point) and anchor tension [N]."""
+        points = np.array(self._line_points)
+        out = []
+        for forces, anchor_h, anchor_v in self._raw:
+            rows = np.empty((self.n_lines, 2))
+            rows[:, 0] = np.where(points >= 0, np.linalg.norm(forces[points], axis=1), np.nan)
+            rows[:, 1] = np.hypot(anchor_h, anchor_v)
+            out.append(rows)
         return out
 
     def wrench(self, t: float, y: np.ndarray, commit: bool) -> np.ndarray:
@@ -214,7 +225,7 @@ class MoorDynLines:
         if t > self._time + 1e-9 and commit:
             dt = t - self._time
             velocity = (x - self._x) / dt
-            started = time.perf_counter()
+            started, started_cpu = time.perf_counter(), time.process_time()
             try:
                 with _quiet(self._log, progress=True):
                     moordyn.Step(self._system, list(self._x), list(velocity), self._time, dt)
@@ -223,6 +234,7 @@ class MoorDynLines:
                 raise InputError(f"{self.file}: MoorDyn failed at t = {self._time:g} s ({self._error()})") from None
             finally:
                 self.moordyn_s += time.perf_counter() - started
+                self.moordyn_cpu_s += time.process_time() - started_cpu
             if self._log.stat().st_size:
                 _forward(self._messages())
                 self._log.write_text("")
@@ -231,7 +243,7 @@ class MoorDynLines:
             self._previous = (self._time, self._forces)
             self._time, self._x, self._forces = t, x, forces
             self.times.append(t)
-            self.tensions.append(self._line_tensions())
+            self._raw.append(self._raw_tensions())
         elif t > self._time + 1e-9 and self._previous is not None:
             t0, f0 = self._previous
             forces = forces + (forces - f0) * (t - self._time) / (self._time - t0)
@@ -244,9 +256,14 @@ class MoorDynLines:
         ``time_s`` (the latest committed time at or before each; NaN before the first)."""
         times = np.asarray(self.times)
         rows = np.searchsorted(times, np.asarray(time_s, dtype=float) + 1e-9, side="right") - 1
-        table = np.asarray(self.tensions)
         out = np.full((len(rows), self.n_lines, 2), np.nan)
-        out[rows >= 0] = table[rows[rows >= 0]]
+        needed = np.unique(rows[rows >= 0])
+        raw, self._raw = self._raw, [self._raw[i] for i in needed]
+        try:
+            table = np.asarray(self.tensions)
+        finally:
+            self._raw = raw
+        out[rows >= 0] = table[np.searchsorted(needed, rows[rows >= 0])]
         return out
 
 
