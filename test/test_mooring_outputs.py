@@ -2,6 +2,7 @@
 forms, and the tensions ``fowt-sim simulate`` writes and ``fowt-sim analyze`` reports."""
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -72,3 +73,41 @@ def test_simulate_writes_and_analyze_reports_each_lines_tensions(tmp_path, caten
     assert refused.stderr.strip().splitlines()[-1].endswith("mooring moorpy: the platform has no MoorDyn input file "
                                                             "(mooring.file)")
     assert "Traceback" not in refused.stderr
+
+
+def test_a_sweep_row_holds_the_worst_lines_fairlead_tension_statistics():
+    """Two lines, cosines of 0.1 Hz around 2 MN (amplitudes 0.3 and 0.5 MN), 600 s after a
+    100 s transient: the row's columns are the second line's, its DEL the closed form."""
+    from fowt_hydro_sim.studies.sweep import TENSION_METRICS, metric_names, tension_metrics
+    t = np.arange(0.0, 700.0 + 0.025, 0.05)
+    tensions = np.zeros((t.size, 2, 2))
+    tensions[:, 0, 0] = 2e6 - 3e5 * np.cos(2 * np.pi * 0.1 * t)
+    tensions[:, 1, 0] = 2e6 - 5e5 * np.cos(2 * np.pi * 0.1 * t)
+    row = tension_metrics(t, tensions, 100.0)
+    assert set(TENSION_METRICS) <= set(metric_names())
+    assert row["fairlead_tension_max_n"] == pytest.approx(2.5e6)
+    assert row["fairlead_tension_std_n"] == pytest.approx(5e5 / np.sqrt(2), rel=1e-3)
+    assert row["fairlead_tension_del_n"] == pytest.approx(2 * 5e5 * 0.1 ** (1 / 3), rel=1e-9)
+
+
+@pytest.mark.slow
+def test_loads_writes_each_lines_tensions_along_a_prescribed_motion(tmp_path):
+    """``fowt-sim loads``' study with the moorpy lines: the tension columns are the model's
+    tensions at the prescribed positions; the moordyn lines are refused (they need the time loop)."""
+    from fowt_hydro_sim.errors import InputError
+    from fowt_hydro_sim.physics.config import ConfigError, HydroOptions, load_platform
+    from fowt_hydro_sim.studies.prescribed_motion import PrescribedMotion, prescribed_run, write_loads_csv
+    platform = load_platform("windmoor12")
+    platform = dataclasses.replace(platform, environment=dataclasses.replace(platform.environment, water_depth_m=200.0),
+                                   mooring=dataclasses.replace(platform.mooring, file=str(VOLTURNUS_LINES)))
+    t = np.arange(0.0, 10.0, 0.5)
+    motion = np.zeros((t.size, 6))
+    motion[:, 0] = 10 * np.sin(0.3 * t)
+    prescribed = PrescribedMotion(t, motion, np.zeros_like(motion), np.zeros_like(motion))
+    loads, tensions = prescribed_run(platform, None, prescribed, HydroOptions(), mooring_model="moorpy")
+    path = write_loads_csv(tmp_path / "loads.csv", t, loads, tensions)
+    table = np.genfromtxt(path, delimiter=",", names=True)
+    assert np.allclose(table["line1_fairlead_tension_n"], tensions[:, 0, 0], rtol=1e-8)
+    assert np.all(np.diff(table["line1_fairlead_tension_n"][:6]) > 0)  # line 1's anchor at -x: tightens as x grows
+    with pytest.raises((ConfigError, InputError), match="prescribed motion: the moordyn mooring needs the time loop"):
+        prescribed_run(platform, None, prescribed, HydroOptions(), mooring_model="moordyn")
