@@ -111,3 +111,26 @@ def test_loads_writes_each_lines_tensions_along_a_prescribed_motion(tmp_path):
     assert np.all(np.diff(table["line1_fairlead_tension_n"][:6]) > 0)  # line 1's anchor at -x: tightens as x grows
     with pytest.raises((ConfigError, InputError), match="prescribed motion: the moordyn mooring needs the time loop"):
         prescribed_run(platform, None, prescribed, HydroOptions(), mooring_model="moordyn")
+
+
+@pytest.mark.slow
+def test_analyze_marks_a_moordyn_platforms_natural_frequencies_from_its_static_lines():
+    """MoorDyn's lines hold no stiffness to linearise in the model: the natural frequencies
+    ``analyze`` marks take them as their quasi-static catenaries, so a moordyn platform has its
+    surge, sway and yaw modes, those of the same lines as moorpy."""
+    from fowt_hydro_sim.studies.analysis import natural_frequencies_hz
+    platform = load_platform("windmoor12")
+    platform = dataclasses.replace(platform, environment=dataclasses.replace(platform.environment, water_depth_m=200.0),
+                                   mooring=dataclasses.replace(platform.mooring, file=str(VOLTURNUS_LINES)))
+    moordyn = natural_frequencies_hz(dataclasses.replace(platform, mooring=platform.mooring.chosen("moordyn")))
+    assert moordyn == natural_frequencies_hz(dataclasses.replace(platform, mooring=platform.mooring.chosen("moorpy")))
+    assert {"surge", "sway", "yaw"} <= set(moordyn)
+
+
+def test_a_run_file_chooses_the_mooring(tmp_path):
+    from fowt_hydro_sim.physics.config import ConfigError, load_run_file
+    (tmp_path / "run.yaml").write_text("platform: windmoor12\nrun: {duration_s: 60, mooring: moorpy}\n")
+    assert load_run_file(tmp_path / "run.yaml").run.mooring == "moorpy"
+    (tmp_path / "bad.yaml").write_text("platform: windmoor12\nrun: {mooring: chain}\n")
+    with pytest.raises(ConfigError, match="bad.yaml: run.mooring: must be one of spring, moorpy, moordyn"):
+        load_run_file(tmp_path / "bad.yaml")

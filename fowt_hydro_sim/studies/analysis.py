@@ -64,8 +64,12 @@ class RunContext:
 
 def natural_frequencies_hz(platform) -> dict[str, float]:
     """Undamped natural frequencies of the linearised platform, one per mode, named after
-    the DOF with the largest share of the mode's kinetic energy (|v_i|^2 M_ii)."""
+    the DOF with the largest share of the mode's kinetic energy (|v_i|^2 M_ii). MoorDyn's
+    lines are linearised as their quasi-static catenaries (the moorpy model of the same file:
+    MoorDyn's static lines within 0.3 %, docs/validation.md)."""
     from fowt_hydro_sim.physics.model import PlatformModel
+    if platform.mooring.model == "moordyn":
+        platform = dataclasses.replace(platform, mooring=platform.mooring.chosen("moorpy"))
     model = PlatformModel(platform, None)
     mass = model.mass_matrix()
     eigenvalues, vectors = np.linalg.eig(np.linalg.solve(mass, model.restoring_matrix()))
