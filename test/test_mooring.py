@@ -292,3 +292,17 @@ def test_moordyn_coupled_once_per_step_moves_the_platform_as_a_smaller_step_does
         model.mooring_lines.close()
     assert surges[0][-1] < 9.0  # it moved
     assert np.max(np.abs(surges[0] - surges[1])) < 0.01
+
+
+def test_moordyn_keeps_the_tensions_of_the_latest_advance_only(moordyn_model):
+    """A node runs for days: MoorDyn's tensions are kept for the latest run or step (from its
+    start), not for all of the past."""
+    moordyn_model.reset(motion=np.array([5.0, 0, 0, 0, 0, 0]))
+    first = moordyn_model.run(0.5)
+    second = moordyn_model.run(0.5)
+    assert moordyn_model.mooring_lines.times[0] == pytest.approx(0.5)
+    assert len(moordyn_model.mooring_lines.times) == 11
+    tensions = moordyn_model.mooring_tensions(second.time_s, second.motion)
+    assert np.all(np.isfinite(tensions)) and np.all(np.isnan(moordyn_model.mooring_tensions(first.time_s[:-1],
+                                                                                            first.motion[:-1])))
+    moordyn_model.reset()

@@ -496,6 +496,8 @@ class PlatformModel:
         if self.options.stretching != "none":
             raise ConfigError(f"stretching {self.options.stretching!r}: implemented for a prescribed motion only "
                               "(fowt-sim loads, PlatformModel.prescribed_motion_loads), not for time stepping")
+        if self.mooring_lines is not None:  # MoorDyn's tensions: this advance's steps only
+            self.mooring_lines.forget_before(self.time_s)
         n_out = n_steps // every
         out_t = np.empty(n_out)
         out_y = np.empty((n_out, N_BODY_STATES))
@@ -645,7 +647,7 @@ class PlatformModel:
         """(n, lines, 2): each mooring line's fairlead and anchor tension [N] at the times and
         platform positions (n, 6) of a run of this model: the springs' T0 + k (L - L0) (both
         ends), the moorpy lines' quasi-static tensions, or MoorDyn's at its committed steps
-        (the run's own times; NaN for a time it did not step to)."""
+        (the times of the latest ``run`` or ``step``, its start included; NaN for others)."""
         time_s, motion = np.atleast_1d(np.asarray(time_s, dtype=float)), np.atleast_2d(motion)
         params = params_of("mooring", self._data.component_params)
         if self.mooring_lines is not None:

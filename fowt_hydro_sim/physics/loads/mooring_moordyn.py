@@ -251,6 +251,12 @@ class MoorDynLines:
         _wrench_of(forces, arms, wrench)
         return wrench
 
+    def forget_before(self, time_s: float) -> None:
+        """Drop the committed steps before ``time_s`` (their tensions): a long run holds only
+        what its latest part needs."""
+        keep = int(np.searchsorted(np.asarray(self.times), time_s - 1e-9))
+        del self.times[:keep], self._raw[:keep]
+
     def tensions_at(self, time_s: np.ndarray) -> np.ndarray:
         """(n, lines, 2): each line's fairlead and anchor tension [N] at the committed times
         ``time_s`` (the latest committed time at or before each; NaN before the first)."""
@@ -258,6 +264,8 @@ class MoorDynLines:
         rows = np.searchsorted(times, np.asarray(time_s, dtype=float) + 1e-9, side="right") - 1
         out = np.full((len(rows), self.n_lines, 2), np.nan)
         needed = np.unique(rows[rows >= 0])
+        if not needed.size:
+            return out
         raw, self._raw = self._raw, [self._raw[i] for i in needed]
         try:
             table = np.asarray(self.tensions)
