@@ -26,11 +26,14 @@ ROSCO = 'rosco>=2.10,<2.11'
 DOCS = ['mkdocs>=1.6', 'mkdocs-material>=9.5', 'mkdocstrings[python]>=0.26']
 PLOTS = ['matplotlib']
 CLUSTER = ['dask[distributed]']
+# the mooring lines' models: MoorPy's quasi-static catenary and MoorDyn-C's lumped-mass lines
+MOORING = ['moordyn>=2.7,<2.8', 'moorpy']
 # every command's extras, and the tests' independent references: bag readers, OpenFAST's file
 # library, ROSCO's simulator (the turbine's oracle), MoorPy, capytaine (BEM)
 # fowt-sim measured import of HDF5 files (CSV/TSV and MATLAB .mat need no extra)
 BASIN = ['h5py']
-TEST = [*PLOTS, *CLUSTER, *BASIN, 'pytest', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0', ROSCO, 'moorpy',
+TEST = [*PLOTS, *CLUSTER, *MOORING, *BASIN, 'pytest', 'pytest-xdist', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0',
+        ROSCO,
         'capytaine>=3.0']
 
 # Top-level packages are listed explicitly so that a missing directory is a loud
@@ -73,6 +76,8 @@ setup(
         'plots': PLOTS,
         # sweep, calibrate, diagnose and diagnose-benchmark run on a local or remote Dask cluster
         'cluster': CLUSTER,
+        # mooring model moorpy (quasi-static catenary) and moordyn (MoorDyn-C's lumped-mass lines)
+        'mooring': MOORING,
         # NREL's ROSCO with its Python toolbox (tuning, its own simulator). The turbine node needs
         # only the compiled controller and its files: `pip install --no-deps 'rosco>=2.10,<2.11'`
         # gives those without the toolbox's WISDEM (the package's metadata requires it)

@@ -158,6 +158,19 @@ def output_blocks(time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, 
             block(point_t, stamp_bytes, [(len(point_t) - 24, elevation)])]
 
 
+def tension_blocks(time_s: np.ndarray, tensions: np.ndarray, frame_id: str) -> list[np.ndarray]:
+    """The mooring lines' tension messages, one block per line (``topics.tension_topic``):
+    Vector3Stamped, x the fairlead and y the anchor tension of ``tensions`` (n, lines, 2) [N]
+    (Vector3Stamped and PointStamped share one layout: header and three float64)."""
+    point_t = _templates(frame_id, "")[4]
+    values = np.zeros((len(time_s), 3))
+    stamp_bytes, out = stamps(time_s), []
+    for line in range(tensions.shape[1]):
+        values[:, 0:2] = tensions[:, line]
+        out.append(block(point_t, stamp_bytes, [(len(point_t) - 24, values)]))
+    return out
+
+
 def outputs(time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray,
             loads: np.ndarray, total: np.ndarray, elevation_m: np.ndarray, frame_id: str,
             child_frame_id: str) -> list[list[bytes]]:

@@ -37,6 +37,13 @@ TURBINE = {  # the turbine node's state, by short name: (topic, type); the value
     "wind_speed": ("/turbine/wind_speed", VECTOR3_STAMPED),  # free wind at the hub, m/s
     "relative_wind_speed": ("/turbine/relative_wind_speed", VECTOR3_STAMPED),  # wind minus hub fore-aft velocity, m/s
 }
+MOORING_PREFIX = "/platform/mooring/"  # /platform/mooring/lineN/tension, N from 1: the lines' tensions
+
+
+def tension_topic(line: int) -> str:
+    """The topic of mooring line ``line``'s tensions (counting from 1): Vector3Stamped,
+    ``vector.x`` the fairlead tension, ``vector.y`` the anchor tension [N]."""
+    return f"{MOORING_PREFIX}line{line}/tension"
 
 
 def load_topic(name: str) -> str:
@@ -55,6 +62,8 @@ def type_of(topic: str) -> str | None:
     """The contract's type of a topic (any ``/platform/loads/NAME`` is a wrench), or None."""
     if topic.startswith(LOADS_PREFIX):
         return WRENCH_STAMPED
+    if topic.startswith(MOORING_PREFIX) and topic.endswith("/tension"):
+        return VECTOR3_STAMPED
     known = {**INPUTS, **dict(MOTION.values()), ELEVATION_USED[0]: ELEVATION_USED[1]}
     return known.get(topic)
 

@@ -50,6 +50,8 @@ THIRD_PARTY: dict[str, set[str]] = {
     "matplotlib": {"studies", "benchmarks"},
     "openfast_io": {"io", "testing", "benchmarks"},
     "rosco": {"turbine", "testing", "benchmarks"},
+    "moordyn": {"physics", "testing", "benchmarks"},
+    "moorpy": {"physics", "studies", "testing", "benchmarks"},
 }
 
 

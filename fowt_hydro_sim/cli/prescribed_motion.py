@@ -7,7 +7,14 @@ import sys
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
-from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, HYDRODYN, ConfigError, HydroOptions, load_platform
+from fowt_hydro_sim.physics.config import (
+    HYDRO_OPTION_NAMES,
+    HYDRODYN,
+    ConfigError,
+    HydroOptions,
+    RunConfig,
+    load_platform,
+)
 from fowt_hydro_sim.studies import prescribed_motion as study
 from fowt_hydro_sim.studies.simulate import comp_file_waves, sea_state_waves
 
@@ -31,8 +38,9 @@ def loads(args: argparse.Namespace) -> int:
     else:
         sea, case = options.sea_state(args)
         waves, _ = sea_state_waves(sea, float(motion.time_s[-1]), case)
-    result = study.prescribed_loads(platform, waves, motion, hydro, args.wave_table_dt)
-    study.write_loads_csv(out, motion.time_s, result)
+    mooring = options.values(args, RunConfig, ("mooring",))["mooring"]
+    result, tensions = study.prescribed_run(platform, waves, motion, hydro, args.wave_table_dt, mooring)
+    study.write_loads_csv(out, motion.time_s, result, tensions)
     sys.stdout.write(f"wrote {out}: {len(motion.time_s)} rows, {hydro}\n")
     return 0
 
@@ -58,4 +66,5 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                    help="HydroDyn's choices: undisplaced wetted length, fixed directions, nonlinear hydrostatics")
     options.add(p, HydroOptions, OPTION_NAMES, defaults={name: None for name in OPTION_NAMES},
                 notes={name: " (default: the model's, or HydroDyn's with --hydrodyn)" for name in OPTION_NAMES})
+    options.add(p, RunConfig, ("mooring",), notes={"mooring": " (moordyn needs the time loop: not here)"})
     p.set_defaults(func=loads)

@@ -15,7 +15,7 @@ from fowt_hydro_sim.studies.psd import TRANSIENT_S
 STUDY_CASES = ("lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4", "lc6.1")
 
 RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",
-               "initial_state", *HYDRO_OPTION_NAMES)
+               "initial_state", *HYDRO_OPTION_NAMES, "mooring")
 
 
 def simulate(args: argparse.Namespace) -> int:

@@ -21,6 +21,9 @@ from fowt_hydro_sim.errors import ConfigError, InputError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, like, setting, validate
 
 DRAG_MODELS = ("constant", "filtered")
+# the mooring's models: linear springs, MoorPy's quasi-static catenary, MoorDyn's lumped-mass lines
+MOORING_MODELS = ("spring", "linear", "moorpy", "moordyn")
+LINE_FILE_MODELS = ("moorpy", "moordyn")  # the models that read a MoorDyn input file
 SPECTRA = ("jonswap", "pierson_moskowitz")
 DEFAULT_PLATFORM = "windmoor12"
 FILTER_KINDS = ("lowpass", "highpass", "bandpass", "allpass")
@@ -167,10 +170,32 @@ class MooringLine:
 
 @dataclass(frozen=True)
 class Mooring:
-    stiffness_n_m: float
-    pretension_n: float
-    unstretched_length_m: float
-    lines: tuple[MooringLine, ...]
+    """The platform's mooring: ``model`` says which lines the model uses (``MOORING_MODELS``).
+    ``spring``: the linear springs of the fields below; ``linear``: the platform's
+    ``linear_mooring`` (a wrench at rest and a 6x6 stiffness); ``moorpy`` and ``moordyn``: the lines
+    of the MoorDyn input file ``file`` (an absolute path; relative to the platform YAML in
+    the YAML), its fairleads and anchors included. A platform may give both, so that a run
+    can choose (``RunConfig.mooring``)."""
+
+    stiffness_n_m: float = 0.0
+    pretension_n: float = 0.0
+    unstretched_length_m: float = 0.0
+    lines: tuple[MooringLine, ...] = ()
+    model: str = "spring"
+    file: str | None = None
+
+    def chosen(self, model: str) -> Mooring:
+        """This mooring with ``model`` in use ("" or None: as it is), or ConfigError if the
+        platform does not define that model's lines."""
+        model = model or self.model
+        if model not in MOORING_MODELS:
+            raise ConfigError(f"mooring {model!r}: must be one of {', '.join(MOORING_MODELS)}")
+        if model == "spring" and not self.lines:
+            raise ConfigError("mooring spring: the platform has no spring lines (mooring.lines)")
+        if model in LINE_FILE_MODELS and self.file is None:
+            raise ConfigError(f"mooring {model}: the platform has no MoorDyn input file (mooring.file)")
+        return Mooring(self.stiffness_n_m, self.pretension_n, self.unstretched_length_m, self.lines, model,
+                       self.file)
 
 
 @dataclass(frozen=True)
@@ -334,6 +359,10 @@ class RunConfig:
     load_directions: str = like(HydroOptions, "load_directions")
     hydrostatics: str = like(HydroOptions, "hydrostatics")
     slow_drift: str = like(HydroOptions, "slow_drift")
+    mooring: str = setting("", "mooring: spring, linear (the platform's linear_mooring matrix), moorpy (quasi-static "
+                               "catenary) or moordyn (lumped-mass dynamics) of the platform's mooring section; "
+                               "empty = the platform's own choice",
+                           choices=MOORING_MODELS, unset="")
 
     @property
     def hydro_options(self) -> HydroOptions:
@@ -620,15 +649,15 @@ def _matrix6(f: _Fields, name: str) -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(float(v) for v in row) for row in matrix)
 
 
-def _potential_flow(f: _Fields, base_dir: Path | None) -> PotentialFlow | None:
-    """``potential_flow:`` (PotentialFlow); the WAMIT root is taken relative to ``base_dir``."""
+def _potential_flow(f: _Fields, folder: Path | None) -> PotentialFlow | None:
+    """``potential_flow:`` (PotentialFlow); the WAMIT root is taken relative to ``folder``."""
     if f.data.get("potential_flow") is None:
         f.used.add("potential_flow")
         return None
     p = f.sub("potential_flow")
     root = Path(p.text("wamit_root"))
     if not root.is_absolute():
-        root = (base_dir or Path.cwd()) / root
+        root = (folder or Path.cwd()) / root
     for extension in (".1", ".3", ".hst"):
         if not root.with_name(root.name + extension).is_file():
             raise ConfigError(f"{p.at('wamit_root')}: no WAMIT file {root.name + extension} in {root.parent}")
@@ -666,12 +695,37 @@ def _potential_flow_document(flow: PotentialFlow) -> dict:
     return out
 
 
-NO_LINES = Mooring(stiffness_n_m=0.0, pretension_n=0.0, unstretched_length_m=1.0, lines=())
+def _mooring(f: _Fields, folder: Path | None) -> Mooring:
+    """The mooring section: ``model`` (default spring), ``file`` (a MoorDyn input file, relative
+    to ``folder``, the platform YAML's), and the spring fields (needed for model spring)."""
+    model = f.text("model", "spring", MOORING_MODELS)
+    file = None
+    if f.data.get("file") is not None:
+        path = Path(f.text("file"))
+        path = path if path.is_absolute() or folder is None else folder / path
+        if not path.is_file():
+            raise ConfigError(f"{f.at('file')}: {path}: no such file")
+        file = str(path.resolve())
+    f.used.add("file")
+    spring = model == "spring" or "lines" in f.data
+    lines = []
+    for line in f.items("lines") if spring else ():
+        lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
+        line.finish()
+    mooring = Mooring(f.number("stiffness_n_m", non_negative=True) if spring else 0.0,
+                      f.number("pretension_n", non_negative=True) if spring else 0.0,
+                      f.number("unstretched_length_m", positive=True) if spring else 0.0,
+                      tuple(lines), model, file)
+    f.finish()
+    if model in LINE_FILE_MODELS and file is None:
+        raise ConfigError(f"{f.at('file')}: missing (mooring model {model} reads a MoorDyn input file)")
+    return mooring
 
 
-def platform_from_dict(data: Any, source: str = "platform", base_dir: Path | None = None) -> Platform:
-    """Validate a parsed platform YAML document (a potential-flow hull's WAMIT files relative to
-    ``base_dir``, default the working directory)."""
+def platform_from_dict(data: Any, source: str = "platform", folder: Path | None = None) -> Platform:
+    """Validate a parsed platform YAML document (``folder``: where relative file paths in it,
+    the mooring's MoorDyn file and a potential-flow hull's WAMIT files, are taken from; default
+    the working directory)."""
     f = _Fields(data, source)
     env_f = f.sub("environment", {})
     env = Environment(env_f.number("water_density_kg_m3", 1025.0, positive=True),
@@ -685,20 +739,14 @@ def platform_from_dict(data: Any, source: str = "platform", base_dir: Path | Non
     linear_mooring = _linear_mooring(f)
     if f.data.get("mooring") is None and linear_mooring is not None:
         f.used.add("mooring")
-        mooring = NO_LINES
+        mooring = Mooring(model="linear")
     else:
-        mo = f.sub("mooring")
-        lines = []
-        for line in mo.items("lines"):
-            lines.append(MooringLine(line.vector("fairlead_m"), line.vector("anchor_m")))
-            line.finish()
-        mooring = Mooring(mo.number("stiffness_n_m", non_negative=True),
-                          mo.number("pretension_n", non_negative=True),
-                          mo.number("unstretched_length_m", positive=True), tuple(lines))
-        mo.finish()
+        mooring = _mooring(f.sub("mooring"), folder)
+    if mooring.model == "linear" and linear_mooring is None:
+        raise ConfigError(f"{source}: mooring model linear needs a linear_mooring section")
     drag_bands = _drag_bands(f)
     band_names = tuple(b.name for b in drag_bands)
-    potential_flow = _potential_flow(f, base_dir)
+    potential_flow = _potential_flow(f, folder)
     if potential_flow is not None and not f.data.get("members"):
         f.used.add("members")
         members: tuple[Member, ...] = ()  # a potential-flow hull needs no Morison member
@@ -775,10 +823,7 @@ def platform_document(platform: Platform) -> dict:
         "drag_bands": [_band_document(b) for b in bands] or None,
         "drift_coefficients_n_m2": [list(pair) for pair in platform.drift_coefficients_n_m2] or None,
         "members": members,
-        "mooring": {"stiffness_n_m": mooring.stiffness_n_m, "pretension_n": mooring.pretension_n,
-                    "unstretched_length_m": mooring.unstretched_length_m,
-                    "lines": [{"fairlead_m": list(line.fairlead_m), "anchor_m": list(line.anchor_m)}
-                              for line in mooring.lines]},
+        "mooring": _mooring_document(mooring),
     }
     if platform.potential_flow is not None:
         document["potential_flow"] = _potential_flow_document(platform.potential_flow)
@@ -786,9 +831,21 @@ def platform_document(platform: Platform) -> dict:
         lm = platform.linear_mooring
         document["linear_mooring"] = {"force_at_rest_n": list(lm.force_at_rest_n),
                                       "stiffness": [list(row) for row in lm.stiffness], "source": lm.source}
-        if not mooring.lines:
-            del document["mooring"]
     return document
+
+
+def _mooring_document(mooring: Mooring) -> dict:
+    out: dict = {}
+    if mooring.model != "spring":
+        out["model"] = mooring.model
+    if mooring.file is not None:
+        out["file"] = mooring.file
+    if mooring.lines:
+        out.update({"stiffness_n_m": mooring.stiffness_n_m, "pretension_n": mooring.pretension_n,
+                    "unstretched_length_m": mooring.unstretched_length_m,
+                    "lines": [{"fairlead_m": list(line.fairlead_m), "anchor_m": list(line.anchor_m)}
+                              for line in mooring.lines]})
+    return out
 
 
 def _read_yaml(path: Path) -> Any:

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
@@ -51,10 +51,13 @@ from fowt_hydro_sim.physics.loads import (
     ComponentInputs,
     component_data,
     external,
+    mooring,
     params_of,
 )
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
+from fowt_hydro_sim.physics.loads.mooring_moordyn import MoorDynLines
+from fowt_hydro_sim.physics.loads.mooring_tables import MOORPY, SPAN_H_M, SPAN_V_M, line_forces
 from fowt_hydro_sim.physics.morison import (
     added_mass_about,
     added_mass_moments,
@@ -136,14 +139,17 @@ class PlatformModel:
     copies, at time ``t`` [s]; it is called at every evaluation of the equations of motion (two
     per step, four per step over the first three steps) with the state of that evaluation.
     With it the model steps in a Python loop (``dynamics.integrate_stepwise``: a few times
-    slower); without it the compiled loop runs alone, unchanged.
+    slower); without it the compiled loop runs alone, unchanged. ``mooring_model``: the
+    platform's mooring model (``spring``, ``moorpy``, ``moordyn``; "" = the platform's own
+    choice). ``moordyn`` steps MoorDyn in Python between the compiled evaluations, as a user
+    force does (``mooring_moordyn``).
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
                  drag_model: str = "constant", wave_table_dt_s: float | None = None,
                  extension: Extension | None = None, kinematics: KinematicsTable | None = None,
                  options: HydroOptions | None = None, wave_block_s: float = WAVE_BLOCK_S,
-                 blocks_ahead: bool = True, user_force: UserForce | None = None):
+                 blocks_ahead: bool = True, user_force: UserForce | None = None, mooring_model: str = ""):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
         if drag_model == "filtered" and not platform.drag_bands and platform.members:  # (no members: no drag)
@@ -151,7 +157,13 @@ class PlatformModel:
         if user_force is not None and not callable(user_force):
             raise ConfigError(f"user force: need a function f(t, position, velocity), got {user_force!r}")
         self.user_force = user_force
+        platform = replace(platform, mooring=platform.mooring.chosen(mooring_model))
+        if platform.mooring.model == "linear" and platform.linear_mooring is None:
+            raise ConfigError(f"mooring linear: platform {platform.name} has no linear_mooring")
         self.platform = platform
+        self.mooring_lines: MoorDynLines | None = None
+        if platform.mooring.model == "moordyn":
+            self.mooring_lines = MoorDynLines(platform.mooring.file)
         self.waves = waves
         self.dt_s = float(dt_s)
         self.drag_model = drag_model
@@ -305,6 +317,9 @@ class PlatformModel:
         self._state[N_BODY_STATES:] = self._steady_filter_states()[:, self._data.strips.filter_strip].ravel()
         self._step_index = 0
         self._work = dynamics.workspace(self._data)
+        mooring.reset_outside(params_of("mooring", self._data.component_params))
+        if self.mooring_lines is not None:
+            self.mooring_lines.reset(0.0, self._state)
         self._restart_history()
 
     def _steady_filter_states(self) -> np.ndarray:
@@ -358,6 +373,8 @@ class PlatformModel:
         its wrench at (t, y) first into its component's params."""
         if self.user_force is not None:
             params_of("user", self._data.component_params)[:] = self._user_wrench(t, y)
+        if self.mooring_lines is not None:  # the final evaluation of a step is at the model's own state
+            params_of("mooring", self._data.component_params)[1:7] = self.mooring_lines.wrench(t, y, y is self._state)
         dynamics.derivative(t, y, self._data, self._work, out)
 
     def _user_wrench(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -490,6 +507,8 @@ class PlatformModel:
         if self.options.stretching != "none":
             raise ConfigError(f"stretching {self.options.stretching!r}: implemented for a prescribed motion only "
                               "(fowt-sim loads, PlatformModel.prescribed_motion_loads), not for time stepping")
+        if self.mooring_lines is not None:  # MoorDyn's tensions: this advance's steps only
+            self.mooring_lines.forget_before(self.time_s)
         n_out = n_steps // every
         out_t = np.empty(n_out)
         out_y = np.empty((n_out, N_BODY_STATES))
@@ -505,7 +524,7 @@ class PlatformModel:
                                  f"blocks hold; use a longer wave_block_s")
             outputs = (self._history, self._newest, out_t[written:], out_y[written:], out_acc[written:],
                        out_loads[written:])
-            if self.user_force is None:
+            if self.user_force is None and self.mooring_lines is None:
                 written += dynamics.integrate(self._state, self._step_index, self.dt_s, part, every, self._data,
                                               self._work, *outputs)
             else:
@@ -513,12 +532,20 @@ class PlatformModel:
                                                        every, self._work, *outputs)
             self._step_index += part
             done += part
+            outside = mooring.outside_table(params_of("mooring", self._data.component_params))
+            if outside is not None:
+                raise InputError(f"{self.platform.mooring.file}: line {outside[1] + 1} left the moorpy model's "
+                                 f"table (its fairlead more than {SPAN_H_M:g} m horizontally or {SPAN_V_M:g} m "
+                                 f"vertically from where it rests) at t = {outside[0]:g} s")
         return out_t, out_y, out_acc, out_loads
 
     # ------------------------------------------------------------------ analysis
     def prescribed_motion_loads(self, time_s: np.ndarray, motion: np.ndarray, velocity: np.ndarray,
                                 acceleration: np.ndarray) -> np.ndarray:
         """Loads (n, N_LOADS, 6) for a prescribed 6-DOF motion, like HydroDyn's driver."""
+        if self.mooring_lines is not None:
+            raise ConfigError("prescribed motion: the moordyn mooring needs the time loop; use the moorpy or "
+                              "spring mooring")
         if self.filter_bank.n_states:
             raise ConfigError("prescribed motion: the filtered drag model's filter states need the "
                               "time loop; use the constant drag model")
@@ -625,6 +652,36 @@ class PlatformModel:
         table = np.zeros((rows[-1] + 3, len(points), 7))
         table[rows] = values.reshape(time_s.size, len(points), 7)
         return WaveTable(table, step)
+
+    @property
+    def n_mooring_lines(self) -> int:
+        """How many mooring lines the model's mooring has."""
+        params = params_of("mooring", self._data.component_params)
+        if self.mooring_lines is not None:
+            return self.mooring_lines.n_lines
+        return int(params[1]) if params[0] == MOORPY else len(self.platform.mooring.lines)
+
+    def mooring_tensions(self, time_s: np.ndarray, motion: np.ndarray) -> np.ndarray:
+        """(n, lines, 2): each mooring line's fairlead and anchor tension [N] at the times and
+        platform positions (n, 6) of a run of this model: the springs' T0 + k (L - L0) (both
+        ends), the moorpy lines' quasi-static tensions, or MoorDyn's at its committed steps
+        (the times of the latest ``run`` or ``step``, its start included; NaN for others)."""
+        time_s, motion = np.atleast_1d(np.asarray(time_s, dtype=float)), np.atleast_2d(motion)
+        params = params_of("mooring", self._data.component_params)
+        if self.mooring_lines is not None:
+            return self.mooring_lines.tensions_at(time_s)
+        if params[0] == MOORPY:
+            forces = line_forces(params, self._data.component_tables[ROW["mooring"] - FIRST_MODULE_ROW], motion)
+            return np.stack([np.hypot(forces[..., 0], forces[..., 1]), np.hypot(forces[..., 2], forces[..., 3])],
+                            axis=-1)
+        m = self.platform.mooring
+        fairleads = np.array([line.fairlead_m for line in m.lines])
+        anchors = np.array([line.anchor_m for line in m.lines])
+        rotations = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
+        world = motion[:, None, 0:3] + np.einsum("ijn,lj->nli", rotations, fairleads)
+        tension = m.pretension_n + m.stiffness_n_m * (np.linalg.norm(anchors[None] - world, axis=-1)
+                                                      - m.unstretched_length_m)
+        return np.stack([tension, tension], axis=-1)
 
     def mass_matrix(self) -> np.ndarray:
         """Rigid-body plus added mass (and any load component's mass) at rest, 6x6 about the

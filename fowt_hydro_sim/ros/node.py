@@ -35,7 +35,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 import rclpy
-from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, WrenchStamped
+from geometry_msgs.msg import AccelStamped, PointStamped, PoseStamped, TwistStamped, Vector3Stamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.duration import Duration
@@ -47,6 +47,7 @@ from rclpy.serialization import deserialize_message
 from rosgraph_msgs.msg import Clock
 
 import msg_adapters as adapt
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import (
     ConfigError,
     HydroOptions,
@@ -72,7 +73,7 @@ from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds, nanoseconds_array
 
 MESSAGE_CLASSES = {topics.type_name(c): c for c in (AccelStamped, Clock, Odometry, PointStamped, PoseStamped,
-                                                    TwistStamped, WrenchStamped)}
+                                                    TwistStamped, Vector3Stamped, WrenchStamped)}
 
 OUTPUTS = topics.outputs(PUBLISHED)  # every published load component has its topic
 WAVE_SOURCES = ("internal", "topic", "bag", "none")
@@ -125,6 +126,7 @@ class NodeSettings:
     load_directions: str = like(RunConfig, "load_directions")
     hydrostatics: str = like(RunConfig, "hydrostatics")
     slow_drift: str = like(RunConfig, "slow_drift")
+    mooring: str = like(RunConfig, "mooring")
     load_case: str = setting("lc5.3", "load case giving the sea state (lc5.0 .. lc6.5); hs_m/tp_s > 0 override it")
     hs_m: float = like(SeaState, "hs_m", default=0.0, unset=0.0, note="; 0 = the load case's")
     tp_s: float = like(SeaState, "tp_s", default=0.0, unset=0.0, note="; 0 = the load case's")
@@ -214,8 +216,12 @@ class SimulatorNode(Node):
         options = HydroOptions(wetted_length=s.wetted_length, load_directions=s.load_directions,
                                hydrostatics=s.hydrostatics, slow_drift=s.slow_drift)
         self.model = PlatformModel(platform, waves, dt_s=s.dt_s, drag_model=s.drag_model, options=options,
-                                   wave_block_s=s.wave_block_s)
+                                   wave_block_s=s.wave_block_s, mooring_model=s.mooring)
         self.model.reset(motion=np.array(s.initial_state))
+        # the node's outputs: the contract's, then each mooring line's tensions
+        self._n_lines = self.model.n_mooring_lines
+        self._outputs_map = {**OUTPUTS, **{f"tension{i}": (topics.tension_topic(i), topics.VECTOR3_STAMPED)
+                                           for i in range(1, self._n_lines + 1)}}
         self._feed: WaveFeed | None = None
         self._wave_bag = None  # (topic, log time, bytes) of the wave bag, read as needed
         if s.wave_source in ("topic", "bag"):
@@ -246,7 +252,7 @@ class SimulatorNode(Node):
         self._make_interface()
         self.add_on_set_parameters_callback(self._on_set_parameters)
         self.get_logger().info(
-            f"{platform.name}, drag {s.drag_model}, waves {s.wave_source}"
+            f"{platform.name}, drag {s.drag_model}, mooring {self.model.platform.mooring.model}, waves {s.wave_source}"
             + (f" (Hs {s.sea_state.hs_m:g} m, Tp {s.sea_state.tp_s:g} s, seed {s.sea_state.seed})"
                if s.wave_source == "internal" else " (still water)" if s.wave_source == "none" else
                f" ({topics.ELEVATION} {'of ' + s.wave_bag if s.wave_bag else ''} at {s.wave_point_xy}, "
@@ -267,15 +273,15 @@ class SimulatorNode(Node):
         except OSError as exc:
             raise ConfigError(f"parameter record: cannot create the bag directory {s.record}: "
                               f"{exc.strerror or exc}") from None
-        self._output_channels = [recorder.add_topic(topic, kind) for topic, kind in OUTPUTS.values()]
+        self._output_channels = [recorder.add_topic(topic, kind) for topic, kind in self._outputs_map.values()]
         self._input_channel = {topic: recorder.add_topic(topic, kind) for topic, kind in topics.INPUTS.items()}
         return recorder
 
     def _make_interface(self) -> None:
         out = QoSProfile(depth=1000)  # accelerated runs: room for a slower subscriber
         self._pub = {name: self.create_publisher(MESSAGE_CLASSES[kind], topic, out)
-                     for name, (topic, kind) in OUTPUTS.items()}
-        self._output_names = list(OUTPUTS)  # the order of cdr.outputs
+                     for name, (topic, kind) in self._outputs_map.items()}
+        self._output_names = list(self._outputs_map)  # the order of cdr.outputs, then the tensions
         self._total_rows = [ROW[c] for c in SUMMED]
         self._load_rows = [ROW[c] for c in PUBLISHED]  # one topic each
         inputs = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
@@ -531,6 +537,10 @@ class SimulatorNode(Node):
         start_blocks = self.model.wave_block_wait_s
         try:
             self._step_until_done()
+        except InputError as exc:  # a model that cannot go on (MoorDyn failing, a line out of its table)
+            self.incomplete = str(exc)
+            self.get_logger().error(f"{exc}: stepping stopped, nothing more is published")
+            self._stop.set()
         finally:
             wall, cpu = time.monotonic() - start_wall, time.process_time() - start_cpu
             report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
@@ -656,8 +666,10 @@ class SimulatorNode(Node):
                  loads: np.ndarray, elevation_m: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]]:
         """Every output of each sample (row): the times and one block of CDR messages per topic."""
         total = loads[:, self._total_rows].sum(axis=1)
-        return time_s, cdr.output_blocks(time_s, motion, velocity, acceleration, loads[:, self._load_rows], total,
-                                         elevation_m, self.settings.world_frame_id, self.settings.platform_frame_id)
+        blocks = cdr.output_blocks(time_s, motion, velocity, acceleration, loads[:, self._load_rows], total,
+                                   elevation_m, self.settings.world_frame_id, self.settings.platform_frame_id)
+        tensions = self.model.mooring_tensions(time_s, motion)
+        return time_s, blocks + cdr.tension_blocks(time_s, tensions, self.settings.world_frame_id)
 
     def _publish(self, time_s: np.ndarray, blocks: list[np.ndarray]) -> None:
         """Publish each sample's messages (row by row, topics in contract order), then record them."""

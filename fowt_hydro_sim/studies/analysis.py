@@ -64,8 +64,12 @@ class RunContext:
 
 def natural_frequencies_hz(platform) -> dict[str, float]:
     """Undamped natural frequencies of the linearised platform, one per mode, named after
-    the DOF with the largest share of the mode's kinetic energy (|v_i|^2 M_ii)."""
+    the DOF with the largest share of the mode's kinetic energy (|v_i|^2 M_ii). MoorDyn's
+    lines are linearised as their quasi-static catenaries (the moorpy model of the same file:
+    MoorDyn's static lines within 0.3 %, docs/validation.md)."""
     from fowt_hydro_sim.physics.model import PlatformModel
+    if platform.mooring.model == "moordyn":
+        platform = dataclasses.replace(platform, mooring=platform.mooring.chosen("moorpy"))
     model = PlatformModel(platform, None)
     mass = model.mass_matrix()
     eigenvalues, vectors = np.linalg.eig(np.linalg.solve(mass, model.restoring_matrix()))
@@ -291,7 +295,81 @@ def analyze_bags(runs: list[str | Path], references: list[str | Path], settings:
             f"fowt-sim simulate does; --transient)\n" + table_text(analysed, comparisons, settings))
     files = write_report(analysed, comparisons, settings, Path(output), reference_runs)
     loop_text, loop_files = closed_loop_report(runs, settings, Path(output))
-    return (text + loop_text, files + loop_files)
+    tension_text, tension_files = tension_report(runs, settings, Path(output))
+    return (text + loop_text + tension_text, files + loop_files + tension_files)
+
+
+def run_tensions(path: str | Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """A run's mooring tensions: time [s] and each series (``line1_fairlead``, ``line1_anchor``
+    ...) [N], from a simulate folder's tension columns or a bag's /platform/mooring topics;
+    no series for a run without them."""
+    from fowt_hydro_sim.rosbag.reader import Bag
+    from fowt_hydro_sim.rosbag.writer import METADATA_FILE
+    from msg_adapters import topics
+    path = Path(path)
+    if not (path / METADATA_FILE).exists():
+        from fowt_hydro_sim.studies.simulate import read_run
+        columns = read_run(path)
+        return columns["time_s"], {name[:-len("_tension_n")]: values for name, values in columns.items()
+                                   if name.endswith("_tension_n")}
+    bag = Bag(path)
+    out, time_s = {}, np.zeros(0)
+    line = 1
+    while topics.tension_topic(line) in bag.topics:
+        series = bag.series(topics.tension_topic(line))
+        time_s = series.time_s
+        out[f"line{line}_fairlead"], out[f"line{line}_anchor"] = series.values[:, 0], series.values[:, 1]
+        line += 1
+    return time_s, out
+
+
+def tension_report(runs: list[str | Path], settings: AnalysisSettings, folder: Path) -> tuple[str, list[Path]]:
+    """For the runs with mooring tensions: each line's fairlead and anchor tension mean, STD,
+    maximum and damage-equivalent load (studies.tensions: rainflow, S-N slope m = 3, 1 Hz
+    equivalent) after the transient, in ``tensions.csv``, and the fairlead tensions' PSDs."""
+    from fowt_hydro_sim.studies.tensions import tension_rows
+    rows, files = [], []
+    for path in runs:
+        time_s, series = run_tensions(path)
+        if not series:
+            continue
+        name = Path(path).name
+        rows += tension_rows(name, time_s, series, settings.transient_s)
+        files.append(plot_tension_psd(name, time_s, series, settings, folder / f"tension_psd_{_slug(name)}.png"))
+    if not rows:
+        return "", []
+    files = [path for path in files if path is not None]  # figures: None without matplotlib
+    files.append(_csv(folder / "tensions.csv", rows))
+    lines = ["", f"mooring tensions (after {settings.transient_s:g} s; DEL: rainflow, S-N slope m = "
+                 f"{rows[0]['sn_slope']:g}, 1 Hz equivalent cycles):"]
+    lines += [f"  {r['run']:<16} {r['tension']:<16} mean {r['mean_n'] / 1e3:9.1f} kN  std {r['std_n'] / 1e3:8.1f} kN  "
+              f"max {r['max_n'] / 1e3:9.1f} kN  DEL {r['del_n'] / 1e3:8.1f} kN" for r in rows]
+    return "\n".join(lines), files
+
+
+def plot_tension_psd(name: str, time_s: np.ndarray, series: dict[str, np.ndarray], settings: AnalysisSettings,
+                     path: Path) -> Path | None:
+    """The fairlead tensions' PSDs after the transient (None without matplotlib or too short)."""
+    plt = pyplot()
+    keep = time_s >= time_s[0] + settings.transient_s
+    if plt is None or keep.sum() < 64:
+        return None
+    dt, _ = uniform(time_s[keep], np.zeros((int(keep.sum()), 1)))
+    fig, ax = plt.subplots(figsize=(8.0, 4.0))
+    for channel, values in series.items():
+        if channel.endswith("_fairlead") and np.all(np.isfinite(values[keep])):
+            frequency, density = psd(values[keep] / 1e3, dt, settings.segment_s)
+            ax.semilogy(frequency, density, lw=0.9, label=channel)
+    ax.set_xlim(0, 0.5)
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("fairlead tension PSD [kN$^2$/Hz]")
+    ax.set_title(f"mooring tensions: {name}")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
 
 
 def closed_loop_report(runs: list[str | Path], settings: AnalysisSettings, folder: Path) -> tuple[str, list[Path]]:

@@ -64,8 +64,19 @@ def prescribed_loads(platform: Platform, waves: WaveComponents | None, motion: P
                      options: HydroOptions, wave_table_dt_s: float | None = None) -> np.ndarray:
     """Every load component (n, N_LOADS, 6; global axes, about the displaced reference point)
     along the motion, with the constant drag model."""
-    model = PlatformModel(platform, waves, options=options, wave_table_dt_s=wave_table_dt_s)
-    return model.prescribed_motion_loads(motion.time_s, motion.motion, motion.velocity, motion.acceleration)
+    return prescribed_run(platform, waves, motion, options, wave_table_dt_s)[0]
+
+
+def prescribed_run(platform: Platform, waves: WaveComponents | None, motion: PrescribedMotion,
+                   options: HydroOptions, wave_table_dt_s: float | None = None,
+                   mooring_model: str = "") -> tuple[np.ndarray, np.ndarray]:
+    """``prescribed_loads`` with the mooring model ``mooring_model`` ("" = the platform's; not
+    moordyn, which needs the time loop), and each mooring line's fairlead and anchor tension
+    along the motion (n, lines, 2) [N]."""
+    model = PlatformModel(platform, waves, options=options, wave_table_dt_s=wave_table_dt_s,
+                          mooring_model=mooring_model)
+    loads = model.prescribed_motion_loads(motion.time_s, motion.motion, motion.velocity, motion.acceleration)
+    return loads, model.mooring_tensions(motion.time_s, motion.motion)
 
 
 def hydro_channels(loads: np.ndarray) -> np.ndarray:
@@ -73,11 +84,17 @@ def hydro_channels(loads: np.ndarray) -> np.ndarray:
     return loads[:, [ROW[name] for name in HYDRO_COMPONENTS]].sum(axis=1)
 
 
-def write_loads_csv(path: str | Path, time_s: np.ndarray, loads: np.ndarray) -> Path:
-    """``Time``, the HydroDyn channels, then ``<component>_<Fx..Mz>`` for every load component."""
+def write_loads_csv(path: str | Path, time_s: np.ndarray, loads: np.ndarray,
+                    tensions: np.ndarray | None = None) -> Path:
+    """``Time``, the HydroDyn channels, then ``<component>_<Fx..Mz>`` for every load component,
+    then, with ``tensions`` (n, lines, 2), ``lineN_fairlead_tension_n`` and
+    ``lineN_anchor_tension_n`` for each mooring line."""
     path = Path(path)
-    header = ["Time", *CHANNELS, *(f"{name}_{axis}" for name in NAMES for axis in _AXES)]
-    table = np.column_stack([time_s, hydro_channels(loads), loads.reshape(len(time_s), -1)])
+    tensions = np.zeros((len(time_s), 0, 2)) if tensions is None else tensions
+    header = ["Time", *CHANNELS, *(f"{name}_{axis}" for name in NAMES for axis in _AXES),
+              *(f"line{i + 1}_{end}_tension_n" for i in range(tensions.shape[1]) for end in ("fairlead", "anchor"))]
+    table = np.column_stack([time_s, hydro_channels(loads), loads.reshape(len(time_s), -1),
+                             tensions.reshape(len(time_s), -1)])
     np.savetxt(path, table, delimiter=",", header=",".join(header), comments="", fmt="%.9g")
     log.info("wrote %s (%d rows)", path, len(time_s))
     return path

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import resource
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import asdict
 from pathlib import Path
 from typing import NamedTuple
@@ -66,11 +66,27 @@ def elevation_record_waves(path: Path, point_xy_m: tuple[float, float], heading_
 
 # ---------------------------------------------------------------------- the run
 class MotionRecord(NamedTuple):
-    """What the statistics and the free-decay fit read of a run."""
+    """What the statistics and the free-decay fit read of a run (``tensions``: each mooring
+    line's fairlead and anchor tension, (n, lines, 2) [N])."""
 
     time_s: np.ndarray
     motion: np.ndarray
     wave_elevation_m: np.ndarray
+    tensions: np.ndarray | None = None
+
+
+def tension_statistics(record: MotionRecord, transient_s: float) -> dict:
+    """Per mooring line and end: mean, std, min and max tension [N] after ``transient_s``."""
+    if record.tensions is None or not record.tensions.size:
+        return {}
+    keep = record.time_s >= record.time_s[0] + transient_s
+    out = {}
+    for i in range(record.tensions.shape[1]):
+        for j, end in enumerate(("fairlead", "anchor")):
+            x = record.tensions[keep, i, j]
+            out[f"line{i + 1}_{end}"] = {"unit": "N", "mean": float(np.nanmean(x)), "std": float(np.nanstd(x)),
+                                         "min": float(np.nanmin(x)), "max": float(np.nanmax(x))}
+    return out
 
 
 def statistics(result: RunResult | MotionRecord, transient_s: float) -> dict:
@@ -139,17 +155,20 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
     start = time.perf_counter()
     model = model_for(platform, run, waves)
     built = time.perf_counter()
-    result = write_timeseries(output, model.run_parts(run.duration_s, run.output_interval_s))
+    result = write_timeseries(output, model.run_parts(run.duration_s, run.output_interval_s),
+                              model.mooring_tensions, model.n_mooring_lines)
     performance = performance_of(run, start, built, time.perf_counter())
     summary = {
         "software": {"name": "fowt_hydro_sim", "version": __version__},
         "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
+        "mooring": model.platform.mooring.model,
         "waves": wave_info,
         "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
                 "initial_state": list(run.initial_state), "wave_table_step_s": model.wave_table_step_s,
                 "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
         "performance": performance,
         "statistics": statistics(result, transient_s),
+        "mooring_tensions": tension_statistics(result, transient_s),
     }
     if waves is None and any(run.initial_state):
         summary["free_decay"] = free_decay(result, run.initial_state)
@@ -160,7 +179,7 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
 def model_for(platform: Platform, run: RunConfig, waves: WaveComponents | None) -> PlatformModel:
     """The model of a run of ``platform`` (``run.platform`` is not read) at its initial state."""
     model = PlatformModel(platform, waves, dt_s=run.dt_s, drag_model=run.drag_model,
-                          wave_table_dt_s=run.wave_table_dt_s, options=run.hydro_options)
+                          wave_table_dt_s=run.wave_table_dt_s, options=run.hydro_options, mooring_model=run.mooring)
     model.reset(motion=np.array(run.initial_state))
     return model
 
@@ -219,33 +238,49 @@ def _dropped_text(stats: dict, run: dict) -> str:
 
 
 # ---------------------------------------------------------------------- files
-def column_names() -> list[str]:
+def tension_columns(n_lines: int) -> list[str]:
+    """The mooring tension columns of ``timeseries.csv``: each line's fairlead and anchor."""
+    return [f"line{i + 1}_{end}_tension_n" for i in range(n_lines) for end in ("fairlead", "anchor")]
+
+
+def column_names(n_lines: int = 0) -> list[str]:
+    """The columns of ``timeseries.csv`` of a run with ``n_lines`` mooring lines."""
     names = ["time_s"]
     names += [f"{d}_{u}" for d, u in zip(DOF_NAMES, _MOTION_UNITS)]
     names += [f"{d}_velocity_{u}_s" for d, u in zip(DOF_NAMES, _MOTION_UNITS)]
     names += [f"{d}_acceleration_{u}_s2" for d, u in zip(DOF_NAMES, _MOTION_UNITS)]
     names += [f"{c}_{a}" for c in NAMES for a in _AXES]
     names.append("wave_elevation_m")
-    return names
+    return names + tension_columns(n_lines)
 
 
-def write_timeseries(folder: Path, parts: Iterable[RunResult]) -> MotionRecord:
+Tensions = Callable[[np.ndarray, np.ndarray], np.ndarray]  # (time, motion) -> (n, lines, 2)
+
+
+def write_timeseries(folder: Path, parts: Iterable[RunResult], tensions: Tensions | None = None,
+                     n_lines: int = 0) -> MotionRecord:
     """Write consecutive parts of a run (``PlatformModel.run_parts``) to ``timeseries.csv`` as
-    they come; return the run's motion record."""
+    they come, with the ``n_lines`` mooring lines' tensions (``PlatformModel.mooring_tensions``)
+    if given; return the run's motion record."""
     folder.mkdir(parents=True, exist_ok=True)
     kept: list[MotionRecord] = []
     with (folder / "timeseries.csv").open("w") as out:
-        out.write(",".join(column_names()) + "\n")
+        out.write(",".join(column_names(n_lines if tensions else 0)) + "\n")
         for part in parts:
             rows = slice(1 if kept else 0, None)  # a later part's first row is the last one written
+            n = len(part.time_s)
+            lines = tensions(part.time_s, part.motion) if tensions else np.zeros((n, 0, 2))
             table = np.column_stack([part.time_s, part.motion, part.velocity, part.acceleration,
-                                     part.loads.reshape(len(part.time_s), -1), part.wave_elevation_m])[rows]
+                                     part.loads.reshape(n, -1), part.wave_elevation_m, lines.reshape(n, -1)])[rows]
             np.savetxt(out, table, delimiter=",", fmt="%.9g")
-            kept.append(MotionRecord(part.time_s[rows], part.motion[rows], part.wave_elevation_m[rows]))
+            kept.append(MotionRecord(part.time_s[rows], part.motion[rows], part.wave_elevation_m[rows], lines[rows]))
     return MotionRecord(*(np.concatenate(column) for column in zip(*kept)))
 
 
 def read_run(folder: Path) -> dict[str, np.ndarray]:
     """The columns of a run's ``timeseries.csv`` by name."""
-    data = np.loadtxt(Path(folder) / "timeseries.csv", delimiter=",", skiprows=1, ndmin=2)
-    return dict(zip(column_names(), data.T))
+    path = Path(folder) / "timeseries.csv"
+    with path.open() as f:
+        names = f.readline().strip().split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return dict(zip(names, data.T))

@@ -48,7 +48,7 @@ from fowt_hydro_sim.physics.platform_edits import (
     with_coefficients,
 )
 from fowt_hydro_sim.studies.psd import BANDS_HZ
-from fowt_hydro_sim.studies.simulate import run_model, sea_state_waves, statistics
+from fowt_hydro_sim.studies.simulate import model_for, performance_of, sea_state_waves, statistics
 
 log = logging.getLogger(__name__)
 
@@ -218,21 +218,39 @@ def metric_names() -> list[str]:
     for j, name in enumerate(DOF_NAMES):
         unit = "deg" if j >= 3 else "m"
         out += [f"{name}_{s}_{unit}" for s in _STATS] + [f"{name}_std_{b}_{unit}" for b in BANDS_HZ]
-    return out + ["wave_hs_4std_m"]
+    return out + ["wave_hs_4std_m", *TENSION_METRICS]
+
+
+# the mooring's fairlead tensions in a row: each statistic of the line where it is largest
+TENSION_METRICS = ("fairlead_tension_mean_n", "fairlead_tension_std_n", "fairlead_tension_max_n",
+                   "fairlead_tension_del_n")
+
+
+def tension_metrics(time_s: np.ndarray, tensions: np.ndarray, transient_s: float) -> dict[str, float]:
+    """The row's tension columns from each line's fairlead tension (n, lines, 2) after the
+    transient: mean, STD, maximum and DEL (``studies.tensions``, S-N slope 3), each the
+    largest over the lines; NaN without lines."""
+    from fowt_hydro_sim.studies.tensions import tension_rows
+    rows = tension_rows("", time_s, {f"line{i + 1}": tensions[:, i, 0] for i in range(tensions.shape[1])},
+                        transient_s)
+    keys = ("mean_n", "std_n", "max_n", "del_n")
+    return {name: max((r[key] for r in rows), default=float("nan")) for name, key in zip(TENSION_METRICS, keys)}
 
 
 def columns() -> list[str]:
     return [*KEY, "hs_m", "tp_s", "gamma", *metric_names(), "wall_time_s", "real_time_factor"]
 
 
-def row_of(key: dict, sea: SeaState, stats: dict, performance: dict) -> dict:
-    """A table row: the run's key, its sea state, its statistics (``simulate.statistics``)."""
+def row_of(key: dict, sea: SeaState, stats: dict, performance: dict, tensions: dict[str, float]) -> dict:
+    """A table row: the run's key, its sea state, its statistics (``simulate.statistics``) and
+    its fairlead tensions' (``tension_metrics``)."""
     row: dict = {**key, "hs_m": sea.hs_m, "tp_s": sea.tp_s, "gamma": sea.gamma}
     for j, name in enumerate(DOF_NAMES):
         s, unit = stats[name], "deg" if j >= 3 else "m"
         row.update({f"{name}_{k}_{unit}": s[k] for k in _STATS})
         row.update({f"{name}_std_{b}_{unit}": (s["band_std"] or {}).get(b, float("nan")) for b in BANDS_HZ})
     row["wave_hs_4std_m"] = stats["wave_elevation"]["hs_4std"]
+    row.update(tensions)
     return {**row, "wall_time_s": performance["wall_time_s"], "real_time_factor": performance["real_time_factor"]}
 
 
@@ -252,11 +270,16 @@ def run_one(key: dict, platform: Platform, run: RunConfig, transient_s: float, b
     sea = sea_of(key)
     waves, info = sea_state_waves(sea, run.duration_s, key["load_case"])
     settings = replace(run, drag_model=key["drag_model"])
-    result, performance, _ = run_model(platform, settings, waves)
+    start = time.perf_counter()
+    model = model_for(platform, settings, waves)
+    built = time.perf_counter()
+    result = model.run(settings.duration_s, output_interval_s=settings.output_interval_s)
+    performance = performance_of(settings, start, built, time.perf_counter())
     if bag_folder is not None:
         write_bag(Path(bag_folder) / run_name(key), result, {"sweep_run": key, "waves": info,
                                                              "run": asdict(settings), "platform": platform.name})
-    return row_of(key, sea, statistics(result, transient_s), performance)
+    tensions = tension_metrics(result.time_s, model.mooring_tensions(result.time_s, result.motion), transient_s)
+    return row_of(key, sea, statistics(result, transient_s), performance, tensions)
 
 
 def write_bag(path: Path, result: RunResult, config: dict) -> None:

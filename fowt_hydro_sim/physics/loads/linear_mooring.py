@@ -1,6 +1,6 @@
 """A mooring given as a constant wrench at rest and a 6x6 stiffness about the reference point
-(``Platform.linear_mooring``): F0 - K q (world axes, small motions). Zero for a platform
-without one."""
+(``Platform.linear_mooring``): F0 - K q (world axes, small motions), when the mooring in use is
+``linear`` (the run may choose the platform's lines instead); zero otherwise."""
 from __future__ import annotations
 
 import numpy as np
@@ -11,7 +11,7 @@ from fowt_hydro_sim.physics.jit import step_loop
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     """[on, F0 (6), K (36)]; no table."""
     mooring = inputs.platform.linear_mooring
-    if mooring is None:
+    if mooring is None or inputs.platform.mooring.model != "linear":
         return np.zeros(43), np.zeros((1, 1))
     return np.concatenate([[1.0], mooring.force_at_rest_n, np.ravel(mooring.stiffness)]), np.zeros((1, 1))
 
