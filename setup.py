@@ -32,9 +32,8 @@ MOORING = ['moordyn>=2.7,<2.8', 'moorpy']
 # library, ROSCO's simulator (the turbine's oracle), MoorPy, capytaine (BEM)
 # fowt-sim measured import of HDF5 files (CSV/TSV and MATLAB .mat need no extra)
 BASIN = ['h5py']
-TEST = [*PLOTS, *CLUSTER, *MOORING, *BASIN, 'pytest', 'pytest-xdist', 'mcap-ros2-support', 'rosbags', 'openfast-io>=5.0',
-        ROSCO,
-        'capytaine>=3.0']
+TEST = [*PLOTS, *CLUSTER, *MOORING, *BASIN, 'pytest', 'pytest-xdist', 'mcap-ros2-support', 'rosbags',
+        'openfast-io>=5.0', ROSCO, 'capytaine>=3.0']
 
 # Top-level packages are listed explicitly so that a missing directory is a loud
 # build error (find_packages would silently skip it); sub-packages are found.
