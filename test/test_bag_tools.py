@@ -146,6 +146,7 @@ def read_with_rosbags(path: Path) -> dict[str, list]:
 
 
 # ---------------------------------------------------------------------- play
+@pytest.mark.serial
 @pytest.mark.slow
 def test_play_publishes_every_message_in_order_with_the_clock(source: Path):
     listener = Listener({ELEVATION: PointStamped, WRENCH: WrenchStamped, CLOCK: Clock})
@@ -395,6 +396,7 @@ def test_record_all_topics_finds_topics_appearing_later(tmp_path: Path):
     assert len(read_with_rosbags(out)[WRENCH]) == 10
 
 
+@pytest.mark.serial
 def test_record_stops_after_its_duration(tmp_path: Path):
     started = time.monotonic()
     code, output = wait_exit(launch("record", "-o", tmp_path / "short", "--duration", 1, "--topics", ELEVATION,

@@ -21,8 +21,13 @@ def domain_after_conftest(env: dict[str, str]) -> tuple[str, str]:
 
 
 def test_the_callers_domain_is_kept_and_otherwise_each_session_gets_its_own():
-    env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE")}
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE", "PYTEST_XDIST_WORKER")}
     assert domain_after_conftest({**env, "ROS_DOMAIN_ID": "63"}) == ("63", "LOCALHOST")
+    # pytest -n: the first worker keeps the caller's domain, the others take the next ones
+    assert domain_after_conftest({**env, "ROS_DOMAIN_ID": "63", "PYTEST_XDIST_WORKER": "gw0"})[0] == "63"
+    assert domain_after_conftest({**env, "ROS_DOMAIN_ID": "63", "PYTEST_XDIST_WORKER": "gw1"})[0] == "64"
+    assert domain_after_conftest({**env, "ROS_DOMAIN_ID": "101", "PYTEST_XDIST_WORKER": "gw1"})[0] == "1"
     chosen = {domain_after_conftest(env)[0] for _ in range(4)}
     assert len(chosen) > 1 and all(1 <= int(d) <= 101 for d in chosen)  # not one fixed id for everyone
 

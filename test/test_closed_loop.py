@@ -235,6 +235,7 @@ def test_the_bag_reruns_the_loop_and_keeps_roscos_debug_channels(loop_bag, tmp_p
     assert rerun_debug[1:] == lines[1:]  # the rerun's own, beside its bag: the same channels, row for row
 
 
+@pytest.mark.serial
 @pytest.mark.slow
 def test_ctrl_c_ends_the_command_with_a_summary_and_a_readable_bag(tmp_path):
     """Ctrl-C at a terminal: SIGINT to the command and its three processes (one process group)."""
@@ -340,6 +341,7 @@ def test_the_turbine_answers_each_stamp_once(tmp_path):
     assert wrench == pytest.approx([0.0, 0.0, 0.05])
 
 
+@pytest.mark.serial
 @pytest.mark.slow
 def test_a_slow_controller_gets_each_odometry_once(tmp_path):
     """A controller answering 0.8 s after each odometry (a loaded machine): the node waits

@@ -144,6 +144,7 @@ def test_lockstep_is_deterministic_at_any_speed():
     assert np.ptp(fast[i0, 4]) > 1e-4  # the pitch moves: there is something to compare
 
 
+@pytest.mark.serial
 @pytest.mark.slow
 @pytest.mark.parametrize("factor", [1.0, 10.0])
 def test_pacing_follows_the_real_time_factor(factor: float):
@@ -165,6 +166,7 @@ def test_pacing_follows_the_real_time_factor(factor: float):
     assert ratio == pytest.approx(factor, rel=0.02)
 
 
+@pytest.mark.serial
 @pytest.mark.slow
 def test_wave_blocks_do_not_stall_the_paced_node():
     """Oracle: the wall clock. A node at 20x real time (2.5 ms between poses) on a 12-hour sea
@@ -344,6 +346,7 @@ def test_bad_controller_parameters_end_with_one_line(args: dict, message: str):
     assert controller.returncode == 2 and message in output and "Traceback" not in output, output
 
 
+@pytest.mark.serial
 @pytest.mark.slow
 def test_the_controller_stops_on_sigterm():
     controller = start("controller")

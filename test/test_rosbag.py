@@ -276,6 +276,7 @@ def test_a_full_disk_ends_the_recording_with_one_line_and_a_readable_bag(small_d
     assert np.all(np.diff(pose.time_s) > 0) and pose.time_s[-1] < 600.0
 
 
+@pytest.mark.serial
 @pytest.mark.slow
 @pytest.mark.ros
 def test_a_killed_recording_is_recovered_up_to_its_last_chunk(tmp_path):

@@ -217,6 +217,7 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
         assert expected in bad.stderr and "Traceback" not in bad.stderr and len(bad.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.serial
 @pytest.mark.slow
 @pytest.mark.dask
 def test_ctrl_c_ends_a_sweep_with_one_line_and_no_process_left(tmp_path: Path):
