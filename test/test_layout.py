@@ -33,7 +33,7 @@ MAY_IMPORT: dict[str, set[str]] = {
     "rosbag": BASICS | {"msg_adapters"},
     "studies": BASICS | {"physics", "turbine", "rosbag", "io", "msg_adapters"},
     "ros": BASICS | {"physics", "turbine", "rosbag", "msg_adapters"},
-    "testing": BASICS | {"physics", "turbine", "rosbag", "io", "ros", "msg_adapters"},
+    "testing": BASICS | {"physics", "turbine", "rosbag", "io", "ros", "msg_adapters", "cli"},  # (suites run the CLI)
     "cli": BASICS | {"physics", "turbine", "rosbag", "io", "studies", "ros", "msg_adapters"},
     "benchmarks": BASICS | {"physics", "turbine", "rosbag", "io", "studies", "ros", "msg_adapters", "testing",
                             "cli"},
