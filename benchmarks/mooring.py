@@ -67,8 +67,8 @@ def speed(duration_s: float, repeats: int) -> None:
 
 
 def tabulation(n: int = 200) -> None:
-    from fowt_hydro_sim.physics.loads.mooring_file import read_lines
-    from fowt_hydro_sim.physics.loads.mooring_tables import solve
+    from fowt_hydro_sim.physics.mooring.catenary_tables import solve
+    from fowt_hydro_sim.physics.mooring.moordyn_file import read_lines
     model = PlatformModel(platform(), None, mooring_model="moorpy")
     lines = read_lines(LINES, 200.0)
     rng = np.random.default_rng(1)

@@ -83,7 +83,7 @@ def test_a_platform_yaml_chooses_its_mooring_and_names_the_file_relative_to_itse
 @pytest.mark.parametrize("mooring, message", [
     ({"model": "moordyn"}, "mooring.file: missing"),
     ({"model": "moorpy", "file": "nowhere.dat"}, "nowhere.dat: no such file"),
-    ({"model": "catenary", "file": "lines.dat"}, "mooring.model: must be one of spring, moorpy, moordyn"),
+    ({"model": "catenary", "file": "lines.dat"}, "mooring.model: must be one of spring, linear, moorpy, moordyn"),
 ])
 def test_a_mooring_section_that_cannot_work_is_refused_naming_the_field(tmp_path, mooring, message):
     shutil.copyfile(VOLTURNUS_LINES, tmp_path / "lines.dat")
@@ -97,7 +97,7 @@ def test_a_mooring_section_that_cannot_work_is_refused_naming_the_field(tmp_path
 def test_a_run_chooses_the_mooring_and_refuses_an_unknown_one():
     assert RunConfig().mooring == ""
     assert RunConfig(mooring="moordyn").mooring == "moordyn"
-    with pytest.raises(ConfigError, match="run: mooring: must be one of spring, moorpy, moordyn"):
+    with pytest.raises(ConfigError, match="run: mooring: must be one of spring, linear, moorpy, moordyn"):
         RunConfig(mooring="chain")
     with pytest.raises(ConfigError, match="mooring moorpy: the platform has no MoorDyn input file"):
         PlatformModel(load_platform("windmoor12"), mooring_model="moorpy")
@@ -143,7 +143,7 @@ def test_the_tabulated_catenary_restores_the_platform_as_its_tensions_say(moorpy
     wrench = moorpy_model.loads[moorpy_model_row()]
     from fowt_hydro_sim.frames import rotation_matrix
     from fowt_hydro_sim.physics.loads import FIRST_MODULE_ROW, ROW, params_of
-    from fowt_hydro_sim.physics.loads.mooring_tables import line_forces
+    from fowt_hydro_sim.physics.mooring.catenary_tables import line_forces
     data = moorpy_model._data
     forces = line_forces(params_of("mooring", data.component_params),
                          data.component_tables[ROW["mooring"] - FIRST_MODULE_ROW], motion)[0]
@@ -232,7 +232,7 @@ def test_moordyn_static_lines_give_moorpys_tensions_and_restoring_force_over_sur
     """MoorDyn's static solution (its initial equilibrium, dynamic relaxation) of the VolturnUS-S
     lines at surge offsets -30 .. 30 m against MoorPy's on the same file: each line's fairlead
     tension and the platform's surge restoring force within 1 %."""
-    from fowt_hydro_sim.physics.loads.mooring_moordyn import MoorDynLines
+    from fowt_hydro_sim.physics.mooring.moordyn_lines import MoorDynLines
     offsets = np.arange(-30.0, 31.0, 10.0)
     lines = MoorDynLines(VOLTURNUS_LINES)
     try:

@@ -132,5 +132,5 @@ def test_a_run_file_chooses_the_mooring(tmp_path):
     (tmp_path / "run.yaml").write_text("platform: windmoor12\nrun: {duration_s: 60, mooring: moorpy}\n")
     assert load_run_file(tmp_path / "run.yaml").run.mooring == "moorpy"
     (tmp_path / "bad.yaml").write_text("platform: windmoor12\nrun: {mooring: chain}\n")
-    with pytest.raises(ConfigError, match="bad.yaml: run.mooring: must be one of spring, moorpy, moordyn"):
+    with pytest.raises(ConfigError, match="bad.yaml: run.mooring: must be one of spring, linear, moorpy, moordyn"):
         load_run_file(tmp_path / "bad.yaml")

@@ -56,8 +56,8 @@ from fowt_hydro_sim.physics.loads import (
 )
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, hydrostatics
-from fowt_hydro_sim.physics.loads.mooring_moordyn import MoorDynLines
-from fowt_hydro_sim.physics.loads.mooring_tables import MOORPY, SPAN_H_M, SPAN_V_M, line_forces
+from fowt_hydro_sim.physics.mooring.catenary_tables import MOORPY, SPAN_H_M, SPAN_V_M, line_forces
+from fowt_hydro_sim.physics.mooring.moordyn_lines import MoorDynLines
 from fowt_hydro_sim.physics.morison import (
     added_mass_about,
     added_mass_moments,
@@ -142,7 +142,7 @@ class PlatformModel:
     slower); without it the compiled loop runs alone, unchanged. ``mooring_model``: the
     platform's mooring model (``spring``, ``moorpy``, ``moordyn``; "" = the platform's own
     choice). ``moordyn`` steps MoorDyn in Python between the compiled evaluations, as a user
-    force does (``mooring_moordyn``).
+    force does (``physics.mooring.moordyn_lines``).
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,

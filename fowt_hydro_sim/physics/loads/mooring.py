@@ -7,9 +7,9 @@
   body's motion.
 - ``moorpy`` (1): quasi-static elastic catenaries with seabed contact (MoorPy's ``catenary``),
   tabulated once per line over the fairlead-to-anchor horizontal and vertical spans
-  (``mooring_tables``) and interpolated here (bicubic); a fairlead outside its table is
+  (``physics.mooring.catenary_tables``) and interpolated here (bicubic); a fairlead outside its table is
   held at the table's edge and reported (``outside_table``).
-- ``moordyn`` (2): MoorDyn's lumped-mass lines, stepped in Python (``mooring_moordyn``);
+- ``moordyn`` (2): MoorDyn's lumped-mass lines, stepped in Python (``physics.mooring.moordyn_lines``);
   the wrench of its fairlead forces is written into ``params[1:7]`` before each evaluation.
 """
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.physics.jit import step_loop
-from fowt_hydro_sim.physics.loads.mooring_tables import (
+from fowt_hydro_sim.physics.mooring.catenary_tables import (
     HEADER,
     LINE_FIELDS,
     MOORPY,
@@ -33,7 +33,7 @@ SPRING, MOORDYN = 0.0, 2.0
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     """spring: [0, k, T0, L0, fairleads (3 n, body frame), anchors (3 n, world frame)];
-    moorpy: the header, the lines and their tables (``mooring_tables.tabulate``);
+    moorpy: the header, the lines and their tables (``catenary_tables.tabulate``);
     moordyn: [2, wrench (6)]."""
     mooring = inputs.platform.mooring
     if mooring.model == "moorpy":

@@ -36,7 +36,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.errors import InputError
-from fowt_hydro_sim.physics.loads.mooring_file import readable_copy
+from fowt_hydro_sim.physics.mooring.moordyn_file import readable_copy
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 
 log = logging.getLogger(__name__)

@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.errors import InputError
-from fowt_hydro_sim.physics.loads.mooring_file import CatenaryLine, read_lines
+from fowt_hydro_sim.physics.mooring.moordyn_file import CatenaryLine, read_lines
 
 log = logging.getLogger(__name__)
 
