@@ -213,3 +213,37 @@ def test_regular_wave_response_is_the_frequency_domain_solution_of_the_wamit_coe
         measured = c_cos - 1j * c_sin
         assert abs(measured) == pytest.approx(abs(expected[dof]), rel=0.01), dof
         assert abs(np.degrees(np.angle(measured / expected[dof]))) < 1.0, dof
+
+
+def test_volturnus_s_moors_by_its_matrix_or_by_the_lines_it_is_given():
+    """The default ``linear`` mooring is the packaged matrix; a run that chooses ``moorpy`` gets
+    the MoorDyn deck's catenaries instead (the matrix then off, not added to them). Reference:
+    MoorPy's catenaries through the tables, their surge stiffness by central differences at
+    +-0.5 m and their force at rest, against the matrix's K and F0."""
+    from fowt_hydro_sim.physics.loads import ComponentInputs
+    from fowt_hydro_sim.physics.loads import linear_mooring as linear_load
+    from fowt_hydro_sim.physics.loads import mooring as lines_load
+
+    platform = load_platform("volturnus_s")
+    assert platform.mooring.model == "linear" and platform.mooring.file.endswith("_MoorDyn.dat")
+
+    def wrenches(mooring_model: str, surge_m: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        y = np.zeros(12)
+        y[0] = surge_m
+        chosen = replace(platform, mooring=platform.mooring.chosen(mooring_model))
+        inputs = ComponentInputs(chosen, None, None, None, None, None, 0.05)
+        out = []
+        for load in (linear_load, lines_load):
+            params, table = load.parameters(inputs)
+            wrench = np.zeros(6)
+            load.wrench(0.0, y, np.eye(3), params, table, wrench, np.zeros((6, 6)))
+            out.append(wrench)
+        return out[0], out[1]
+
+    stiffness = platform.linear_mooring.stiffness[0][0]
+    matrix, lines = wrenches("", 5.0)
+    assert not lines.any() and matrix[0] == pytest.approx(-5.0 * stiffness)
+    matrix, lines = wrenches("moorpy")
+    assert not matrix.any() and lines[2] == pytest.approx(platform.linear_mooring.force_at_rest_n[2], rel=0.01)
+    central = (wrenches("moorpy", -0.5)[1][0] - wrenches("moorpy", 0.5)[1][0]) / 1.0
+    assert central == pytest.approx(stiffness, rel=0.01)
