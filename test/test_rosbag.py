@@ -34,6 +34,8 @@ from fowt_hydro_sim.testing.ros import Listener, finish, start
 from msg_adapters import cdr, topics
 
 OUTPUT_TOPICS = [topic for topic, _ in topics.outputs(PUBLISHED).values()]
+# the default platform's mooring lines: one tension topic each
+TENSION_TOPICS = [topics.tension_topic(line) for line in range(1, len(load_platform("windmoor12").mooring.lines) + 1)]
 
 
 def published_count(log: str) -> int:
@@ -55,8 +57,9 @@ def test_a_recorded_run_holds_exactly_the_messages_published(recorded_run):
     bag, log = recorded_run
     counts = {topic: info.message_count for topic, info in Bag(bag).topics.items()}
     rows = int(round(30.0 / 0.05)) + 1  # the start and every publish period
-    assert {topic: counts[topic] for topic in OUTPUT_TOPICS} == {topic: rows for topic in OUTPUT_TOPICS}
-    assert sum(counts[t] for t in OUTPUT_TOPICS) == published_count(log) == rows * len(OUTPUT_TOPICS)
+    published = OUTPUT_TOPICS + TENSION_TOPICS
+    assert {topic: counts[topic] for topic in published} == {topic: rows for topic in published}
+    assert sum(counts[t] for t in published) == published_count(log) == rows * len(published)
 
 
 @pytest.mark.ros

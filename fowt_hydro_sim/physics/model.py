@@ -675,6 +675,8 @@ class PlatformModel:
             return np.stack([np.hypot(forces[..., 0], forces[..., 1]), np.hypot(forces[..., 2], forces[..., 3])],
                             axis=-1)
         m = self.platform.mooring
+        if not m.lines:  # a linear mooring (a matrix) has no lines to report
+            return np.zeros((len(time_s), 0, 2))
         fairleads = np.array([line.fairlead_m for line in m.lines])
         anchors = np.array([line.anchor_m for line in m.lines])
         rotations = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
