@@ -26,3 +26,14 @@ def copy_into(source, out) -> None:
     """out[...] = source, element by element (arrays of one shape)."""
     for index in np.ndindex(out.shape):
         out[index] = source[index]
+
+
+@njit(cache=True, inline="always")
+def add_force_minus_stiffness(params, first, y, out) -> None:
+    """out += F - K q, with F = params[first:first + 6] and the 6x6 K row by row after it,
+    q = y[0:6] (a load of the form F0 - C q: preloads with their restoring matrices)."""
+    for i in range(6):
+        acc = params[first + i]
+        for j in range(6):
+            acc -= params[first + 6 + 6 * i + j] * y[j]
+        out[i] += acc

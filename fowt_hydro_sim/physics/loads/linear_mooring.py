@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fowt_hydro_sim.physics.jit import step_loop
+from fowt_hydro_sim.physics.jit import add_force_minus_stiffness, step_loop
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
@@ -20,10 +20,5 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """F0 - K q."""
-    if params[0] == 0.0:
-        return
-    for i in range(6):
-        acc = params[1 + i]
-        for j in range(6):
-            acc -= params[7 + 6 * i + j] * y[j]
-        out[i] += acc
+    if params[0] != 0.0:
+        add_force_minus_stiffness(params, 1, y, out)
