@@ -31,6 +31,25 @@ from fowt_hydro_sim.physics.mooring.catenary_tables import (
 SPRING, MOORDYN = 0.0, 2.0
 
 
+@njit(cache=True, inline="always")
+def _rotated(rotation: np.ndarray, params: np.ndarray, f: int) -> tuple[float, float, float]:
+    """The body-frame point params[f:f + 3] in world axes (about the reference point)."""
+    return (rotation[0, 0] * params[f] + rotation[0, 1] * params[f + 1] + rotation[0, 2] * params[f + 2],
+            rotation[1, 0] * params[f] + rotation[1, 1] * params[f + 1] + rotation[1, 2] * params[f + 2],
+            rotation[2, 0] * params[f] + rotation[2, 1] * params[f + 1] + rotation[2, 2] * params[f + 2])
+
+
+@njit(cache=True, inline="always")
+def _add_force_at(out: np.ndarray, r0: float, r1: float, r2: float, f0: float, f1: float, f2: float) -> None:
+    """out += the force (f0, f1, f2) applied at r and its moment r x f about the reference point."""
+    out[0] += f0
+    out[1] += f1
+    out[2] += f2
+    out[3] += r1 * f2 - r2 * f1
+    out[4] += r2 * f0 - r0 * f2
+    out[5] += r0 * f1 - r1 * f0
+
+
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
     """spring: [0, k, T0, L0, fairleads (3 n, body frame), anchors (3 n, world frame)];
     moorpy: the header, the lines and their tables (``catenary_tables.tabulate``);
@@ -78,19 +97,12 @@ def _springs(y: np.ndarray, rotation: np.ndarray, params: np.ndarray, out: np.nd
     n = (params.size - 4) // 6
     for i in range(n):  # written out: no temporaries in the step loop
         f, a = 4 + 3 * i, 4 + 3 * n + 3 * i  # the fairlead (body frame) and anchor (world frame)
-        r0 = rotation[0, 0] * params[f] + rotation[0, 1] * params[f + 1] + rotation[0, 2] * params[f + 2]
-        r1 = rotation[1, 0] * params[f] + rotation[1, 1] * params[f + 1] + rotation[1, 2] * params[f + 2]
-        r2 = rotation[2, 0] * params[f] + rotation[2, 1] * params[f + 1] + rotation[2, 2] * params[f + 2]
+        r0, r1, r2 = _rotated(rotation, params, f)
         l0, l1, l2 = params[a] - y[0] - r0, params[a + 1] - y[1] - r1, params[a + 2] - y[2] - r2
         length = np.sqrt(l0 * l0 + l1 * l1 + l2 * l2)
         scale = (pretension + stiffness * (length - unstretched)) / length
         f0, f1, f2 = scale * l0, scale * l1, scale * l2
-        out[0] += f0
-        out[1] += f1
-        out[2] += f2
-        out[3] += r1 * f2 - r2 * f1
-        out[4] += r2 * f0 - r0 * f2
-        out[5] += r0 * f1 - r1 * f0
+        _add_force_at(out, r0, r1, r2, f0, f1, f2)
 
 
 @njit(cache=True, inline="always")
@@ -99,9 +111,7 @@ def _catenaries(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarra
     n, n_h, n_v = int(params[1]), int(params[2]), int(params[3])
     for i in range(n):
         f, a = HEADER + LINE_FIELDS * i, HEADER + LINE_FIELDS * i + 3
-        r0 = rotation[0, 0] * params[f] + rotation[0, 1] * params[f + 1] + rotation[0, 2] * params[f + 2]
-        r1 = rotation[1, 0] * params[f] + rotation[1, 1] * params[f + 1] + rotation[1, 2] * params[f + 2]
-        r2 = rotation[2, 0] * params[f] + rotation[2, 1] * params[f + 1] + rotation[2, 2] * params[f + 2]
+        r0, r1, r2 = _rotated(rotation, params, f)
         l0, l1 = params[a] - y[0] - r0, params[a + 1] - y[1] - r1
         h = np.sqrt(l0 * l0 + l1 * l1)
         v = y[2] + r2 - params[a + 2]
@@ -112,9 +122,4 @@ def _catenaries(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarra
         horizontal = table_value(table, block, n_h, n_v, u, w)
         vertical = table_value(table, block + n_h, n_h, n_v, u, w)
         f0, f1, f2 = horizontal * l0 / h, horizontal * l1 / h, -vertical
-        out[0] += f0
-        out[1] += f1
-        out[2] += f2
-        out[3] += r1 * f2 - r2 * f1
-        out[4] += r2 * f0 - r0 * f2
-        out[5] += r0 * f1 - r1 * f0
+        _add_force_at(out, r0, r1, r2, f0, f1, f2)
