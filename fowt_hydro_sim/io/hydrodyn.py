@@ -23,7 +23,9 @@ option (``hydrostatics``: nonlinear for MHstLMod 1, free_surface for MHstLMod 2)
 Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts before it),
 which lack some of the lines openfast-io reads (NAddDOF, HstMod; ExctnDisp, ExctnCutOff,
 PtfmYMod, PtfmRefY, PtfmYCutOff, NExctnHdg), are read with those lines added at the value
-that keeps the older meaning (no additional DOF, hydrostatics up to the still water level;
+that keeps the older meaning (no additional DOF; HstMod 1: before HstMod existed HydroDyn
+integrated the member hydrostatics up to the instantaneous free surface whenever SeaState's
+WaveStMod was above 0, and up to the still water level otherwise, which is what HstMod 1 does;
 the potential-flow settings at HydroDyn's example values, ExctnDisp 0 as before it
 existed); decks of the newer layout are read without its potential-flow lines FKMod and
 GeoFile. A deck openfast-io still cannot read is refused in one line naming the last field
@@ -61,7 +63,7 @@ from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
 # (field, the field it follows, value): lines older layouts lack, in the order to add them
 _ADDED_LINES = (("ExctnDisp", "ExctnMod", "0"), ("ExctnCutOff", "ExctnDisp", "10"), ("PtfmYMod", "ExctnCutOff", "0"),
                 ("PtfmRefY", "PtfmYMod", "0"), ("PtfmYCutOff", "PtfmRefY", "0.01"), ("NExctnHdg", "PtfmYCutOff", "36"),
-                ("NAddDOF", "PtfmCOByt", "0"), ("HstMod", "AMMod", "0"))
+                ("NAddDOF", "PtfmCOByt", "0"), ("HstMod", "AMMod", "1"))
 # lines of newer layouts openfast-io does not read: potential-flow settings the import does not use
 _DROPPED_LINES = ("FKMod", "GeoFile")
 # integer fields the import uses: a deck read out of step gives them text or a fraction
