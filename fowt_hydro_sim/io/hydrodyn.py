@@ -142,6 +142,18 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
                                                                                 "AxCd", "AxCa", "AxCp")
     if mode == 1:
         get = {name: hd[f"{kind}Simpl{name}"] for name in names}
+    elif mode == 2:
+        rows = hd[f"NCoefDpth{kind}"]
+        if rows == 0:
+            raise ConfigError(f"{source}: member {member}: MCoefMod 2 but the depth-based table is empty")
+        get = {name: hd[f"{kind}Dpth{name}"][0] for name in names}
+        for name in names:
+            values = hd[f"{kind}Dpth{name}"][:rows]
+            if any(value != values[0] for value in values):
+                raise ConfigError(f"{source}: member {member}: MCoefMod 2: {name} varies with depth "
+                                  f"({', '.join(str(v) for v in values)}): only depth-based tables whose rows "
+                                  "agree are supported (HydroDyn interpolates in depth, the model's zones are "
+                                  "piecewise constant)")
     elif mode == 3:
         ids = hd[f"MemberID_HydC{kind}"]
         if member not in ids:
@@ -151,16 +163,25 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
         for name in names:
             ends = hd[f"{kind}Member{name}1"][row], hd[f"{kind}Member{name}2"][row]
             if ends[0] != ends[1]:
-                raise ConfigError(f"{source}: member {member}: {name} varies along the member ({ends[0]:g} to "
-                                  f"{ends[1]:g}): not supported")
+                raise ConfigError(f"{source}: member {member}: {name} varies along the member ({ends[0]} to "
+                                  f"{ends[1]}): not supported")
             get[name] = ends[0]
     else:
-        raise ConfigError(f"{source}: member {member}: MCoefMod {mode} (depth-based coefficients) is not supported")
+        raise ConfigError(f"{source}: member {member}: MCoefMod {mode}: only 1, 2 and 3 exist")
+    maccamy_fuchs = isinstance(get["Cp"], str) and get["Cp"].upper() == "MCF"
+    if maccamy_fuchs:
+        if not circular:
+            raise ConfigError(f"{source}: member {member}: Cp MCF (MacCamy-Fuchs) on a rectangular member: "
+                              "HydroDyn applies it to circular members only")
+        get["Cp"] = 1.0  # unused: the MacCamy-Fuchs inertia replaces Ca + Cp
+    for name, value in get.items():
+        if not isinstance(value, (int, float)):
+            raise ConfigError(f"{source}: member {member}: {name} {value!r} is not a number")
     if get["Cb"] != 1.0:
         raise ConfigError(f"{source}: member {member}: Cb {get['Cb']:g}: only 1 is supported")
     axial = {"taper_axial": {"ca": get["AxCa"], "cp": get["AxCp"], "cd": get["AxCd"]}}
     if circular:
-        return {"cd": get["Cd"], "ca": get["Ca"], "cp": get["Cp"], **axial}
+        return {"cd": get["Cd"], "ca": get["Ca"], "cp": get["Cp"], **axial, "maccamy_fuchs": maccamy_fuchs}
     if get["CdA"] != get["CdB"] or get["CaA"] != get["CaB"]:
         raise ConfigError(f"{source}: member {member}: side A and side B coefficients differ: not supported")
     return {"cd_horizontal": get["CdA"], "cd_vertical": get["CdB"], "ca_horizontal": get["CaA"],
@@ -207,6 +228,11 @@ def _member(hd: dict, index: int, source: str) -> dict:
             size["spin_deg"] = spin
     coefficients = _coefficients(hd, index, circular, source)
     taper_axial = coefficients.pop("taper_axial")
+    if coefficients.pop("maccamy_fuchs", False):
+        if "diameter_b_m" in size:
+            raise ConfigError(f"{source}: member {member}: Cp MCF (MacCamy-Fuchs) on a tapered member: not "
+                              "supported (the correction's ka takes one diameter)")
+        size["maccamy_fuchs"] = True
     if "diameter_b_m" in size or "width_b_m" in size:
         if not circular and (taper_axial["ca"] or taper_axial["cd"]):
             raise ConfigError(f"{source}: member {member}: tapered rectangular member with axial AxCa "

@@ -138,6 +138,7 @@ class Member:
     height_b_m: float | None = None  # rectangular only: the height at end b of a tapered member
     spin_deg: float = 0.0  # rectangular only: the section turned about the axis (MSpinOrient)
     drag_only: bool = False  # HydroDyn's PropPot: drag only, the hull's potential flow has the rest
+    maccamy_fuchs: bool = False  # HydroDyn's Cp MCF: transverse inertia on the MacCamy-Fuchs acceleration
 
     @property
     def tapered(self) -> bool:
@@ -590,8 +591,11 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
         diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
-        drag_only=_flag(f, "drag_only"),
+        drag_only=_flag(f, "drag_only"), maccamy_fuchs=_flag(f, "maccamy_fuchs"),
     )
+    if member.maccamy_fuchs and (section != "circular" or member.tapered or member.drag_only):
+        raise ConfigError(f"{f.at('maccamy_fuchs')}: for untapered circular members with their own inertia only "
+                          "(the correction's ka is the member's diameter)")
     f.used.update({"end_a_plate", "end_b_plate"})
     if list(z.below_z_m for z in member.zones) != sorted(z.below_z_m for z in member.zones):
         raise ConfigError(f"{f.path}.zones: below_z_m must increase from the first zone to the last")
@@ -804,6 +808,8 @@ def platform_document(platform: Platform) -> dict:
             size["spin_deg"] = m.spin_deg
         if m.drag_only:
             size["drag_only"] = True
+        if m.maccamy_fuchs:
+            size["maccamy_fuchs"] = True
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
                   "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
                   "zones": [_zone_document(z, m.section, bands) for z in m.zones]}

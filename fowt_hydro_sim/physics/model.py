@@ -81,6 +81,7 @@ from fowt_hydro_sim.physics.waves.kinematics import (
     period_table,
     table_step,
 )
+from fowt_hydro_sim.physics.waves.maccamy_fuchs import point_groups, scaled_waves
 
 log = logging.getLogger(__name__)
 
@@ -185,9 +186,13 @@ class PlatformModel:
             step, self._elevation = 1.0, np.zeros((4, 1, 1))
         else:
             step = wave_table_dt_s or table_step(waves)
+            scaled_for = self.geometry.maccamy_fuchs_diameter_m
             if kinematics is not None:
                 if kinematics.step_s != step or not np.array_equal(kinematics.points_m, self.geometry.points_m):
                     raise ValueError("kinematics table: built for other points or another step")
+                if np.any(scaled_for > 0):
+                    raise ConfigError("maccamy_fuchs members: their accelerations are not in a precomputed "
+                                      "kinematics table")
                 table = np.asarray(kinematics.values, dtype=np.float64)  # the kernel's one table type
             else:
                 if not wave_block_s > 0:
@@ -198,9 +203,10 @@ class PlatformModel:
                 whole = abs(period_rows * step - waves.period_s) <= 1e-6 * waves.period_s
                 if whole and period_rows <= block_rows and waves.harmonic.max() < period_rows // 2:
                     # a repeat period no longer than a block: its whole table, once, no ring
-                    table = period_table(waves, self.geometry.points_m, period_rows, *depth, np.float64)
+                    table = period_table(waves, self.geometry.points_m, period_rows, *depth, np.float64, scaled_for)
                 else:
-                    self._blocks = BlocksAhead(BlockSynthesis(waves, self.geometry.points_m, step, block_rows, *depth),
+                    self._blocks = BlocksAhead(BlockSynthesis(waves, self.geometry.points_m, step, block_rows, *depth,
+                                                              scaled_for),
                                                blocks_ahead)
                     table = np.zeros((2 * block_rows, n_points, 7))
             self._elevation = waves.elevation_series(0.0, 0.0, step, env.water_depth_m, env.gravity_m_s2)[:, None, None]
@@ -403,6 +409,8 @@ class PlatformModel:
         before stepping; a row is reused ``n_rows`` steps later."""
         if n_rows < 8 or step_s <= 0:
             raise InputError(f"streamed waves: need step_s > 0 and n_rows >= 8, got {step_s}, {n_rows}")
+        if np.any(self.geometry.maccamy_fuchs_diameter_m > 0):
+            raise ConfigError("maccamy_fuchs members: streamed waves carry no MacCamy-Fuchs accelerations")
         table = np.zeros((n_rows, len(self.geometry.points_m), 7))
         self._data = self._data._replace(waves=WaveTable(table, float(step_s)))
         self._elevation = np.zeros((n_rows, 1, 1))
@@ -651,6 +659,11 @@ class PlatformModel:
                             env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
         table = np.zeros((rows[-1] + 3, len(points), 7))
         table[rows] = values.reshape(time_s.size, len(points), 7)
+        for diameter, index in point_groups(self.geometry.maccamy_fuchs_diameter_m):
+            scaled = kinematics(scaled_waves(self.waves, diameter, env.water_depth_m, env.gravity_m_s2),
+                                world[:, index].reshape(-1, 3), np.repeat(time_s, index.size), env.water_depth_m,
+                                env.gravity_m_s2, env.water_density_kg_m3)
+            table[rows[:, None], index[None, :], 3:6] = scaled.reshape(time_s.size, index.size, 7)[:, :, 3:6]
         return WaveTable(table, step)
 
     @property

@@ -5,7 +5,9 @@ strips no longer than ``strip_length_m``. A strip carries its per-unit-length co
 in its two transverse directions: d1 (the section's width direction, horizontal for a
 horizontal member) and d2 = axis x d1. Loads (HydroDyn's conventions, platform spec):
 
-* fluid inertia   rho (A + Ca_k A_k) a_k      (Froude-Krylov + scattering, Cp = 1)
+* fluid inertia   rho (A + Ca_k A_k) a_k      (Froude-Krylov + scattering, Cp = 1); for a member
+                  flagged ``maccamy_fuchs``, rho A a_k with a the MacCamy-Fuchs acceleration
+                  (waves/maccamy_fuchs.py: HydroDyn's Cp MCF)
 * added mass      rho Ca_k A_k                 on the body acceleration
 * drag            0.5 rho Cd_k b_k |v_perp| v_k   (per band for the filtered model: drag_filters.py)
 
@@ -80,6 +82,7 @@ class Discretisation:
     strips: Strips
     plates: EndPlates
     points_m: np.ndarray  # (p, 3) undisplaced kinematics points, z <= 0 (unless points_above_water)
+    maccamy_fuchs_diameter_m: np.ndarray  # (p,) > 0: the point's acceleration is MacCamy-Fuchs scaled for it
 
 
 def transverse_directions(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -162,7 +165,7 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
     n_bands = len(platform.drag_bands)
     rows: dict[str, list] = {k: [] for k in ("centre", "axis", "dirs", "length", "area", "inertia",
                                                "added", "drag", "band_drag", "filtered", "member", "zone",
-                                               "volume", "volume_centre")}
+                                               "volume", "volume_centre", "mcf")}
     plates: dict[str, list] = {k: [] for k in ("centre", "normal", "pressure", "added", "drag")}
     for index, member in enumerate(platform.members):
         a, b = np.array(member.end_a_m), np.array(member.end_b_m)
@@ -199,7 +202,11 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                 rows["length"].append(strip_length)
                 rows["area"].append(area)
                 keep = 0.0 if member.drag_only else 1.0
-                rows["inertia"].append([keep * rho * (zone.cp * area + zone.ca[k] * am_area[k]) for k in range(2)])
+                if member.maccamy_fuchs:  # rho A on the scaled acceleration (waves/maccamy_fuchs.py)
+                    rows["inertia"].append([rho * area, rho * area])
+                else:
+                    rows["inertia"].append([keep * rho * (zone.cp * area + zone.ca[k] * am_area[k]) for k in range(2)])
+                rows["mcf"].append(member.width_m if member.maccamy_fuchs else 0.0)
                 rows["added"].append([keep * rho * zone.ca[k] * am_area[k] for k in range(2)])
                 rows["drag"].append([0.5 * rho * zone.cd[k].constant * width[k] for k in range(2)])
                 rows["band_drag"].append([[0.5 * rho * (zone.cd[k].bands or (0.0,) * n_bands)[b] * width[k]
@@ -231,8 +238,10 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
     undisplaced = np.round(np.vstack([strip_centres, plate_centres]), 9)
     if not points_above_water:  # kinematics above the water line are those at z = 0: one point
         undisplaced[:, 2] = np.minimum(undisplaced[:, 2], 0.0)
-    points, index = np.unique(undisplaced, axis=0, return_inverse=True)
-    index = index.ravel()
+    # a MacCamy-Fuchs strip's point is its own (its acceleration is scaled for its diameter)
+    scaled_for = np.concatenate([np.array(rows["mcf"], dtype=float), np.zeros(len(plate_centres))])
+    keys, index = np.unique(np.column_stack([undisplaced, scaled_for]), axis=0, return_inverse=True)
+    points, index = keys[:, 0:3], index.ravel()
     n = len(strip_centres)
     strips = Strips(
         centre_m=strip_centres, axis=np.array(rows["axis"]).reshape(-1, 3),
@@ -249,4 +258,4 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
         pressure_area_m2=np.array(plates["pressure"], dtype=float),
         added_mass_kg=np.array(plates["added"], dtype=float),
         drag_kg_m=np.array(plates["drag"], dtype=float), kinematics_point=index[n:])
-    return Discretisation(strips, end_plates, points)
+    return Discretisation(strips, end_plates, np.ascontiguousarray(points), keys[:, 3].copy())

@@ -27,6 +27,7 @@ from numba import njit
 
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.waves.components import WaveComponents, wavenumber
+from fowt_hydro_sim.physics.waves.maccamy_fuchs import point_groups, scaled_waves
 
 CHANNELS = ("u_x", "u_y", "u_z", "a_x", "a_y", "a_z", "p_dyn")
 N_CHANNELS = len(CHANNELS)
@@ -167,9 +168,10 @@ _CHUNK_BYTES = 32e6
 
 
 def period_table(waves: WaveComponents, points: np.ndarray, n_samples: int, depth_m: float, gravity_m_s2: float,
-                 density_kg_m3: float, dtype: type) -> np.ndarray:
+                 density_kg_m3: float, dtype: type, maccamy_fuchs_diameter_m: np.ndarray | None = None) -> np.ndarray:
     """The kinematics at ``points`` over one repeat period in ``n_samples`` rows (n_samples,
-    n_points, 7), by inverse FFT."""
+    n_points, 7), by inverse FFT; the points with a ``maccamy_fuchs_diameter_m`` > 0 get the
+    MacCamy-Fuchs acceleration for it (waves/maccamy_fuchs.py)."""
     harmonic = waves.harmonic
     values = np.zeros((n_samples, points.shape[0], N_CHANNELS), dtype=dtype)
     if harmonic.size == 0:
@@ -188,6 +190,10 @@ def period_table(waves: WaveComponents, points: np.ndarray, n_samples: int, dept
             np.add.at(spectrum, harmonic, terms)
         signal = np.fft.irfft(spectrum, n_samples, axis=0)  # numpy's: no scipy import at start-up
         values[:, start:start + part.shape[0], :] = signal.reshape(n_samples, part.shape[0], N_CHANNELS)
+    for diameter, index in point_groups(maccamy_fuchs_diameter_m):
+        scaled = scaled_waves(waves, diameter, depth_m, gravity_m_s2)
+        values[:, index, 3:6] = period_table(scaled, points[index], n_samples, depth_m, gravity_m_s2, density_kg_m3,
+                                             dtype)[:, :, 3:6]
     return values
 
 
@@ -244,8 +250,14 @@ class BlockSynthesis:
     """
 
     def __init__(self, waves: WaveComponents, points_m: np.ndarray, step_s: float, block_rows: int,
-                 depth_m: float, gravity_m_s2: float, density_kg_m3: float):
+                 depth_m: float, gravity_m_s2: float, density_kg_m3: float,
+                 maccamy_fuchs_diameter_m: np.ndarray | None = None):
         self.points_m = np.atleast_2d(np.asarray(points_m, dtype=float))
+        # the points whose accelerations are MacCamy-Fuchs scaled: from a synthesis of their own
+        self._scaled = [(index, BlockSynthesis(scaled_waves(waves, diameter, depth_m, gravity_m_s2),
+                                               self.points_m[index], step_s, block_rows, depth_m, gravity_m_s2,
+                                               density_kg_m3))
+                        for diameter, index in point_groups(maccamy_fuchs_diameter_m)]
         self.n_samples = int(round(waves.period_s / step_s))
         if abs(self.n_samples * step_s - waves.period_s) > 1e-6 * waves.period_s:
             raise InputError(f"wave table step {step_s:g} s does not divide the repeat period "
@@ -306,6 +318,8 @@ class BlockSynthesis:
                                        overwrite_x=True)
             values = (convolved[:, :self.block_rows] * out_phase).real.T
             out[:, i, :] = values if self._heading is None else values[:, split] * scale
+        for index, synthesis in self._scaled:
+            out[:, index, 3:6] = synthesis.rows(first_row)[:, :, 3:6]
         return out
 
     def _spectra(self, point: np.ndarray, into: np.ndarray) -> np.ndarray:
