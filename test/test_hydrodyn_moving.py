@@ -160,9 +160,10 @@ def test_imported_deck_held_fixed_in_waves_matches_hydrodyn(tmp_path):
 
 @pytest.mark.parametrize("edit, message", [
     (lambda text: text.replace("             0   PotMod", "             2   PotMod", 1), "PotMod 2"),
-    (lambda text: text.replace("             0   NMGDepths", "             1   NMGDepths", 1).replace(
-        "(m)        (m)         (kg/m^3)", "(m)        (m)         (kg/m^3)\n-10.0      0.1         1100.0", 1),
-     "marine growth"),
+    (lambda text: text.replace("             0   NMGDepths", "             2   NMGDepths", 1).replace(
+        "(m)        (m)         (kg/m^3)", "(m)        (m)         (kg/m^3)\n-10.0      0.1         1100.0\n"
+        "-2.0       0.1         1100.0", 1),
+     "MGDpth"),  # marine-growth rows from the lowest up: HydroDyn takes them highest first
     (lambda text: text.replace("0.5         1         2        FALSE", "0.5         2         2        FALSE", 1),
      "depth-based"),
 ])

@@ -6,19 +6,25 @@ The deck is read with ``openfast-io`` (``InputReader_OpenFAST().read_HydroDyn``)
 the file line by line by position: a deck of another layout is misread, not refused (its
 SeaState reader misreads newer files silently the same way). So the values read here are
 checked for what they must be (finite, known switches, joints that exist) and what the model
-cannot represent is refused with one line naming the member: marine growth, filled members,
-depth-based coefficient tables (HydroDyn interpolates in depth, the model's zones are piecewise
-constant), Cb other than 1, rectangular members with different side-A and side-B Morison
-coefficients (which of the model's two drag and added-mass directions HydroDyn's CdA, CaA act
-in has not been checked against HydroDyn), and tapered rectangular members with axial added
-mass or drag (AxCa, AxCd). Cp is the zone's
+cannot represent is refused with one line naming the member: filled members, depth-based
+coefficient tables whose rows differ (HydroDyn interpolates in depth, the model's zones are
+piecewise constant; equal rows are read as constants), Cb other than 1, rectangular members
+with different side-A and side-B Morison coefficients (which of the model's two drag and
+added-mass directions HydroDyn's CdA, CaA act in has not been checked against HydroDyn), and
+tapered rectangular members with axial added mass or drag (AxCa, AxCd). Cp is the zone's
 ``cp``. A tapered member keeps both end sizes (circular: diameters; rectangular: side A as
 ``width_m``/``width_b_m``, side B as ``height_m``/``height_b_m``) and the member's axial
 coefficients (AxCa, AxCp, AxCd of its coefficient table: the tapered wall's axial terms,
 strips.py); MSpinOrient is ``spin_deg`` (side A's direction turned about the axis from the
 horizontal, as HydroDyn's Morison_DirCosMtrx; checked against HydroDyn's MHstLMod 2 loads on
 the r-test case hd_MHstLMod2_RectMmbr). MHstLMod is not read: member hydrostatics are a run
-option (``hydrostatics``: nonlinear for MHstLMod 1, free_surface for MHstLMod 2).
+option (``hydrostatics``: nonlinear for MHstLMod 1, free_surface for MHstLMod 2). A Cp of
+``MCF`` flags the member ``maccamy_fuchs`` (waves/maccamy_fuchs.py; the correction's diameter
+is the member's, which HydroDyn requires within 10 % of SeaState's MCFD). Marine growth
+(MGDepths: MGDpth, MGThck, MGDens) is the platform's ``marine_growth`` table, and each circular
+member's MG coefficients (CdMG, CaMG, CpMG; CbMG 1) its ``growth_zone``
+(physics/marine_growth.py); the axial MG coefficients are not read (the grown pieces' tapered
+walls take the member's own).
 
 Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts before it),
 which lack some of the lines openfast-io reads (NAddDOF, HstMod; ExctnDisp, ExctnCutOff,
@@ -127,26 +133,21 @@ def read_deck(path: str | Path) -> dict[str, Any]:
 def _refuse_unsupported(hd: dict, source: str) -> None:
     if hd["PotMod"] not in (0, 1):
         raise ConfigError(f"{source}: PotMod {hd['PotMod']}: only 0 (strip theory) and 1 (WAMIT) are supported")
-    if hd["NMGDepths"] > 0:
-        raise ConfigError(f"{source}: marine growth (NMGDepths {hd['NMGDepths']}) is not supported")
     if hd["NFillGroups"] > 0:
         raise ConfigError(f"{source}: filled members (NFillGroups {hd['NFillGroups']}) are not supported")
 
 
-def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str, float]:
-    """Cd, Ca per direction (d1, d2) of member ``index`` from its coefficient table."""
+def _table_values(hd: dict, index: int, kind: str, names: tuple[str, ...], source: str) -> dict[str, Any]:
+    """The coefficients ``names`` of member ``index`` from the table its MCoefMod names
+    (``kind``: Cyl or Rec), as written (numbers, or a word such as MCF)."""
     member = hd["MemberID"][index]
     mode = hd["MCoefMod"][index]
-    kind = "Cyl" if circular else "Rec"
-    names = ("Cd", "Ca", "Cp", "Cb", "AxCd", "AxCa", "AxCp") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb",
-                                                                                "AxCd", "AxCa", "AxCp")
     if mode == 1:
-        get = {name: hd[f"{kind}Simpl{name}"] for name in names}
-    elif mode == 2:
+        return {name: hd[f"{kind}Simpl{name}"] for name in names}
+    if mode == 2:
         rows = hd[f"NCoefDpth{kind}"]
         if rows == 0:
             raise ConfigError(f"{source}: member {member}: MCoefMod 2 but the depth-based table is empty")
-        get = {name: hd[f"{kind}Dpth{name}"][0] for name in names}
         for name in names:
             values = hd[f"{kind}Dpth{name}"][:rows]
             if any(value != values[0] for value in values):
@@ -154,7 +155,8 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
                                   f"({', '.join(str(v) for v in values)}): only depth-based tables whose rows "
                                   "agree are supported (HydroDyn interpolates in depth, the model's zones are "
                                   "piecewise constant)")
-    elif mode == 3:
+        return {name: hd[f"{kind}Dpth{name}"][0] for name in names}
+    if mode == 3:
         ids = hd[f"MemberID_HydC{kind}"]
         if member not in ids:
             raise ConfigError(f"{source}: member {member}: MCoefMod 3 but no row in the member-based table")
@@ -166,8 +168,29 @@ def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str
                 raise ConfigError(f"{source}: member {member}: {name} varies along the member ({ends[0]} to "
                                   f"{ends[1]}): not supported")
             get[name] = ends[0]
-    else:
-        raise ConfigError(f"{source}: member {member}: MCoefMod {mode}: only 1, 2 and 3 exist")
+        return get
+    raise ConfigError(f"{source}: member {member}: MCoefMod {mode}: only 1, 2 and 3 exist")
+
+
+def _growth_zone(hd: dict, index: int, source: str) -> dict[str, Any]:
+    """A circular member's coefficients where it carries marine growth (CdMG, CaMG, CpMG)."""
+    member = hd["MemberID"][index]
+    get = _table_values(hd, index, "Cyl", ("CdMG", "CaMG", "CpMG", "CbMG"), source)
+    for name, value in get.items():
+        if not isinstance(value, (int, float)):
+            raise ConfigError(f"{source}: member {member}: {name} {value!r}: only numbers are supported")
+    if get["CbMG"] != 1.0:
+        raise ConfigError(f"{source}: member {member}: CbMG {get['CbMG']:g}: only 1 is supported")
+    return {"name": "growth", "cd": get["CdMG"], "ca": get["CaMG"], "cp": get["CpMG"]}
+
+
+def _coefficients(hd: dict, index: int, circular: bool, source: str) -> dict[str, Any]:
+    """Cd, Ca per direction (d1, d2) of member ``index`` from its coefficient table."""
+    member = hd["MemberID"][index]
+    kind = "Cyl" if circular else "Rec"
+    names = ("Cd", "Ca", "Cp", "Cb", "AxCd", "AxCa", "AxCp") if circular else ("CdA", "CdB", "CaA", "CaB", "Cp", "Cb",
+                                                                                "AxCd", "AxCa", "AxCp")
+    get = _table_values(hd, index, kind, names, source)
     maccamy_fuchs = isinstance(get["Cp"], str) and get["Cp"].upper() == "MCF"
     if maccamy_fuchs:
         if not circular:
@@ -240,6 +263,8 @@ def _member(hd: dict, index: int, source: str) -> dict:
         size["taper_axial"] = taper_axial
     if hd["PropPot"][index]:  # HydroDyn: the potential flow has its inertia and buoyancy, it keeps its drag
         size["drag_only"] = True
+    if hd["NMGDepths"] > 0 and circular:  # the coefficients of its nodes with growth (MG columns)
+        size["growth_zone"] = _growth_zone(hd, index, source)
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
            "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),
            "zones": [{"name": "all", **coefficients}]}
@@ -317,6 +342,7 @@ def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: fl
     model cannot represent."""
     _refuse_unsupported(hd, source)
     members = [_member(hd, i, source) for i in range(hd["NMembers"])]
+    growth = _marine_growth(hd, source)
     if hd["PotMod"] == 1:
         flow, drift = _potential_flow(hd, source, water_density_kg_m3, gravity_m_s2)
         volume = flow["displaced_volume_m3"]
@@ -330,7 +356,7 @@ def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: fl
                     "mass": {"mass_kg": mass, "cog_m": [*flow["centre_of_buoyancy_xy_m"], 0.0],
                              "inertia_about_cog_kg_m2": {"ixx": inertia, "iyy": inertia, "izz": inertia}},
                     "hub_point_m": [0.0, 0.0, 0.0], "members": members, "potential_flow": flow,
-                    "drift_coefficients_n_m2": drift,
+                    "drift_coefficients_n_m2": drift, **growth,
                     "mooring": {"stiffness_n_m": 0.0, "pretension_n": 0.0, "unstretched_length_m": 1.0,  # no load
                                 "lines": [{"fairlead_m": [0.0, 0.0, 0.0], "anchor_m": [1.0, 0.0, 0.0]}]}}
         platform_from_dict(document, source)  # the WAMIT files exist and are complete
@@ -341,10 +367,22 @@ def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: fl
                                 "water_depth_m": water_depth_m},
                 "mass": {"mass_kg": 1.0, "cog_m": [0.0, 0.0, 0.0], "inertia_about_cog_kg_m2":
                          {"ixx": 1.0, "iyy": 1.0, "izz": 1.0}},
-                "hub_point_m": [0.0, 0.0, 0.0], "members": members,
+                "hub_point_m": [0.0, 0.0, 0.0], "members": members, **growth,
                 "mooring": {"stiffness_n_m": 0.0, "pretension_n": 0.0, "unstretched_length_m": 1.0,  # no load
                             "lines": [{"fairlead_m": [0.0, 0.0, 0.0], "anchor_m": [1.0, 0.0, 0.0]}]}}
     return _floating_mass(document)
+
+
+def _marine_growth(hd: dict, source: str) -> dict:
+    """The deck's MGDepths table as the platform's ``marine_growth`` (MGDpth is the height
+    above the mean sea level, MSL2SWL 0; HydroDyn takes the rows highest first)."""
+    rows = [{"z_m": float(z), "thickness_m": float(t), "density_kg_m3": float(rho)}
+            for z, t, rho in zip(hd["MGDpth"], hd["MGThck"], hd["MGDens"])][:hd["NMGDepths"]]
+    heights = [r["z_m"] for r in rows]
+    if heights != sorted(heights, reverse=True) or len(set(heights)) < len(heights):
+        raise ConfigError(f"{source}: MGDpth {heights}: the marine-growth rows must go from the highest to the "
+                          "lowest, each height once")
+    return {"marine_growth": rows} if rows else {}
 
 
 def _floating_mass(document: dict) -> dict:

@@ -139,6 +139,7 @@ class Member:
     spin_deg: float = 0.0  # rectangular only: the section turned about the axis (MSpinOrient)
     drag_only: bool = False  # HydroDyn's PropPot: drag only, the hull's potential flow has the rest
     maccamy_fuchs: bool = False  # HydroDyn's Cp MCF: transverse inertia on the MacCamy-Fuchs acceleration
+    growth_zone: Zone | None = None  # circular only: the coefficients where it carries marine growth (HydroDyn's MG)
 
     @property
     def tapered(self) -> bool:
@@ -227,6 +228,18 @@ class LinearMooring:
 
 
 @dataclass(frozen=True)
+class MarineGrowthLevel:
+    """One row of a marine-growth table (HydroDyn's MGDepths): at height ``z_m`` (relative to
+    the still water level, negative below it) the growth is ``thickness_m`` thick and
+    ``density_kg_m3`` dense; linear in z between rows, none outside them
+    (physics/marine_growth.py)."""
+
+    z_m: float
+    thickness_m: float
+    density_kg_m3: float
+
+
+@dataclass(frozen=True)
 class Platform:
     """A floating platform: environment, mass properties, Morison members and mooring
     (``load_platform`` reads one from a YAML file or the packaged platforms)."""
@@ -243,6 +256,7 @@ class Platform:
     drift_coefficients_n_m2: tuple[tuple[float, float], ...] = ()
     potential_flow: PotentialFlow | None = None  # a WAMIT hull (HydroDyn's PotMod 1)
     linear_mooring: LinearMooring | None = None  # a mooring given as a 6x6 stiffness
+    marine_growth: tuple[MarineGrowthLevel, ...] = ()  # by height, highest first (physics/marine_growth.py)
 
 
 @dataclass(frozen=True)
@@ -592,7 +606,11 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
         diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
         drag_only=_flag(f, "drag_only"), maccamy_fuchs=_flag(f, "maccamy_fuchs"),
+        growth_zone=_zone(f.sub("growth_zone"), section, True, bands) if f.data.get("growth_zone") else None,
     )
+    f.used.add("growth_zone")
+    if member.growth_zone is not None and section != "circular":
+        raise ConfigError(f"{f.at('growth_zone')}: marine growth is supported on circular members only")
     if member.maccamy_fuchs and (section != "circular" or member.tapered or member.drag_only):
         raise ConfigError(f"{f.at('maccamy_fuchs')}: for untapered circular members with their own inertia only "
                           "(the correction's ka is the member's diameter)")
@@ -760,10 +778,26 @@ def platform_from_dict(data: Any, source: str = "platform", folder: Path | None 
         name=f.text("name"), description=f.text("description", ""), environment=env, mass=mass,
         hub_point_m=f.vector("hub_point_m"), members=members,
         mooring=mooring, drag_bands=drag_bands, drift_coefficients_n_m2=_drift_coefficients(f),
-        potential_flow=potential_flow, linear_mooring=linear_mooring)
+        potential_flow=potential_flow, linear_mooring=linear_mooring, marine_growth=_marine_growth(f))
     f.used.update(k for k in f.data if k.endswith(("_zones", "_end")))  # YAML anchors' holders
     f.finish()
     return platform
+
+
+def _marine_growth(f: _Fields) -> tuple[MarineGrowthLevel, ...]:
+    """The platform's marine-growth table, highest row first (distinct heights)."""
+    if f.data.get("marine_growth") is None:
+        f.used.add("marine_growth")
+        return ()
+    rows = []
+    for row in f.items("marine_growth"):
+        rows.append(MarineGrowthLevel(row.number("z_m"), row.number("thickness_m", non_negative=True),
+                                      row.number("density_kg_m3", non_negative=True)))
+        row.finish()
+    heights = [r.z_m for r in rows]
+    if heights != sorted(heights, reverse=True) or len(set(heights)) < len(heights):
+        raise ConfigError(f"{f.at('marine_growth')}: z_m must decrease from one row to the next, got {heights}")
+    return tuple(rows)
 
 
 def _cd_document(cd: DragCoefficients, bands: tuple[DragBand, ...]) -> float | dict:
@@ -810,6 +844,8 @@ def platform_document(platform: Platform) -> dict:
             size["drag_only"] = True
         if m.maccamy_fuchs:
             size["maccamy_fuchs"] = True
+        if m.growth_zone is not None:
+            size["growth_zone"] = _zone_document(m.growth_zone, m.section, bands)
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
                   "end_b_m": list(m.end_b_m), "strip_length_m": m.strip_length_m,
                   "zones": [_zone_document(z, m.section, bands) for z in m.zones]}
@@ -833,6 +869,8 @@ def platform_document(platform: Platform) -> dict:
     }
     if platform.potential_flow is not None:
         document["potential_flow"] = _potential_flow_document(platform.potential_flow)
+    if platform.marine_growth:
+        document["marine_growth"] = [dict(vars(row)) for row in platform.marine_growth]
     if platform.linear_mooring is not None:
         lm = platform.linear_mooring
         document["linear_mooring"] = {"force_at_rest_n": list(lm.force_at_rest_n),

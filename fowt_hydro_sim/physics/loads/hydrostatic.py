@@ -67,6 +67,8 @@ class Hydrostatics:
     buoyancy_wrench: np.ndarray  # (6,) at rest, about the reference point
     stiffness: np.ndarray  # (6, 6) buoyancy restoring matrix (NaN without a waterplane)
     waterplane_error: str | None = None  # why the platform has no linear waterplane, if it has none
+    # marine growth's mass [kg], centroid (body) [m] and inertia about it [kg m^2] (physics/marine_growth.py)
+    growth: tuple[float, np.ndarray, np.ndarray] = (0.0, np.zeros(3), np.zeros((3, 3)))
 
 
 def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
@@ -100,7 +102,12 @@ def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
     return area, first, second
 
 
-def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
+def hydrostatics(platform: Platform, strips: Strips,
+                 growth: tuple[float, np.ndarray, np.ndarray] | None = None) -> Hydrostatics:
+    """The platform's displaced volume, centre of buoyancy, waterplane and restoring matrix
+    (strips: its discretisation); ``growth``: its marine growth's mass properties, carried
+    by this component (physics/marine_growth.py)."""
+    growth = growth or (0.0, np.zeros(3), np.zeros((3, 3)))
     env = platform.environment
     rho_g = env.water_density_kg_m3 * env.gravity_m_s2
     submerged = strips.centre_m[:, 2] < 0.0  # strips are cut at the water line
@@ -113,7 +120,8 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     except ConfigError as exc:  # refused where linear hydrostatics are asked for (parameters)
         force = np.array([0.0, 0.0, rho_g * volume])
         return Hydrostatics(volume, centre, math.nan, np.full(2, math.nan), np.full((2, 2), math.nan),
-                            np.concatenate([force, np.cross(centre, force)]), np.full((6, 6), math.nan), str(exc))
+                            np.concatenate([force, np.cross(centre, force)]), np.full((6, 6), math.nan), str(exc),
+                            growth)
     c = np.zeros((6, 6))
     c[2, 2] = rho_g * area
     c[2, 3] = c[3, 2] = rho_g * first[1]
@@ -125,7 +133,7 @@ def hydrostatics(platform: Platform, strips: Strips) -> Hydrostatics:
     c[4, 5] = -rho_g * volume * centre[1]
     force = np.array([0.0, 0.0, rho_g * volume])
     wrench = np.concatenate([force, np.cross(centre, force)])
-    return Hydrostatics(volume, centre, area, first, second, wrench, c)
+    return Hydrostatics(volume, centre, area, first, second, wrench, c, None, growth)
 
 
 def section_quadrature(member: Member, fraction: float = 0.0,
@@ -294,26 +302,74 @@ def _add_lines(rotation: np.ndarray, position_z_m: float, lines: np.ndarray, fir
 MODES = {"linear": 0.0, "nonlinear": 1.0, "free_surface": 0.0}
 
 
+GROWTH = 44  # params[44:58]: the marine growth's mass, weight, centroid (3), inertia about it (9)
+RECORDS = 58
+
+
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
-    """[mode (0 linear, 1 nonlinear), rho g, W0 (6), C (36), and, nonlinear, the member
-    records] and, nonlinear, the quadrature lines (member_records)."""
+    """[mode (0 linear, 1 nonlinear), rho g, W0 (6), C (36), the marine growth (14), and,
+    nonlinear, the member records] and, nonlinear, the quadrature lines (member_records)."""
     h, env = inputs.hydrostatics, inputs.platform.environment
     mode = inputs.options.hydrostatics
     if mode == "linear" and h.waterplane_error:
         raise ConfigError(f"hydrostatics 'linear': {h.waterplane_error}; use nonlinear or free_surface")
     linear = (h.buoyancy_wrench, h.stiffness.ravel()) if mode == "linear" else (np.zeros(6), np.zeros(36))
-    params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], *linear])
+    mass, centroid, inertia = h.growth
+    growth = np.concatenate([[mass, mass * env.gravity_m_s2], centroid, np.ravel(inertia)])
+    params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], *linear, growth])
     if mode != "nonlinear":
         return params, np.zeros((1, 1))
     records, lines = member_records(inputs.platform)
     return np.concatenate([params, records]), lines
 
 
+@njit(cache=True)
+def growth_wrench(y: np.ndarray, rotation: np.ndarray, growth: np.ndarray, out: np.ndarray,
+                  mass: np.ndarray) -> None:
+    """The marine growth's weight at its displaced centroid and its velocity terms (-bias)
+    into ``out``, its rigid-body mass matrix about the reference point (world axes) into
+    ``mass``: HydroDyn's F_WMG and F_IMG. (Written out: no temporaries in the step loop.)"""
+    m, weight = growth[0], growth[1]
+    g0 = rotation[0, 0] * growth[2] + rotation[0, 1] * growth[3] + rotation[0, 2] * growth[4]
+    g1 = rotation[1, 0] * growth[2] + rotation[1, 1] * growth[3] + rotation[1, 2] * growth[4]
+    g2 = rotation[2, 0] * growth[2] + rotation[2, 1] * growth[3] + rotation[2, 2] * growth[4]
+    w0, w1, w2 = y[9], y[10], y[11]
+    for i in range(3):  # R I_c R^T into the rotational block
+        for j in range(3):
+            acc = 0.0
+            for k in range(3):
+                for n in range(3):
+                    acc += rotation[i, k] * growth[5 + 3 * k + n] * rotation[j, n]
+            mass[3 + i, 3 + j] = acc
+    iw0 = mass[3, 3] * w0 + mass[3, 4] * w1 + mass[3, 5] * w2
+    iw1 = mass[4, 3] * w0 + mass[4, 4] * w1 + mass[4, 5] * w2
+    iw2 = mass[5, 3] * w0 + mass[5, 4] * w1 + mass[5, 5] * w2
+    skew = ((0.0, -g2, g1), (g2, 0.0, -g0), (-g1, g0, 0.0))
+    for i in range(3):
+        for j in range(3):
+            mass[i, j] = m if i == j else 0.0
+            mass[i, 3 + j] = -m * skew[i][j]
+            mass[3 + i, j] = m * skew[i][j]
+            mass[3 + i, 3 + j] -= m * (skew[i][0] * skew[0][j] + skew[i][1] * skew[1][j] + skew[i][2] * skew[2][j])
+    # centripetal w x (w x g), gyroscopic w x (I w), and g x centripetal
+    wg0, wg1, wg2 = w1 * g2 - w2 * g1, w2 * g0 - w0 * g2, w0 * g1 - w1 * g0
+    c0, c1, c2 = w1 * wg2 - w2 * wg1, w2 * wg0 - w0 * wg2, w0 * wg1 - w1 * wg0
+    out[0] -= m * c0
+    out[1] -= m * c1
+    out[2] -= m * c2 + weight
+    out[3] -= (w1 * iw2 - w2 * iw1) + m * (g1 * c2 - g2 * c1) + g1 * weight
+    out[4] -= (w2 * iw0 - w0 * iw2) + m * (g2 * c0 - g0 * c2) - g0 * weight
+    out[5] -= (w0 * iw1 - w1 * iw0) + m * (g0 * c1 - g1 * c0)
+
+
 @step_loop
 def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, table: np.ndarray,
            out: np.ndarray, mass: np.ndarray) -> None:
     """Linear: W0 - C q about the undisplaced position. Nonlinear: rho g V_sub through the
-    displaced centre of buoyancy, about the displaced reference point."""
+    displaced centre of buoyancy, about the displaced reference point. Either with the marine
+    growth's weight and mass, if any."""
+    if params[GROWTH] > 0.0:
+        growth_wrench(y, rotation, params[GROWTH:RECORDS], out, mass)
     if params[0] == 0.0:
         for i in range(6):  # written out: no temporaries in the step loop
             acc = params[2 + i]
@@ -321,7 +377,7 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
                 acc -= params[8 + 6 * i + j] * y[j]
             out[i] += acc
         return
-    volume, moment = _members_volume(rotation, y[2], params[44:], table)
+    volume, moment = _members_volume(rotation, y[2], params[RECORDS:], table)
     if volume <= 0.0:
         return
     force = params[1] * volume
