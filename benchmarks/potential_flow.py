@@ -6,8 +6,9 @@ both speeds are taken at the same machine load (their ratio is the figure).
 
 Printed per case: seconds for the record, real-time factor, surge std (a sanity check that
 the run moved), and the ratios. The cases: windmoor12 (the reference), volturnus_s with the
-convolution radiation (its default), without the memory, and with its AddBQuad split into two
-first-order bands at 0.05 Hz (the filtered drag model). With ``--memory-hours H1 H2 ...``, also
+convolution radiation (its default), without the memory, with its AddBQuad split into two
+first-order bands at 0.05 Hz (the filtered drag model), and oc4_semi (the columns' potential flow
+with 25 Morison members: the pontoons and braces, the columns' drag). With ``--memory-hours H1 H2 ...``, also
 ``fowt-sim simulate --platform volturnus_s`` of that many hours, each in a new process, with
 the process's peak resident memory (flat memory: the same figure for every record length).
 The time loop is ``PlatformModel.run`` with the kinematics
@@ -120,7 +121,8 @@ def main() -> None:
     cases = {"windmoor12 (Morison, constant drag)": time_loop_model("windmoor12", waves, args.dt),
              "volturnus_s (potential flow, convolution)": time_loop_model("volturnus_s", waves, args.dt),
              "volturnus_s (potential flow, no memory)": time_loop_model("volturnus_s", waves, args.dt, "none"),
-             "volturnus_s (AddBQuad in two bands)": time_loop_model("volturnus_s", waves, args.dt, split=True)}
+             "volturnus_s (AddBQuad in two bands)": time_loop_model("volturnus_s", waves, args.dt, split=True),
+             "oc4_semi (potential flow + Morison members)": time_loop_model("oc4_semi", waves, args.dt)}
     for model in cases.values():  # compile / load the kernels' cache
         model.run(10.0)
     baseline = None
