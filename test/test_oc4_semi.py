@@ -70,6 +70,45 @@ def test_oc4_semi_added_mass_reaction_is_hydrodyns_at_the_first_step(first_step,
     assert added[axis] == pytest.approx(reference[name], rel=0.10), name
 
 
+# The OC4 Phase II codes' natural frequencies of the OC4-DeepCwind system (Fig. 3 of "Offshore Code Comparison
+# Collaboration Continuation Within IEA Wind Task 30: Phase II Results Regarding a Floating Semisubmersible
+# Wind System"), as quoted in the forum thread "The frequency component of flapwise" (forums.nlr.gov, topic
+# 1730, post 7): surge 0.0093 Hz, heave 0.0578 Hz, pitch 0.0373 Hz. Tolerance chosen before the comparison:
+# 5 % (a stand-in hull's added mass).
+OC4_PHASE_II_PERIODS_S = {"surge": 1 / 0.0093, "heave": 1 / 0.0578, "pitch": 1 / 0.0373}
+SURGE_PERIOD_GAP = ("measured +7.0 %: the capytaine hull's low-frequency surge added mass (A11(0) 9.32e6 kg against "
+                    "A_inf 6.90e6 kg; the definition report's A11 6.49e6 kg): docs/physics/potential_flow.md")
+
+
+@pytest.fixture(scope="module")
+def oc4_decays() -> dict[str, float]:
+    """Free-decay periods of oc4_semi in still water about its own equilibrium: surge from +5 m
+    (700 s), heave from +1 m (150 s), pitch from +2 deg (250 s)."""
+    from test_potential_flow_decay import decay_period, equilibrium
+
+    model = PlatformModel(load_platform("oc4_semi"), None, dt_s=0.05)
+    rest = equilibrium(model)
+    periods = {}
+    for name, dof, offset, duration in (("surge", 0, 5.0, 700.0), ("heave", 2, 1.0, 150.0),
+                                        ("pitch", 4, np.radians(2.0), 250.0)):
+        start = rest.copy()
+        start[dof] += offset
+        model.reset(motion=start)
+        result = model.run(duration)
+        periods[name] = decay_period(result.time_s, result.motion[:, dof] - rest[dof])
+    return periods
+
+
+@pytest.mark.slow
+@pytest.mark.reference
+@pytest.mark.parametrize("dof", [pytest.param("surge", marks=pytest.mark.xfail(reason=SURGE_PERIOD_GAP, strict=True)),
+                                 "heave", "pitch"])
+def test_oc4_semi_free_decay_periods_near_the_oc4_phase_ii_codes(oc4_decays, dof):
+    """Within 5 % of the OC4 Phase II codes' natural periods (measured: surge 115.1 s against
+    107.5 s, +7.0 %; heave 17.56 s against 17.30 s, +1.5 %; pitch 25.93 s against 26.81 s, -3.3 %)."""
+    assert oc4_decays[dof] == pytest.approx(OC4_PHASE_II_PERIODS_S[dof], rel=0.05)
+
+
 @pytest.mark.slow
 def test_oc4_semi_runs_load_case_lc52(tmp_path):
     """``fowt-sim simulate --platform oc4_semi --load-case lc5.2`` for 60 s, as a user runs it:
