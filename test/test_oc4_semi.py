@@ -52,7 +52,7 @@ def test_oc4_semi_hydrostatics_are_hydrodyns_from_the_wamit_files(first_step):
 
 
 SURGE_GAP = ("measured +10.6 % (the columns' capytaine A_inf alone +7.6 %, the pontoons' strips 3 %): "
-             "docs/physics/potential_flow.md")
+             "docs/physics/oc4_semi.md")
 
 
 @pytest.mark.reference
@@ -77,7 +77,7 @@ def test_oc4_semi_added_mass_reaction_is_hydrodyns_at_the_first_step(first_step,
 # 5 % (a stand-in hull's added mass).
 OC4_PHASE_II_PERIODS_S = {"surge": 1 / 0.0093, "heave": 1 / 0.0578, "pitch": 1 / 0.0373}
 SURGE_PERIOD_GAP = ("measured +7.0 %: the capytaine hull's low-frequency surge added mass (A11(0) 9.32e6 kg against "
-                    "A_inf 6.90e6 kg; the definition report's A11 6.49e6 kg): docs/physics/potential_flow.md")
+                    "A_inf 6.90e6 kg; the definition report's A11 6.49e6 kg): docs/physics/oc4_semi.md")
 
 
 @pytest.fixture(scope="module")
