@@ -215,6 +215,9 @@ class PotentialFlow:
     added_stiffness: tuple[tuple[float, ...], ...] = ((0.0,) * 6,) * 6  # AddCLin [N/m, N/rad, N m/m, N m/rad]
     added_linear_damping: tuple[tuple[float, ...], ...] = ((0.0,) * 6,) * 6  # AddBLin [N s/m, ... N m s/rad]
     added_quadratic_damping: tuple[tuple[float, ...], ...] = ((0.0,) * 6,) * 6  # AddBQuad [N s^2/m^2, ...]
+    # the filtered drag model's AddBQuad: one 6x6 per drag band (Platform.drag_bands order) on the
+    # band-filtered velocity [N s^2/m^2, ...]; () keeps the plain AddBQuad in every drag model
+    added_quadratic_damping_bands: tuple[tuple[tuple[float, ...], ...], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -671,8 +674,24 @@ def _matrix6(f: _Fields, name: str) -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(float(v) for v in row) for row in matrix)
 
 
-def _potential_flow(f: _Fields, folder: Path | None) -> PotentialFlow | None:
-    """``potential_flow:`` (PotentialFlow); the WAMIT root is taken relative to ``folder``."""
+def _band_matrices(f: _Fields, name: str, bands: tuple[str, ...]) -> tuple[tuple[tuple[float, ...], ...], ...]:
+    """``name: {band: 6x6 matrix, ...}``, one matrix for every drag band (in ``bands`` order) or
+    the field absent (())."""
+    if f.data.get(name) is None:
+        f.used.add(name)
+        return ()
+    m = f.sub(name)
+    given = sorted(m.data)
+    if not bands or given != sorted(bands):
+        raise ConfigError(f"{f.at(name)}: one matrix for each drag band {list(bands)}, got {given}")
+    out = tuple(_matrix6(m, band) for band in bands)
+    m.finish()
+    return out
+
+
+def _potential_flow(f: _Fields, folder: Path | None, bands: tuple[str, ...] = ()) -> PotentialFlow | None:
+    """``potential_flow:`` (PotentialFlow); the WAMIT root is taken relative to ``folder``;
+    ``bands``: the platform's drag band names."""
     if f.data.get("potential_flow") is None:
         f.used.add("potential_flow")
         return None
@@ -691,7 +710,8 @@ def _potential_flow(f: _Fields, folder: Path | None) -> PotentialFlow | None:
         radiation_tmax_s=p.number("radiation_tmax_s", 60.0, positive=True),
         added_force_n=p.vector("added_force_n", 6, (0.0,) * 6),
         added_stiffness=_matrix6(p, "added_stiffness"), added_linear_damping=_matrix6(p, "added_linear_damping"),
-        added_quadratic_damping=_matrix6(p, "added_quadratic_damping"))
+        added_quadratic_damping=_matrix6(p, "added_quadratic_damping"),
+        added_quadratic_damping_bands=_band_matrices(p, "added_quadratic_damping_bands", bands))
     p.finish()
     return flow
 
@@ -707,13 +727,16 @@ def _linear_mooring(f: _Fields) -> LinearMooring | None:
     return mooring
 
 
-def _potential_flow_document(flow: PotentialFlow) -> dict:
+def _potential_flow_document(flow: PotentialFlow, bands: tuple[DragBand, ...]) -> dict:
     out: dict = {"wamit_root": flow.wamit_root, "wamit_length_m": flow.wamit_length_m,
                  "displaced_volume_m3": flow.displaced_volume_m3,
                  "centre_of_buoyancy_xy_m": list(flow.centre_of_buoyancy_xy_m), "radiation": flow.radiation,
                  "radiation_tmax_s": flow.radiation_tmax_s, "added_force_n": list(flow.added_force_n)}
     for name in ("added_stiffness", "added_linear_damping", "added_quadratic_damping"):
         out[name] = [list(row) for row in getattr(flow, name)]
+    if flow.added_quadratic_damping_bands:
+        out["added_quadratic_damping_bands"] = {b.name: [list(row) for row in matrix]
+                                                for b, matrix in zip(bands, flow.added_quadratic_damping_bands)}
     return out
 
 
@@ -768,7 +791,7 @@ def platform_from_dict(data: Any, source: str = "platform", folder: Path | None 
         raise ConfigError(f"{source}: mooring model linear needs a linear_mooring section")
     drag_bands = _drag_bands(f)
     band_names = tuple(b.name for b in drag_bands)
-    potential_flow = _potential_flow(f, folder)
+    potential_flow = _potential_flow(f, folder, band_names)
     if potential_flow is not None and not f.data.get("members"):
         f.used.add("members")
         members: tuple[Member, ...] = ()  # a potential-flow hull needs no Morison member
@@ -868,7 +891,7 @@ def platform_document(platform: Platform) -> dict:
         "mooring": _mooring_document(mooring),
     }
     if platform.potential_flow is not None:
-        document["potential_flow"] = _potential_flow_document(platform.potential_flow)
+        document["potential_flow"] = _potential_flow_document(platform.potential_flow, bands)
     if platform.marine_growth:
         document["marine_growth"] = [dict(vars(row)) for row in platform.marine_growth]
     if platform.linear_mooring is not None:

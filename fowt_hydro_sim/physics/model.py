@@ -227,7 +227,8 @@ class PlatformModel:
         bank = self.filter_bank
         mass = self.platform.mass
         params, tables = component_data(ComponentInputs(self.platform, self.geometry, self.hydrostatics,
-                                                        self.extension, self.options, self.waves, self.dt_s))
+                                                        self.extension, self.options, self.waves, self.dt_s,
+                                                        self.drag_model))
         strip_6x6 = added_mass_about(s.centre_m, strip_3x3)
         wet = np.empty(len(s.length_m))
         wetted_fractions(np.eye(3), 0.0, s.centre_m, s.axis, s.length_m, np.zeros(len(s.length_m)), wet)

@@ -358,3 +358,32 @@ def write_1(path: Path | str, radiation: Radiation, rho_kg_m3: float, length_m: 
         lines += [f"{2 * np.pi / omega:16.8E} {i + 1:5d} {j + 1:5d} {a[i, j]:16.8E} {b[i, j]:16.8E}"
                   for i in range(n_dof) for j in range(n_dof)]
     Path(path).write_text("\n".join(lines) + "\n")
+
+
+def write_hst(path: Path | str, hydrostatics: Hydrostatics, rho_kg_m3: float, g_m_s2: float,
+              length_m: float = 1.0) -> None:
+    """Write ``hydrostatics`` (SI units) as a WAMIT ``.hst`` file: ``I J C/(rho g L^k)``, every
+    element."""
+    _check_constants(rho_kg_m3, g_m_s2, length_m)
+    c = hydrostatics.stiffness_si
+    n_dof = c.shape[0]
+    c = c / _matrix_scale(n_dof, rho_kg_m3 * g_m_s2, length_m, 2)
+    Path(path).write_text("".join(f"{i + 1:6d}{j + 1:6d} {c[i, j]:16.8E}\n" for i in range(n_dof)
+                                  for j in range(n_dof)))
+
+
+def write_3(path: Path | str, excitation: Excitation, rho_kg_m3: float, g_m_s2: float, length_m: float = 1.0) -> None:
+    """Write ``excitation`` (SI units, WAMIT's time convention) as a WAMIT ``.3`` file: ``PER BETA I
+    |X| phase(deg) Re(X) Im(X)`` nondimensionalised, the frequencies ascending, every heading for
+    every frequency."""
+    _check_constants(rho_kg_m3, g_m_s2, length_m)
+    force = excitation.force_per_amplitude_si
+    n_dof = force.shape[-1]
+    scale = _vector_scale(n_dof, rho_kg_m3 * g_m_s2, length_m, 2)
+    lines = []
+    for k, omega in enumerate(excitation.omega_rad_s):
+        for b, heading in enumerate(excitation.heading_deg):
+            x = force[k, b] / scale
+            lines += [f"{2 * np.pi / omega:16.8E} {heading:16.8E} {i + 1:5d} {abs(x[i]):16.8E} "
+                      f"{np.degrees(np.angle(x[i])):16.8E} {x[i].real:16.8E} {x[i].imag:16.8E}" for i in range(n_dof)]
+    Path(path).write_text("\n".join(lines) + "\n")

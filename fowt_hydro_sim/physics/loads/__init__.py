@@ -74,6 +74,9 @@ COMPONENTS = (
                   True, True, "excitation"),
     LoadComponent("added_matrices", "HydroDyn's additional preload, stiffness and damping of a potential-flow hull "
                                     "(AddF0, AddCLin, AddBLin, AddBQuad)", True, True, "added_matrices"),
+    LoadComponent("added_quadratic_bands", "a potential-flow hull's AddBQuad split into the drag bands (one matrix "
+                                           "per band on the band-filtered velocity; filtered drag model)", True,
+                  True, "added_quadratic_bands"),
     LoadComponent("linear_mooring", "a mooring given as a wrench at rest and a 6x6 stiffness (F0 - K q)", True, True,
                   "linear_mooring"),
     LoadComponent("extension", "loads beyond the Morison model (the gap diagnosis's effects)", False, False,
@@ -104,6 +107,7 @@ class ComponentInputs(NamedTuple):
     options: HydroOptions
     waves: WaveComponents | None = None
     dt_s: float = 0.05  # the model's time step (a radiation kernel's step)
+    drag_model: str = "constant"  # the model's drag model (``filtered``: the band-split AddBQuad)
 
 
 def component_data(inputs: ComponentInputs) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
