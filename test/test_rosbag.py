@@ -419,7 +419,8 @@ def test_a_wave_bag_played_on_the_topic_is_recorded_again_bit_for_bit(wave_bag, 
     from msg_adapters.stamps import seconds
     listener = Listener({"/clock": Clock})
     node = start("node", real_time_factor=0.0, wave_source="topic", drag_model="constant", record=str(record),
-                 wave_timeout_s=60.0)  # as fast as possible, a silent topic soon means still water
+                 wave_timeout_s=5.0)  # as fast as possible the node waits while the player publishes; once
+    # the player has left, 5 s of silence take it past the last sample in still water
     last_sample_s = Bag(wave_bag).elevation().time_s[-1]
 
     def simulated_s() -> float:

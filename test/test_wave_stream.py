@@ -23,6 +23,7 @@ from fowt_hydro_sim.physics.waves.stream import (
     ElevationStream,
     design_taps,
     transfer_functions,
+    tukey_window,
 )
 
 log = logging.getLogger(__name__)
@@ -46,6 +47,14 @@ def stream_record(stream: ElevationStream, eta_m: np.ndarray) -> tuple[np.ndarra
 def relative_rms(got: np.ndarray, want: np.ndarray) -> np.ndarray:
     """RMS error over time / RMS of the reference, per (point, channel)."""
     return np.sqrt(np.mean((got - want) ** 2, axis=0) / np.mean(want**2, axis=0))
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 10, 11, 257])
+@pytest.mark.parametrize("alpha", [0.0, 0.1, 0.5, 1.0])
+def test_the_tukey_window_is_scipys(n: int, alpha: float):
+    """Oracle: scipy.signal.windows.tukey (symmetric), which the model does not import."""
+    from scipy.signal.windows import tukey
+    np.testing.assert_allclose(tukey_window(n, alpha), tukey(n, alpha), rtol=0.0, atol=1e-14)
 
 
 def test_regular_wave_matches_airy_kinematics_delayed():

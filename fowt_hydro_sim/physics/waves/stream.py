@@ -60,7 +60,6 @@ import logging
 
 import numpy as np
 import scipy.fft
-from scipy.signal.windows import blackman, tukey
 
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.waves.components import wavenumber
@@ -139,6 +138,16 @@ def required_support_s(points_m: np.ndarray, measurement_xy_m: np.ndarray, headi
             float(np.max(max(0.0, d.max()) * slowness_s_m + ringing_s)))
 
 
+def tukey_window(n: int, alpha: float) -> np.ndarray:
+    """The symmetric Tukey (tapered cosine) window of ``n`` points: cosine tapers over a fraction
+    ``alpha`` of its length, flat between (``scipy.signal.windows.tukey``'s definition)."""
+    if n < 2 or alpha <= 0.0:
+        return np.ones(n)
+    x = np.arange(n) / (n - 1)
+    taper = np.minimum(x, 1.0 - x) / (alpha / 2.0)  # < 1 inside the tapers
+    return np.where(taper < 1.0, 0.5 * (1.0 - np.cos(np.pi * np.minimum(taper, 1.0))), 1.0)
+
+
 def design_taps(points_m: np.ndarray, measurement_xy_m: np.ndarray, heading_deg: float,
                 depth_m: float, gravity_m_s2: float, density_kg_m3: float, sample_dt_s: float,
                 preview_s: float, band_hz: tuple[float, float], taper_hz: tuple[float, float],
@@ -152,7 +161,7 @@ def design_taps(points_m: np.ndarray, measurement_xy_m: np.ndarray, heading_deg:
     weight = band_weights(f, band_hz, taper_hz)
     inside = weight > 0
     factor = weight[inside] * np.exp(-2j * np.pi * f[inside] * preview_s)
-    window = tukey(n_taps, TUKEY_ALPHA)
+    window = tukey_window(n_taps, TUKEY_ALPHA)
     taps = np.empty((points.shape[0], N_CHANNELS, n_taps))
     response = np.zeros((f.size, N_CHANNELS), dtype=complex)
     for i, point in enumerate(points):  # one point at a time bounds the temporaries
@@ -161,7 +170,7 @@ def design_taps(points_m: np.ndarray, measurement_xy_m: np.ndarray, heading_deg:
         taps[i] = (scipy.fft.irfft(response, n_grid, axis=0)[:n_taps] * window[:, None]).T
     # the truncation leaks ~5e-3 of the in-band gain to f = 0 (a sensor offset, the tide): null it
     # with a Blackman pulse, whose spectrum is below 1.3e-3 of its peak beyond 3 / kernel_s
-    pulse = blackman(n_taps)
+    pulse = np.blackman(n_taps)
     return taps - taps.sum(axis=-1, keepdims=True) * (pulse / pulse.sum())
 
 
