@@ -148,12 +148,12 @@ def test_lockstep_is_deterministic_at_any_speed():
 @pytest.mark.slow
 @pytest.mark.parametrize("factor", [1.0, 10.0])
 def test_pacing_follows_the_real_time_factor(factor: float):
-    """Simulated time over wall time, from /clock as it arrives, over about 20 s: within 2 %."""
+    """Simulated time over wall time, from /clock as it arrives, over about 10 s: within 2 %."""
     listener = Listener({"/clock": Clock})
     node = start("node", real_time_factor=factor, drag_model="constant")
     try:
         listener.wait_for(lambda: len(listener.messages["/clock"]) > 20, 60.0)
-        time.sleep(20.0)
+        time.sleep(11.0)
         sim = np.array([adapt.seconds(m.clock) for m in listener.messages["/clock"]])
         arrivals = np.array(listener.arrival["/clock"][:len(sim)])  # the listener is still receiving
     finally:
@@ -162,7 +162,7 @@ def test_pacing_follows_the_real_time_factor(factor: float):
         listener.close()
     keep = arrivals >= arrivals[0] + 1.0  # after the first second
     ratio = (sim[keep][-1] - sim[keep][0]) / (arrivals[keep][-1] - arrivals[keep][0])
-    assert arrivals[keep][-1] - arrivals[keep][0] > 15.0
+    assert arrivals[keep][-1] - arrivals[keep][0] > 9.0
     assert ratio == pytest.approx(factor, rel=0.02)
 
 
@@ -171,14 +171,14 @@ def test_pacing_follows_the_real_time_factor(factor: float):
 def test_wave_blocks_do_not_stall_the_paced_node():
     """Oracle: the wall clock. A node at 20x real time (2.5 ms between poses) on a 12-hour sea
     (duration_s sets the repeat period; a block costs about 1 s of synthesis on an idle
-    core, whatever its length) with 200 s blocks runs past 600 s: block boundaries at 200,
-    400 and 600 s (the last also the default 600 s block's). No pose interval at the
+    core, whatever its length, and a 100 s block lasts 5 s of wall time) with 100 s blocks
+    runs past 300 s: block boundaries at 100, 200 and 300 s. No pose interval at the
     subscriber exceeds 0.6 s, and the stepping waited for wave blocks less than 0.1 s in all
     (the node's report). With each block made in the stepping thread (as the node once did)
     the poses stopped for the whole synthesis at every boundary: 1.46 s here.
     The bound leaves room for the scheduling of the node and of this test's own Python
     subscriber: a 309 ms interval away from any boundary was seen once on an idle machine."""
-    factor, period_s, block_s, bound_s = 20.0, 0.05, 200.0, 0.6
+    factor, period_s, block_s, bound_s = 20.0, 0.05, 100.0, 0.6
     listener = Listener({"/platform/pose": PoseStamped})
     node = start("node", real_time_factor=factor, drag_model="constant", duration_s=43200.0,
                  wave_block_s=block_s, wait_for_subscribers=1)
