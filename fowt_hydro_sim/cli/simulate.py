@@ -14,6 +14,11 @@ from fowt_hydro_sim.studies.psd import TRANSIENT_S
 # the paper's study (studies.load_case_study.STUDY_CASES, imported only when it runs: it imports the model)
 STUDY_CASES = ("lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4", "lc6.1")
 
+# the turbine's settings a coupled run takes (--turbine rosco; the turbine itself: --turbine-model)
+TURBINE_OPTIONS = ("hub_height_m", "wind", "wind_speed_m_s", "wind_end_m_s", "wind_start_s", "wind_ramp_s", "wind_file",
+                   "rotor_start", "rotor_speed_rad_s", "pitch_rad", "fixed_platform")
+TURBINE_MODEL = "iea15_umaine"  # the packaged turbine a coupled run takes by default
+TURBINE_DEFAULTS_NOTE = "the turbine node's (fowt-sim turbine --help)"
 RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",
                "initial_state", *HYDRO_OPTION_NAMES, "mooring")
 
@@ -38,8 +43,25 @@ def simulate(args: argparse.Namespace) -> int:
                                                    platform)
     else:
         waves, info = study.sea_state_waves(sea, run.duration_s, case)
+    if args.turbine == "rosco":
+        return _coupled(args, run, waves, info)
+    given = [options.flag(name) for name in TURBINE_OPTIONS if getattr(args, name) is not None]
+    if given or args.turbine_model != TURBINE_MODEL:
+        raise InputError(f"{(given or ['--turbine-model'])[0]}: a turbine option needs --turbine rosco")
     summary = study.simulate(run, waves, info, Path(args.output), args.transient, args.overwrite)
     sys.stdout.write(study.summary_text(summary, Path(args.output)) + "\n")
+    return 0
+
+
+def _coupled(args: argparse.Namespace, run: RunConfig, waves, info: dict) -> int:
+    """``simulate --turbine rosco``: the turbine and its ROSCO in the loop."""
+    from fowt_hydro_sim.studies.coupled_run import coupled_summary_text, simulate_coupled
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
+    given = {k: v for k, v in options.values(args, TurbineSettings, TURBINE_OPTIONS).items() if v is not None}
+    turbine = TurbineSettings(turbine=args.turbine_model, platform=run.platform, **given)
+    initial = None if args.config is None and args.initial_state is None else run.initial_state
+    summary = simulate_coupled(run, turbine, waves, info, Path(args.output), args.transient, args.overwrite, initial)
+    sys.stdout.write(coupled_summary_text(summary, Path(args.output)) + "\n")
     return 0
 
 
@@ -69,7 +91,18 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     waves.add_argument("--elevation-point", type=float, nargs=2, default=(0.0, 0.0), metavar=("X", "Y"),
                        help="where --elevation was measured, world x y [m] (default 0 0)")
     waves.add_argument("--still-water", action="store_true", help="no waves")
-    options.add(p, RunConfig, RUN_OPTIONS)
+    options.add(p, RunConfig, RUN_OPTIONS, defaults={"initial_state": None},
+                notes={"initial_state": "; not given: 0, or with --turbine the static offset under the initial "
+                                        "thrust"})
+    turbine = p.add_argument_group("turbine (--turbine rosco: the rotor and NREL's ROSCO in the loop, no ROS)")
+    turbine.add_argument("--turbine", choices=("none", "rosco"), default="none",
+                         help="none: the platform alone; rosco: the turbine and its ROSCO controller stepped with "
+                              "the platform every controller step (default %(default)s)")
+    turbine.add_argument("--turbine-model", default=TURBINE_MODEL,
+                         help="packaged turbine name or turbine YAML (default %(default)s)")
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
+    options.add(turbine, TurbineSettings, TURBINE_OPTIONS, defaults=dict.fromkeys(TURBINE_OPTIONS),
+                notes=dict.fromkeys(TURBINE_OPTIONS, f"; default: {TURBINE_DEFAULTS_NOTE}"))
     p.add_argument("--transient", type=float, help=f"seconds at the start left out of the summary statistics "
                                                      f"(start-up; default {TRANSIENT_S:g}, as analyze drops, or 0 "
                                                      f"for a run not longer than that)")

@@ -83,30 +83,27 @@ def _stop(process: subprocess.Popen, timeout_s: float = 20.0, grace_s: float = 0
 
 def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float, ...]:
     """The platform's offset K^-1 F under the turbine's steady thrust in the initial wind (K:
-    the platform's restoring matrix at rest), where a closed loop starts without a start-up
-    swing."""
+    the platform's restoring matrix at rest with its mooring, ``turbine.coupled``), where a
+    closed loop starts without a start-up swing (as the offline coupled run does)."""
     import numpy as np
 
     from fowt_hydro_sim.physics.config import load_platform
     from fowt_hydro_sim.physics.model import PlatformModel
-    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.turbine.coupled import restoring_matrix, steady_thrust_wrench
     from fowt_hydro_sim.turbine.description import load_turbine
     from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
-    from fowt_hydro_sim.turbine.rotor import aero_loads, steady_operating_point
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
 
     settings = TurbineSettings(**{k: v for k, v in turbine.items() if v is not None})
     description = load_turbine(settings.turbine)
     coefficients = RotorCoefficients(read_table(description.performance_path))
-    wind = settings.make_wind().at(0.0)
-    speed, pitch, _ = steady_operating_point(description, coefficients, wind)
-    thrust, _ = aero_loads(description, coefficients, wind, speed, pitch)
     platform = load_platform(node.get("platform") or "windmoor12")
-    hub = np.array(platform.hub_point_m)
+    point = np.array(platform.hub_point_m)
     if settings.hub_height_m:
-        hub[2] = settings.hub_height_m
-    force = np.array([thrust, 0.0, 0.0])
-    stiffness = PlatformModel(platform, None).restoring_matrix()
-    return tuple(float(v) for v in np.linalg.solve(stiffness, np.concatenate([force, np.cross(hub, force)])))
+        point[2] = settings.hub_height_m
+    wrench = steady_thrust_wrench(description, coefficients, settings.make_wind().at(0.0), point)
+    model = PlatformModel(platform, None, mooring_model=node.get("mooring") or "")
+    return tuple(float(v) for v in np.linalg.solve(restoring_matrix(model), wrench))
 
 
 def _wait_for_recording(record_log: Path, processes: dict[str, subprocess.Popen], timeout_s: float) -> None:
