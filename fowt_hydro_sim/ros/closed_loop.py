@@ -191,6 +191,8 @@ def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrit
         log.info(f"the platform starts at its static offset under the initial thrust: "
                  f"{', '.join(f'{v:.4g}' for v in node['initial_state'])}")
     node = {**node, "lockstep": True}
+    if node.get("platform") and not turbine.get("platform"):  # the rotor on the platform's own hub point
+        turbine = {**turbine, "platform": node["platform"]}
     # the turbine answers the platform only once the recorder subscribes to its topics: no sample missed
     turbine = {**turbine, "wait_for_subscribers": turbine.get("wait_for_subscribers") or 1}
     logs = Path(f"{bag}.logs")
