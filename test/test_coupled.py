@@ -84,9 +84,9 @@ def test_two_turbines_in_one_process_keep_their_own_controller_state():
 
 
 @pytest.mark.slow
-def test_simulate_with_the_turbine_writes_its_channels(tmp_path):
+def test_simulate_of_the_named_system_writes_the_turbine_channels(tmp_path):
     out = tmp_path / "run"
-    done = fowt_sim("simulate", "--platform", PLATFORM, "--turbine", "rosco", "--wind-speed", "11", "--still-water",
+    done = fowt_sim("simulate", "--system", "iea15_volturnus_s", "--wind-speed", "11", "--still-water",
                     "--duration", "20", "--output-interval", "0.5", "-o", str(out), "--transient", "0")
     assert done.returncode == 0, done.stderr
     assert "rotor_speed_rad_s" in done.stdout
@@ -96,6 +96,9 @@ def test_simulate_with_the_turbine_writes_its_channels(tmp_path):
         assert np.all(np.isfinite(run[name])), name
     summary = json.loads((out / "summary.json").read_text())
     assert summary["turbine"]["controller"] == "ROSCO"
+    assert (summary["platform"], summary["mooring"], summary["turbine"]["name"]) == (
+        "volturnus_s", "moorpy", "IEA-15-240-RWT-UMaineSemi")  # the named system's parts
+    assert len([c for c in run if c.endswith("_fairlead_tension_n")]) == 3
     assert summary["turbine_statistics"]["wind_speed_m_s"]["mean"] == pytest.approx(11.0)
     assert summary["run"]["initial_state"][0] > 15.0  # the static offset
     assert summary["statistics"]["surge"]["mean"] == pytest.approx(summary["run"]["initial_state"][0], rel=0.1)
@@ -151,3 +154,35 @@ def test_the_offline_loop_is_the_ros_closed_loop(tmp_path):
         ref = channels[:, CHANNELS.index(name)]
         assert series.time_s.size == ref.size, name
         assert np.abs(theirs - ref).max() <= 1e-12 * np.abs(ref).max(), name
+
+
+def test_a_named_system_fills_the_settings_left_at_their_defaults(tmp_path):
+    from fowt_hydro_sim.physics.config import RunConfig
+    from fowt_hydro_sim.turbine.system import filled, load_system, system_values
+
+    system = load_system("iea15_volturnus_s")
+    assert (system.platform, system.turbine, system.mooring) == ("volturnus_s", "iea15_umaine", "moorpy")
+    load_platform(system.platform)
+    assert filled(RunConfig, {"system": "iea15_volturnus_s", "platform": "windmoor12"})["platform"] == "volturnus_s"
+    with pytest.raises(ValueError, match="system iea15_volturnus_s sets mooring 'moorpy'; mooring 'moordyn' was given"):
+        system_values("iea15_volturnus_s", {"mooring": "moordyn"}, {"mooring": ""})
+    own = tmp_path / "mine.yaml"
+    own.write_text("platform: volturnus_s\nturbine: iea15_umaine\nlines: 3\n")
+    with pytest.raises(ValueError, match=r"mine.yaml: unknown field\(s\) lines"):
+        load_system(str(own))
+
+
+@pytest.mark.ros
+def test_the_closed_loop_and_both_nodes_take_the_named_system():
+    pytest.importorskip("rclpy")
+    from fowt_hydro_sim.ros.closed_loop import with_systems
+    from fowt_hydro_sim.ros.node import NodeSettings
+    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.turbine.system import with_system
+
+    node, turbine = with_systems({"system": "iea15_volturnus_s", "duration_s": 10.0}, {"wind_speed_m_s": 9.0})
+    assert (node["platform"], node["mooring"], turbine["platform"], turbine["turbine"]) == (
+        "volturnus_s", "moorpy", "volturnus_s", "iea15_umaine")
+    settings = with_system(NodeSettings(system="iea15_volturnus_s"))
+    assert (settings.platform, settings.mooring) == ("volturnus_s", "moorpy")
+    assert with_system(TurbineSettings(system="iea15_volturnus_s")).platform == "volturnus_s"

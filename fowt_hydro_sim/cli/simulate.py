@@ -4,11 +4,19 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.errors import InputError
-from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, RunConfig, load_case, load_platform, load_run_file
+from fowt_hydro_sim.physics.config import (
+    DEFAULT_PLATFORM,
+    HYDRO_OPTION_NAMES,
+    RunConfig,
+    load_case,
+    load_platform,
+    load_run_file,
+)
 from fowt_hydro_sim.studies.psd import TRANSIENT_S
 
 # the paper's study (studies.load_case_study.STUDY_CASES, imported only when it runs: it imports the model)
@@ -33,6 +41,9 @@ def simulate(args: argparse.Namespace) -> int:
         run = RunConfig(**{k: v for k, v in options.values(args, RunConfig, RUN_OPTIONS).items() if v is not None})
         still_water = args.still_water
         sea, case = (None, None) if still_water or args.waves_comp or args.elevation else options.sea_state(args)
+    coupled = args.turbine == "rosco" or (args.system and args.turbine is None)
+    if args.system:
+        run, args.turbine_model = _system(args, run)
     platform = load_platform(run.platform)
     if still_water:
         waves, info = None, {"source": "still water"}
@@ -43,7 +54,7 @@ def simulate(args: argparse.Namespace) -> int:
                                                    platform)
     else:
         waves, info = study.sea_state_waves(sea, run.duration_s, case)
-    if args.turbine == "rosco":
+    if coupled:
         return _coupled(args, run, waves, info)
     given = [options.flag(name) for name in TURBINE_OPTIONS if getattr(args, name) is not None]
     if given or args.turbine_model != TURBINE_MODEL:
@@ -51,6 +62,16 @@ def simulate(args: argparse.Namespace) -> int:
     summary = study.simulate(run, waves, info, Path(args.output), args.transient, args.overwrite)
     sys.stdout.write(study.summary_text(summary, Path(args.output)) + "\n")
     return 0
+
+
+def _system(args: argparse.Namespace, run: RunConfig) -> tuple[RunConfig, str]:
+    """The run and the turbine of ``--system`` (filling the platform, mooring and turbine
+    left at their defaults)."""
+    from fowt_hydro_sim.turbine.system import system_values
+    values = system_values(args.system, {"platform": run.platform, "mooring": run.mooring,
+                                         "turbine": args.turbine_model},
+                           {"platform": DEFAULT_PLATFORM, "mooring": "", "turbine": TURBINE_MODEL})
+    return replace(run, platform=values["platform"], mooring=values["mooring"]), values["turbine"]
 
 
 def _coupled(args: argparse.Namespace, run: RunConfig, waves, info: dict) -> int:
@@ -95,9 +116,13 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                 notes={"initial_state": "; not given: 0, or with --turbine the static offset under the initial "
                                         "thrust"})
     turbine = p.add_argument_group("turbine (--turbine rosco: the rotor and NREL's ROSCO in the loop, no ROS)")
-    turbine.add_argument("--turbine", choices=("none", "rosco"), default="none",
+    turbine.add_argument("--system", help="named system: platform, turbine (with its controller) and mooring "
+                                          "that belong together, a packaged name (iea15_volturnus_s) or a system "
+                                          "YAML; fills --platform, --mooring and --turbine-model, and implies "
+                                          "--turbine rosco")
+    turbine.add_argument("--turbine", choices=("none", "rosco"),
                          help="none: the platform alone; rosco: the turbine and its ROSCO controller stepped with "
-                              "the platform every controller step (default %(default)s)")
+                              "the platform every controller step (default none, or rosco with --system)")
     turbine.add_argument("--turbine-model", default=TURBINE_MODEL,
                          help="packaged turbine name or turbine YAML (default %(default)s)")
     from fowt_hydro_sim.turbine.settings import TurbineSettings

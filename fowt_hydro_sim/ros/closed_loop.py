@@ -106,6 +106,20 @@ def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float,
     return tuple(float(v) for v in np.linalg.solve(restoring_matrix(model), wrench))
 
 
+def with_systems(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The two nodes' parameters with the named system (``system``, given to either) filled
+    in: the platform and mooring of the platform node, the platform and turbine of the
+    turbine node; ConfigError if one was given otherwise than the system says."""
+    from fowt_hydro_sim.ros.node import NodeSettings
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
+    from fowt_hydro_sim.turbine.system import filled
+
+    system = node.get("system") or turbine.get("system")
+    if not system:
+        return node, turbine
+    return filled(NodeSettings, {**node, "system": system}), filled(TurbineSettings, {**turbine, "system": system})
+
+
 def _wait_for_recording(record_log: Path, processes: dict[str, subprocess.Popen], timeout_s: float) -> None:
     """Until the recorder subscribes to the platform's odometry (or a process ends, or the
     timeout: the run goes on, the bag may miss its first messages)."""
@@ -186,6 +200,7 @@ def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrit
     import yaml
 
     bag = Path(bag)
+    node, turbine = with_systems(node, turbine)
     if node.get("initial_state") is None:
         node = {**node, "initial_state": list(static_offset(node, turbine))}
         log.info(f"the platform starts at its static offset under the initial thrust: "

@@ -26,6 +26,7 @@ from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.turbine.coupled import STAMP_TOLERANCE_S, turbine_on_platform
 from fowt_hydro_sim.turbine.discon import ControllerError
 from fowt_hydro_sim.turbine.settings import TurbineSettings
+from fowt_hydro_sim.turbine.system import with_system
 from msg_adapters import topics
 
 __all__ = ["TurbineNode", "TurbineSettings", "main"]
@@ -37,7 +38,7 @@ class TurbineNode(Node):
         self.set_parameters([Parameter("use_sim_time", Parameter.Type.BOOL, True)])
         parameters.declare(self, TurbineSettings)
         parameters.refuse_unknown(self)
-        s = self.settings = parameters.read(self, TurbineSettings)
+        s = self.settings = with_system(parameters.read(self, TurbineSettings))
         start = None if s.rotor_start == "steady" else (s.rotor_speed_rad_s, s.pitch_rad, 0.0)
         self.rotor = turbine_on_platform(s.turbine, load_platform(s.platform), s.make_wind(), s.hub_height_m, start,
                                          s.fixed_platform, s.rosco_logging)

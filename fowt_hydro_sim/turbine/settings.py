@@ -15,6 +15,8 @@ from msg_adapters import topics
 class TurbineSettings:
     """The turbine node's parameters."""
 
+    system: str = setting("", "named system (packaged name or system YAML: platform, turbine and mooring that "
+                              "belong together, e.g. iea15_volturnus_s); fills platform and turbine")
     turbine: str = setting("iea15_umaine", "packaged turbine name or turbine YAML file")
     platform: str = like(RunConfig, "platform", note="; its hub point is where the wrench is applied")
     hub_height_m: float = setting(0.0, "height of the thrust point above the platform's reference point [m]; "
