@@ -186,3 +186,10 @@ def test_the_closed_loop_and_both_nodes_take_the_named_system():
     settings = with_system(NodeSettings(system="iea15_volturnus_s"))
     assert (settings.platform, settings.mooring) == ("volturnus_s", "moorpy")
     assert with_system(TurbineSettings(system="iea15_volturnus_s")).platform == "volturnus_s"
+
+
+def test_the_turbine_settings_wind_topic_is_the_contracts():
+    from fowt_hydro_sim.turbine.settings import WIND_TOPIC
+    from msg_adapters import topics
+
+    assert WIND_TOPIC == topics.TURBINE["wind_speed"][0]

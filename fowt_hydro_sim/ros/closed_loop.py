@@ -82,17 +82,18 @@ def _stop(process: subprocess.Popen, timeout_s: float = 20.0, grace_s: float = 0
 
 
 def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float, ...]:
-    """The platform's offset K^-1 F under the turbine's steady thrust in the initial wind (K:
-    the platform's restoring matrix at rest with its mooring, ``turbine.coupled``), where a
-    closed loop starts without a start-up swing (as the offline coupled run does)."""
+    """The platform's offset K^-1 (F0 + F) under the turbine's steady thrust F in the initial
+    wind (K, F0: the platform's restoring matrix and wrench at rest with its mooring,
+    ``turbine.coupled.restoring``), where a closed loop starts without a start-up swing (as
+    the offline coupled run does)."""
     import numpy as np
 
     from fowt_hydro_sim.physics.config import load_platform
     from fowt_hydro_sim.physics.model import PlatformModel
-    from fowt_hydro_sim.turbine.coupled import restoring_matrix, steady_thrust_wrench
+    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.turbine.coupled import restoring, steady_thrust_wrench
     from fowt_hydro_sim.turbine.description import load_turbine
     from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
-    from fowt_hydro_sim.turbine.settings import TurbineSettings
 
     settings = TurbineSettings(**{k: v for k, v in turbine.items() if v is not None})
     description = load_turbine(settings.turbine)
@@ -102,8 +103,8 @@ def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float,
     if settings.hub_height_m:
         point[2] = settings.hub_height_m
     wrench = steady_thrust_wrench(description, coefficients, settings.make_wind().at(0.0), point)
-    model = PlatformModel(platform, None, mooring_model=node.get("mooring") or "")
-    return tuple(float(v) for v in np.linalg.solve(restoring_matrix(model), wrench))
+    at_rest, stiffness = restoring(PlatformModel(platform, None, mooring_model=node.get("mooring") or ""))
+    return tuple(float(v) for v in np.linalg.solve(stiffness, at_rest + wrench))
 
 
 def with_systems(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -111,7 +112,7 @@ def with_systems(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[dict[st
     in: the platform and mooring of the platform node, the platform and turbine of the
     turbine node; ConfigError if one was given otherwise than the system says."""
     from fowt_hydro_sim.ros.node import NodeSettings
-    from fowt_hydro_sim.turbine.settings import TurbineSettings
+    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
     from fowt_hydro_sim.turbine.system import filled
 
     system = node.get("system") or turbine.get("system")

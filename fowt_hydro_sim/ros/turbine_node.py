@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import logging
 import time
+from dataclasses import dataclass
 
+import numpy as np
 import rclpy
 from geometry_msgs.msg import Vector3Stamped, WrenchStamped
 from nav_msgs.msg import Odometry
@@ -23,13 +25,27 @@ import msg_adapters as adapt
 from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.startup import init_ros
+from fowt_hydro_sim.rosbag.reader import Bag
+from fowt_hydro_sim.turbine import settings
 from fowt_hydro_sim.turbine.coupled import STAMP_TOLERANCE_S, turbine_on_platform
 from fowt_hydro_sim.turbine.discon import ControllerError
-from fowt_hydro_sim.turbine.settings import TurbineSettings
 from fowt_hydro_sim.turbine.system import with_system
+from fowt_hydro_sim.turbine.wind import Wind
 from msg_adapters import topics
 
-__all__ = ["TurbineNode", "TurbineSettings", "main"]
+
+def bag_series(path: str, topic: str) -> tuple[np.ndarray, np.ndarray]:
+    """A turbine quantity topic of a bag: its times and values."""
+    series = Bag(path).scalar(topic)
+    return series.time_s, series.values[:, 0]
+
+
+@dataclass(frozen=True)
+class TurbineSettings(settings.TurbineSettings):
+    """The turbine node's parameters (``turbine.settings``), its wind read from a bag too."""
+
+    def make_wind(self, bag_series: settings.BagSeries | None = bag_series) -> Wind:
+        return super().make_wind(bag_series)
 
 
 class TurbineNode(Node):

@@ -15,6 +15,7 @@ import numpy as np
 from fowt_hydro_sim import __version__
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
 from fowt_hydro_sim.physics.waves.components import WaveComponents
+from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.studies.psd import default_transient
 from fowt_hydro_sim.studies.simulate import (
     MotionRecord,
@@ -27,6 +28,12 @@ from fowt_hydro_sim.studies.simulate import (
 )
 from fowt_hydro_sim.turbine.coupled import CHANNELS, CoupledPart, run_coupled, static_offset, turbine_on_platform
 from fowt_hydro_sim.turbine.settings import TurbineSettings
+
+
+def bag_series(path: str, topic: str) -> tuple[np.ndarray, np.ndarray]:
+    """A turbine quantity topic of a bag (a wind series): its times and values."""
+    series = Bag(path).scalar(topic)
+    return series.time_s, series.values[:, 0]
 
 
 def write_coupled(folder: Path, parts: Iterable[CoupledPart]) -> tuple[MotionRecord, np.ndarray]:
@@ -74,8 +81,8 @@ def simulate_coupled(run: RunConfig, turbine: TurbineSettings, waves: WaveCompon
     start = time.perf_counter()
     model = model_for(platform, run, waves)
     start_rotor = None if turbine.rotor_start == "steady" else (turbine.rotor_speed_rad_s, turbine.pitch_rad, 0.0)
-    rotor = turbine_on_platform(turbine.turbine, platform, turbine.make_wind(), turbine.hub_height_m, start_rotor,
-                                turbine.fixed_platform)
+    rotor = turbine_on_platform(turbine.turbine, platform, turbine.make_wind(bag_series), turbine.hub_height_m,
+                                start_rotor, turbine.fixed_platform)
     if initial_state is None:
         initial_state = tuple(float(v) for v in static_offset(model, rotor))
     model.reset(motion=np.array(initial_state))
@@ -114,3 +121,30 @@ def coupled_summary_text(summary: dict, output: Path) -> str:
     for name, s in summary["turbine_statistics"].items():
         table.append(f"{name:26s}{s['mean']:12.5g}{s['std']:12.5g}{s['min']:12.5g}{s['max']:12.5g}")
     return "\n".join(lines[:-1] + table + lines[-1:])
+
+
+def steady_state(system: str, wind_m_s: float, duration_s: float = 900.0, average_s: float = 400.0) -> dict:
+    """The coupled system's steady state in still water and steady wind (``system`` a named
+    system, ``turbine.system``): the offline loop run ``duration_s`` from the static offset,
+    the platform's motion and the turbine's channels averaged over the last ``average_s``
+    (several surge periods: a slow swing left averages out)."""
+    from fowt_hydro_sim.physics.model import PlatformModel, RunResult
+    from fowt_hydro_sim.turbine.system import load_system
+    from fowt_hydro_sim.turbine.wind import Wind
+
+    chosen = load_system(system)
+    platform = load_platform(chosen.platform)
+    model = PlatformModel(platform, None, dt_s=0.05, mooring_model=chosen.mooring)
+    rotor = turbine_on_platform(chosen.turbine, platform, Wind(speed_m_s=wind_m_s))
+    try:
+        model.reset(motion=static_offset(model, rotor))
+        parts = list(run_coupled(model, rotor, duration_s, 0.25))
+    finally:
+        rotor.close()
+    result = RunResult.joined([p.result for p in parts])
+    channels = np.concatenate([parts[0].turbine] + [p.turbine[1:] for p in parts[1:]])
+    keep = result.time_s >= result.time_s[-1] - average_s
+    motion, mean = result.motion[keep], channels[keep].mean(axis=0)
+    return {"surge_m": float(motion[:, 0].mean()), "heave_m": float(motion[:, 2].mean()),
+            "pitch_rad": float(motion[:, 4].mean()), "surge_std_m": float(motion[:, 0].std()),
+            **{name: float(v) for name, v in zip(CHANNELS, mean)}}

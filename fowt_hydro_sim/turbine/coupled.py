@@ -124,32 +124,40 @@ def steady_thrust_wrench(turbine: TurbineDescription, coefficients: RotorCoeffic
     return np.concatenate([force, np.cross(thrust_point_m, force)])
 
 
-def restoring_matrix(model: PlatformModel, step: float = 1e-4) -> np.ndarray:
-    """The 6x6 restoring matrix at rest of every load that depends on the position alone
-    (``RESTORING``: the member or potential-flow hydrostatics, gravity, the mooring in any of
-    its forms, HydroDyn's added stiffness), by central differences of the loads of a
-    prescribed motion in still water (the moordyn lines: their quasi-static moorpy twin)."""
+def restoring(model: PlatformModel, step: float = 1e-4) -> tuple[np.ndarray, np.ndarray]:
+    """The wrench at rest (6: world axes, reference point) and the 6x6 restoring matrix there
+    of every load that depends on the position alone (``RESTORING``: the member or
+    potential-flow hydrostatics, gravity, the mooring in any of its forms, HydroDyn's added
+    stiffness), from the loads of a prescribed motion in still water (the matrix by central
+    differences; the moordyn lines: their quasi-static moorpy twin). A platform whose rest
+    is its equilibrium has a zero wrench there."""
     platform = model.platform
     if platform.mooring.model == "moordyn":
         platform = replace(platform, mooring=platform.mooring.chosen("moorpy"))
     still = PlatformModel(platform, None, dt_s=model.dt_s, options=model.options)
     rows = [ROW[name] for name in RESTORING]
-    motion = np.zeros((12, 6))
+    motion = np.zeros((13, 6))
     for j in range(6):
         motion[2 * j, j], motion[2 * j + 1, j] = step, -step
-    loads = still.prescribed_motion_loads(np.zeros(12), motion, np.zeros((12, 6)), np.zeros((12, 6)))
+    loads = still.prescribed_motion_loads(np.zeros(13), motion, np.zeros((13, 6)), np.zeros((13, 6)))
     wrench = loads[:, rows].sum(axis=1)
-    return -(wrench[0::2] - wrench[1::2]).T / (2 * step)
+    return wrench[12], -(wrench[0:12:2] - wrench[1:12:2]).T / (2 * step)
+
+
+def restoring_matrix(model: PlatformModel) -> np.ndarray:
+    """The 6x6 restoring matrix at rest (``restoring``)."""
+    return restoring(model)[1]
 
 
 def static_offset(model: PlatformModel, rotor: TurbineOnPlatform) -> np.ndarray:
-    """The platform's offset K^-1 F under the rotor's steady thrust in its initial wind (K:
-    the restoring matrix at rest, ``restoring_matrix``), where a coupled run starts without
-    a large start-up swing."""
+    """The platform's offset K^-1 (F0 + F) under the rotor's steady thrust F in its initial
+    wind (K, F0: the restoring matrix and the wrench at rest, ``restoring``), where a coupled
+    run starts without a large start-up swing."""
     point = rotor.hub_point_m.copy()
     point[2] = rotor.thrust_height_m
     wrench = steady_thrust_wrench(rotor.turbine, rotor.coefficients, rotor.wind.at(0.0), point)
-    return np.linalg.solve(restoring_matrix(model), wrench)
+    at_rest, stiffness = restoring(model)
+    return np.linalg.solve(stiffness, at_rest + wrench)
 
 
 class CoupledPart(NamedTuple):

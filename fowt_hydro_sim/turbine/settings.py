@@ -2,13 +2,17 @@
 name them (no ROS here: ``fowt-sim simulate --turbine rosco`` reads them too)."""
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
+import numpy as np
+
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig
-from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.settings import like, setting
 from fowt_hydro_sim.turbine.wind import DEFAULT_WIND_M_S, WIND_KINDS, Wind, check_series, read_series, series_wind
-from msg_adapters import topics
+
+WIND_TOPIC = "/turbine/wind_speed"  # the turbine's free wind topic (msg_adapters.topics.TURBINE; test_coupled)
+BagSeries = Callable[[str, str], tuple[np.ndarray, np.ndarray]]  # (bag, topic) -> (times [s], values)
 
 
 @dataclass(frozen=True)
@@ -31,7 +35,7 @@ class TurbineSettings:
     wind_ramp_s: float = setting(60.0, "duration of the ramp [s]", gt=0.0)
     wind_file: str = setting("", "CSV of time [s] and hub-height wind speed [m/s] (wind file)")
     wind_bag: str = setting("", "bag holding a hub-height wind speed series (wind bag)")
-    wind_topic: str = setting(topics.TURBINE["wind_speed"][0],
+    wind_topic: str = setting(WIND_TOPIC,
                               "topic of wind_bag with the wind speed (a turbine quantity topic: Vector3Stamped, x)")
     rotor_start: str = setting("steady", "steady: the turbine starts at its steady operating point in the "
                                            "initial wind; given: at rotor_speed_rad_s and pitch_rad",
@@ -56,13 +60,17 @@ class TurbineSettings:
         if self.rosco_debug_dir and not self.rosco_logging:
             raise ConfigError("parameter rosco_debug_dir: ROSCO writes debug files only with rosco_logging > 0")
 
-    def make_wind(self) -> Wind:
+    def make_wind(self, bag_series: BagSeries | None = None) -> Wind:
+        """The wind input; a bag's wind series is read with ``bag_series`` (path, topic) ->
+        (times, speeds), the bag reader's (``rosbag``: the turbine package reads no bag)."""
         if self.wind == "file":
             return series_wind(*read_series(self.wind_file))
         if self.wind == "bag":
-            series = Bag(self.wind_bag).scalar(self.wind_topic)
-            check_series(series.time_s, series.values[:, 0], f"wind bag {self.wind_bag} {self.wind_topic}")
-            return series_wind(series.time_s, series.values[:, 0])
+            if bag_series is None:
+                raise ConfigError("parameter wind: bag needs a bag reader here; use the turbine node or simulate")
+            time_s, speed = bag_series(self.wind_bag, self.wind_topic)
+            check_series(time_s, speed, f"wind bag {self.wind_bag} {self.wind_topic}")
+            return series_wind(time_s, speed)
         return Wind(self.wind, self.wind_speed_m_s, self.wind_end_m_s, self.wind_start_s, self.wind_ramp_s)
 
 
