@@ -98,18 +98,36 @@ class TurbineOnPlatform:
         return self.model.controller.close(debug_dir)
 
 
+class HeldControls:
+    """A controller that holds the generator torque [N m] and blade pitch [rad] it was
+    given (the rotor in open loop, as a linearisation holds its inputs)."""
+
+    def __init__(self, generator_torque_nm: float, pitch_rad: float):
+        self.commands = (generator_torque_nm, pitch_rad)
+
+    def step(self, *_measurements: float, **_more: float) -> tuple[float, float]:
+        """The held generator torque and blade pitch, whatever is measured."""
+        return self.commands
+
+    def close(self, debug_dir: str | None = None) -> list:
+        """Nothing to end; no debug files."""
+        return []
+
+
 def turbine_on_platform(turbine: str, platform: Platform, wind: Wind, hub_height_m: float = 0.0,
                         rotor_start: tuple[float, float, float] | None = None, fixed: bool = False,
-                        rosco_logging: int = 0) -> TurbineOnPlatform:
+                        rosco_logging: int = 0, held: bool = False) -> TurbineOnPlatform:
     """The packaged turbine ``turbine`` (or a turbine YAML) with its ROSCO on ``platform``,
     starting at its steady operating point in the initial wind (or at ``rotor_start``: rotor
-    speed [rad/s], blade pitch [rad], generator torque [N m])."""
+    speed [rad/s], blade pitch [rad], generator torque [N m]); ``held``: no controller, the
+    generator torque and blade pitch held where they start (``HeldControls``)."""
     description = load_turbine(turbine)
     coefficients = RotorCoefficients(read_table(description.performance_path))
     start = rotor_start or steady_operating_point(description, coefficients, wind.at(0.0))
-    rosco = Rosco(description.discon_path, description.controller_dt_s, description.generator_efficiency,
-                  rosco_logging, pitch_rad=start[1])
-    model = TurbineModel(description, coefficients, rosco, *start)
+    controller = (HeldControls(start[2], start[1]) if held else
+                  Rosco(description.discon_path, description.controller_dt_s, description.generator_efficiency,
+                        rosco_logging, pitch_rad=start[1]))
+    model = TurbineModel(description, coefficients, controller, *start)
     return TurbineOnPlatform(description, coefficients, model, wind, np.array(platform.hub_point_m), hub_height_m,
                              fixed)
 
@@ -128,13 +146,14 @@ def restoring(model: PlatformModel, step: float = 1e-4) -> tuple[np.ndarray, np.
     """The wrench at rest (6: world axes, reference point) and the 6x6 restoring matrix there
     of every load that depends on the position alone (``RESTORING``: the member or
     potential-flow hydrostatics, gravity, the mooring in any of its forms, HydroDyn's added
-    stiffness), from the loads of a prescribed motion in still water (the matrix by central
-    differences; the moordyn lines: their quasi-static moorpy twin). A platform whose rest
+    stiffness), from the loads of a prescribed motion (the matrix by central differences; the
+    moordyn lines: their quasi-static moorpy twin). A platform whose rest
     is its equilibrium has a zero wrench there."""
-    platform = model.platform
-    if platform.mooring.model == "moordyn":
-        platform = replace(platform, mooring=platform.mooring.chosen("moorpy"))
-    still = PlatformModel(platform, None, dt_s=model.dt_s, options=model.options)
+    platform, still = model.platform, model
+    if platform.mooring.model == "moordyn" or model.filter_bank.n_states:  # (prescribed motion refuses them)
+        if platform.mooring.model == "moordyn":
+            platform = replace(platform, mooring=platform.mooring.chosen("moorpy"))
+        still = PlatformModel(platform, None, dt_s=model.dt_s, options=model.options)
     rows = [ROW[name] for name in RESTORING]
     motion = np.zeros((13, 6))
     for j in range(6):
