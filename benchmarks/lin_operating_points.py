@@ -7,7 +7,8 @@ surge, heave and pitch of its operating point, the rotor thrust, collective blad
 and generator torque of its inputs and outputs, and the platform surge and pitch modes of
 its state matrix A (the eigenvalue whose eigenvector is largest in that DOF, among those
 below 0.1 Hz: frequency [Hz] and damping ratio; the linearisation is open loop: blade
-pitch and generator torque are its inputs, held).
+pitch and generator torque are its inputs, held); and into ``lin_modes.csv`` beside it the
+same modes per wind speed of the azimuth-averaged state matrix (the mean of its 12 A).
 
     python benchmarks/lin_operating_points.py [--source DIR] [--output CSV]
 """
@@ -67,7 +68,8 @@ def platform_mode(a: np.ndarray, dof: int) -> tuple[float, float]:
     return abs(best.imag) / (2 * np.pi), -best.real / omega
 
 
-def extract(path: Path) -> dict:
+def extract(path: Path) -> tuple[dict, np.ndarray]:
+    """A linearisation's row of the table, and its state matrix A."""
     data = path.read_bytes()
     text = data.decode()
     a = _matrix(text, "A")
@@ -85,7 +87,7 @@ def extract(path: Path) -> dict:
         "generator_torque_nm": _operating_point(text, "Order of inputs", "ED Generator torque"),
         "surge_mode_hz": surge_hz, "surge_mode_damping": surge_zeta,
         "pitch_mode_hz": pitch_hz, "pitch_mode_damping": pitch_zeta,
-    }
+    }, a
 
 
 def main() -> None:
@@ -97,14 +99,25 @@ def main() -> None:
     parser.add_argument("--source", type=Path, default=default, help="folder of the .lin files")
     parser.add_argument("--output", type=Path, default=DEFAULT_OUTPUT, help="CSV to write")
     args = parser.parse_args()
-    rows = [extract(p) for p in sorted(args.source.glob("lin_*.lin"),
-                                       key=lambda p: tuple(int(n) for n in re.findall(r"\d+", p.stem)))]
+    paths = sorted(args.source.glob("lin_*.lin"), key=lambda p: tuple(int(n) for n in re.findall(r"\d+", p.stem)))
+    extracted = [extract(p) for p in paths]
     with args.output.open("w", newline="") as f:
         writer = csv.DictWriter(f, COLUMNS, lineterminator="\n")
         writer.writeheader()
-        for row in rows:
+        for row, _ in extracted:
             writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
-    print(f"wrote {args.output}: {len(rows)} linearisations")
+    # the azimuth average: each wind speed's A matrices averaged (the platform's and the hull's states do not rotate)
+    by_wind: dict[float, list[np.ndarray]] = {}
+    for row, a in extracted:
+        by_wind.setdefault(row["wind_speed_m_s"], []).append(a)
+    modes = args.output.with_name("lin_modes.csv")
+    with modes.open("w") as f:
+        f.write("wind_speed_m_s,azimuths,surge_mode_hz,surge_mode_damping,pitch_mode_hz,pitch_mode_damping\n")
+        for wind, matrices in sorted(by_wind.items()):
+            a = np.mean(matrices, axis=0)
+            surge, pitch = platform_mode(a, 0), platform_mode(a, 2)
+            f.write(f"{wind:g},{len(matrices)},{surge[0]:.6g},{surge[1]:.6g},{pitch[0]:.6g},{pitch[1]:.6g}\n")
+    print(f"wrote {args.output}: {len(extracted)} linearisations; {modes}: {len(by_wind)} wind speeds")
 
 
 if __name__ == "__main__":

@@ -161,3 +161,58 @@ def aerodynamic_damping(turbine: TurbineDescription, coefficients: RotorCoeffici
         for dof, arm in ((SURGE, 1.0), (PITCH, thrust_height_m)):
             ratios.append(c * arm ** 2 / (2 * math.sqrt(stiffness[dof, dof] * mass[dof, dof])))
     return AeroDamping(thrust, held, controlled, ratios[0], ratios[2], ratios[1], ratios[3])
+
+
+@dataclass(frozen=True)
+class Stability:
+    """The surge and pitch modes at one wind speed: the platform alone, with the rotor's
+    controls held, with its controller; and the quasi-steady aerodynamic damping."""
+
+    wind_m_s: float
+    alone: dict[str, Mode | None]
+    held: dict[str, Mode | None]
+    controlled: dict[str, Mode | None]
+    aero: AeroDamping
+
+
+def stability(platform: str, turbine: str, wind_m_s: float, mooring: str = "",
+              duration_s: float = 600.0) -> Stability:
+    """The surge and pitch modes of ``platform`` with ``turbine`` and its ROSCO at
+    ``wind_m_s`` (see the module's description)."""
+    from fowt_hydro_sim.turbine.coupled import restoring
+    from fowt_hydro_sim.turbine.description import load_turbine
+    from fowt_hydro_sim.turbine.performance import read_table
+
+    chosen = load_platform(platform)
+    model = PlatformModel(chosen, None, dt_s=0.05, mooring_model=mooring)
+    description = load_turbine(turbine)
+    coefficients = RotorCoefficients(read_table(description.performance_path))
+    aero = aerodynamic_damping(description, coefficients, wind_m_s, float(chosen.hub_point_m[2]),
+                               model.mass_matrix(), restoring(model)[1])
+    return Stability(wind_m_s, platform_decay(platform, mooring, duration_s),
+                     coupled_decay(platform, turbine, wind_m_s, mooring, duration_s, held=True),
+                     coupled_decay(platform, turbine, wind_m_s, mooring, duration_s), aero)
+
+
+def _mode_text(mode: Mode | None) -> str:
+    return "not found" if mode is None else f"{mode.period_s:6.1f} s {100 * mode.damping_ratio:+7.2f} %"
+
+
+def stability_text(result: Stability, title: str) -> str:
+    """The modes as ``fowt-sim stability`` prints them."""
+    a = result.aero
+    lines = [f"{title}, {result.wind_m_s:g} m/s (thrust {a.thrust_n / 1e6:.2f} MN; dT/dU "
+             f"{a.held_n_s_m / 1e3:.0f} kN s/m controls held, {a.controlled_n_s_m / 1e3:.0f} kN s/m with the "
+             "controller's quasi-steady response):",
+             f"{'mode':7s}{'platform alone':>20s}{'rotor, controls held':>22s}{'rotor + ROSCO':>20s}"
+             f"{'quasi-steady aero (held / controller)':>40s}"]
+    for name, held, controlled in (("surge", a.surge_held, a.surge_controlled), ("pitch", a.pitch_held,
+                                                                                 a.pitch_controlled)):
+        lines.append(f"{name:7s}{_mode_text(result.alone[name]):>20s}{_mode_text(result.held[name]):>22s}"
+                     f"{_mode_text(result.controlled[name]):>20s}{100 * held:+17.2f} % / {100 * controlled:+.2f} %")
+    for name in ("surge", "pitch"):
+        mode = result.controlled[name]
+        if mode is not None and mode.damping_ratio < 0:
+            lines.append(f"the {name} mode is negatively damped with the controller ({100 * mode.damping_ratio:+.2f} % "
+                         f"of critical): its swing grows (docs: guide/coupled.md, a negatively damped mode)")
+    return "\n".join(lines)
