@@ -215,4 +215,6 @@ def stability_text(result: Stability, title: str) -> str:
         if mode is not None and mode.damping_ratio < 0:
             lines.append(f"the {name} mode is negatively damped with the controller ({100 * mode.damping_ratio:+.2f} % "
                          f"of critical): its swing grows (docs: guide/coupled.md, a negatively damped mode)")
+            lines.append(f"it needs more than {-100 * mode.damping_ratio:.2f} % of critical more {name} damping: "
+                         "from the lines, a damper or the controller's tuning")
     return "\n".join(lines)
