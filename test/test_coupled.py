@@ -164,8 +164,9 @@ def test_a_named_system_fills_the_settings_left_at_their_defaults(tmp_path):
     assert (system.platform, system.turbine, system.mooring) == ("volturnus_s", "iea15_umaine", "moorpy")
     load_platform(system.platform)
     assert filled(RunConfig, {"system": "iea15_volturnus_s", "platform": "windmoor12"})["platform"] == "volturnus_s"
-    with pytest.raises(ValueError, match="system iea15_volturnus_s sets mooring 'moorpy'; mooring 'moordyn' was given"):
-        system_values("iea15_volturnus_s", {"mooring": "moordyn"}, {"mooring": ""})
+    with pytest.raises(ValueError, match="system iea15_volturnus_s sets platform 'volturnus_s'; platform 'mine.yaml'"):
+        system_values("iea15_volturnus_s", {"platform": "mine.yaml"}, {"platform": "windmoor12"})
+    assert system_values("iea15_volturnus_s", {"mooring": "moordyn"}, {"mooring": ""})["mooring"] == "moordyn"
     own = tmp_path / "mine.yaml"
     own.write_text("platform: volturnus_s\nturbine: iea15_umaine\nlines: 3\n")
     with pytest.raises(ValueError, match=r"mine.yaml: unknown field\(s\) lines"):

@@ -2,7 +2,8 @@
 together, one YAML file each (``turbine/data/systems``; a file of your own works the same),
 so that one name selects them in ``fowt-sim simulate``, ``fowt-sim closed-loop`` and the
 nodes (``-p system:=NAME``). A system fills the platform, turbine and mooring settings left
-at their defaults; one given otherwise than the system says is an error."""
+at their defaults; a platform or turbine given otherwise than the system says is an error,
+a mooring model given is taken (another model of the system's lines, e.g. moordyn)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
@@ -70,8 +71,8 @@ def load_system(name_or_path: str) -> System:
 
 def system_values(name_or_path: str, given: dict[str, Any], defaults: dict[str, Any]) -> dict[str, Any]:
     """``given`` (settings by name) with the system's platform, turbine and mooring for those
-    of them in ``defaults`` left at their default (or None); ConfigError if one is given
-    otherwise than the system says."""
+    of them in ``defaults`` left at their default (or None); ConfigError if the platform or
+    turbine is given otherwise than the system says (a mooring given is kept)."""
     if not name_or_path:
         return given
     system = load_system(name_or_path)
@@ -82,7 +83,7 @@ def system_values(name_or_path: str, given: dict[str, Any], defaults: dict[str, 
         value, wanted = given.get(name), getattr(system, name)
         if value is None or value == defaults[name]:
             out[name] = wanted
-        elif value != wanted:
+        elif value != wanted and name != "mooring":  # another model of the same lines is the user's choice
             raise ConfigError(f"system {system.name} sets {name} {wanted!r}; {name} {value!r} was given too")
     return out
 
