@@ -217,12 +217,14 @@ def run_coupled(model: PlatformModel, rotor: TurbineOnPlatform, duration_s: floa
     every = max(1, int(round((output_interval_s or period) / period)))
     n_periods = int(round(duration_s / period))
     part_rows = max(1, int(round(part_s / (every * period))))
-    tensions = model.mooring_tensions
+    # MoorDyn's tensions exist at its latest step only: taken row by row; the other moorings' from the motion, per part
+    lines_stepped = model.mooring_lines is not None
     rotor.answer(model.time_s, body_twist(model))
 
     def row() -> tuple:
         t, motion = model.time_s, model.motion
-        return (t, motion, model.velocity, model.acceleration, model.loads, tensions(np.array([t]), motion[None])[0],
+        tensions = model.mooring_tensions(np.array([t]), motion[None])[0] if lines_stepped else None
+        return (t, motion, model.velocity, model.acceleration, model.loads, tensions,
                 rotor.channels())
 
     rows, yielded = [row()], False
@@ -240,7 +242,10 @@ def run_coupled(model: PlatformModel, rotor: TurbineOnPlatform, duration_s: floa
 
 
 def _part(model: PlatformModel, rows: list[tuple]) -> CoupledPart:
-    t, motion, velocity, acceleration, loads, tensions, channels = (np.array(column) for column in zip(*rows))
+    t, motion, velocity, acceleration, loads, tensions, channels = zip(*rows)
+    t, motion, velocity, acceleration, loads, channels = map(np.array, (t, motion, velocity, acceleration, loads,
+                                                                       channels))
+    tensions = np.array(tensions) if tensions[0] is not None else model.mooring_tensions(t, motion)
     loads = loads.reshape(len(t), N_LOADS, 6)
     result = RunResult(t, motion, velocity, acceleration, loads, model.wave_elevation(t))
     return CoupledPart(result, tensions.reshape(len(t), -1, 2), channels)
