@@ -50,3 +50,16 @@ def test_windmoor12_with_the_15_mw_rotor_shows_its_negative_surge_damping():
     assert rosco < 0 < alone < held
     assert -7.0 < aero_controlled < -4.0
     assert "the surge mode is negatively damped with the controller" in done.stdout
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("args, line", [
+    (("--wind-speed", "0", "13"), "--wind-speed: each must be above 0 and at most 80 m/s, got 0 13"),
+    (("--duration", "50"), "--duration: at least 200 s (two surge periods), got 50"),
+    (("--system", "iea15_volturnus_s", "--turbine", "mine.yaml"),
+     "system iea15_volturnus_s sets turbine 'iea15_umaine'; turbine 'mine.yaml' was given too"),
+])
+def test_bad_input_is_one_line(args, line):
+    done = fowt_sim("stability", *args)
+    assert done.returncode == 2
+    assert done.stderr.strip().splitlines() == [f"fowt-sim stability: error: {line}"]

@@ -6,9 +6,12 @@ import argparse
 import sys
 
 from fowt_hydro_sim.cli import options
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import DEFAULT_PLATFORM, RunConfig
+from fowt_hydro_sim.turbine.wind import MAX_WIND_M_S
 
 DEFAULT_TURBINE = "iea15_umaine"
+MIN_DECAY_S = 200.0  # a shorter decay holds under two surge periods
 
 
 def stability(args: argparse.Namespace) -> int:
@@ -16,6 +19,11 @@ def stability(args: argparse.Namespace) -> int:
     from fowt_hydro_sim.studies.stability import stability_text
     from fowt_hydro_sim.turbine.system import system_values
 
+    if not all(0.0 < w <= MAX_WIND_M_S for w in args.wind_speed):
+        raise InputError(f"--wind-speed: each must be above 0 and at most {MAX_WIND_M_S:g} m/s, got "
+                         f"{' '.join(f'{w:g}' for w in args.wind_speed)}")
+    if args.duration < MIN_DECAY_S:
+        raise InputError(f"--duration: at least {MIN_DECAY_S:g} s (two surge periods), got {args.duration:g}")
     given = {"platform": args.platform, "mooring": args.mooring or "", "turbine": args.turbine}
     chosen = system_values(args.system or "", given, {"platform": DEFAULT_PLATFORM, "mooring": "",
                                                       "turbine": DEFAULT_TURBINE})
