@@ -3,8 +3,9 @@
 ``Examples/Test_Cases/IEA-15-240-RWT/IEA-15-240-RWT-UMaineSemi/linearizations``: 20 wind
 speeds x 12 rotor azimuths) into ``test/data/volturnus_s/lin_operating_points.csv``, one
 row per file: its SHA-256, the header's wind speed, rotor speed and azimuth, the platform
-surge, heave and pitch of its operating point, the rotor thrust, collective blade pitch
-and generator torque of its inputs and outputs, and the platform surge and pitch modes of
+surge, heave and pitch of its operating point, the rotor thrust (ElastoDyn's shaft thrust
+and AeroDyn's aerodynamic force along the shaft), collective blade pitch and generator
+torque of its inputs and outputs, and the platform surge and pitch modes of
 its state matrix A (the eigenvalue whose eigenvector is largest in that DOF, among those
 below 0.1 Hz: frequency [Hz] and damping ratio; the linearisation is open loop: blade
 pitch and generator torque are its inputs, held); and into ``lin_modes.csv`` beside it the
@@ -24,8 +25,8 @@ import numpy as np
 
 DEFAULT_OUTPUT = Path(__file__).resolve().parents[1] / "test" / "data" / "volturnus_s" / "lin_operating_points.csv"
 COLUMNS = ("file", "sha256", "wind_speed_m_s", "rotor_speed_rad_s", "azimuth_rad", "surge_m", "heave_m", "pitch_rad",
-           "rotor_thrust_n", "blade_pitch_rad", "generator_torque_nm", "surge_mode_hz", "surge_mode_damping",
-           "pitch_mode_hz", "pitch_mode_damping")
+           "rotor_thrust_n", "rotor_aero_thrust_n", "blade_pitch_rad", "generator_torque_nm", "surge_mode_hz",
+           "surge_mode_damping", "pitch_mode_hz", "pitch_mode_damping")
 # ElastoDyn's first displacement states: surge [m], heave [m], pitch [rad], tower fore-aft [m]; a pitch
 # angle weighed as the motion it gives 100 m up (the hub), so that the DOFs compare
 DISPLACEMENT_SCALE = np.array([1.0, 1.0, 100.0, 1.0])
@@ -83,6 +84,7 @@ def extract(path: Path) -> tuple[dict, np.ndarray]:
         "heave_m": _operating_point(text, "Order of continuous states", "Platform vertical heave translation DOF"),
         "pitch_rad": _operating_point(text, "Order of continuous states", "Platform pitch tilt rotation DOF"),
         "rotor_thrust_n": 1e3 * _operating_point(text, "Order of outputs", "ED RotThrust"),
+        "rotor_aero_thrust_n": _operating_point(text, "Order of outputs", "AD RtAeroFxh"),
         "blade_pitch_rad": _operating_point(text, "Order of inputs", "collective blade-pitch command"),
         "generator_torque_nm": _operating_point(text, "Order of inputs", "ED Generator torque"),
         "surge_mode_hz": surge_hz, "surge_mode_damping": surge_zeta,

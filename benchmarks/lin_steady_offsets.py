@@ -2,7 +2,8 @@
 speed from the offline coupled loop (still water, steady wind, 900 s, the last 400 s
 averaged) against the operating points of OpenFAST's linearisations of the same system
 (``test/data/volturnus_s/lin_operating_points.csv``: the 12 rotor azimuths of each wind
-speed averaged), with the rotor thrust, blade pitch and rotor speed beside them.
+speed averaged), with the rotor's aerodynamic thrust (AeroDyn's RtAeroFxh), blade pitch and rotor
+speed beside them.
 
     python benchmarks/lin_steady_offsets.py [--winds 5 6 ... 24]
 """
@@ -18,7 +19,7 @@ import numpy as np
 from fowt_hydro_sim.studies.coupled_run import steady_state
 
 TABLE = Path(__file__).resolve().parents[1] / "test" / "data" / "volturnus_s" / "lin_operating_points.csv"
-QUANTITIES = ("surge_m", "heave_m", "pitch_rad", "rotor_thrust_n", "blade_pitch_rad", "rotor_speed_rad_s")
+QUANTITIES = ("surge_m", "heave_m", "pitch_rad", "rotor_aero_thrust_n", "blade_pitch_rad", "rotor_speed_rad_s")
 
 
 def openfast_operating_points(path: Path = TABLE) -> dict[float, dict[str, float]]:
@@ -40,10 +41,10 @@ def main() -> None:
     print("|---|---|---|---|---|---|---|---|")
     for wind in args.winds:
         ours, theirs = steady_state("iea15_volturnus_s", wind), reference[wind]
-        ours["rotor_thrust_n"], ours["blade_pitch_rad"] = ours["thrust_n"], ours["blade_pitch_rad"]
+        ours["rotor_aero_thrust_n"] = ours["thrust_n"]
         cells = []
         for q, scale, fmt in (("surge_m", 1, ".2f"), ("heave_m", 1, ".3f"), ("pitch_rad", 180 / np.pi, ".2f"),
-                              ("rotor_thrust_n", 1e-6, ".2f"), ("blade_pitch_rad", 180 / np.pi, ".1f"),
+                              ("rotor_aero_thrust_n", 1e-6, ".2f"), ("blade_pitch_rad", 180 / np.pi, ".1f"),
                               ("rotor_speed_rad_s", 1, ".3f")):
             a, b = ours[q] * scale, theirs[q] * scale
             cells.append(f"{a:{fmt}} / {b:{fmt}} ({100 * (a - b) / abs(b):+.0f} %)")
