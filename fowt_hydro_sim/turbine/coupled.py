@@ -13,7 +13,7 @@ the same order as the two nodes in lockstep:
     model = PlatformModel(platform, None, dt_s=0.05)
     rotor = turbine_on_platform("iea15_umaine", platform, Wind(speed_m_s=11.0))
     model.reset(motion=static_offset(model, rotor))
-    parts = run_coupled(model, rotor, 600.0)   # RunResult parts with the turbine's channels
+    parts = run_coupled(model, rotor, 600.0)   # CoupledPart: RunResult, line tensions, turbine channels
 """
 from __future__ import annotations
 
