@@ -51,7 +51,8 @@ setup(
     python_requires='>=3.10',
     packages=PACKAGES,
     package_data={package_name: ['physics/data/*.yaml', 'physics/data/**/*', 'turbine/data/*.yaml',
-                                  'studies/diagnosis/independent/data/*', 'rosbag/msg/**/*']},
+                                  'turbine/data/systems/*.yaml', 'studies/diagnosis/independent/data/*',
+                                  'rosbag/msg/**/*']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),

@@ -25,7 +25,7 @@ COMMAND_MODULES = {
     "simulate": "simulate", "load-cases": "simulate", "waves": "bags", "recover": "bags", "info": "bags",
     "analyze": "analyze", "calibrate": "calibrate", "diagnose": "diagnose", "diagnose-benchmark": "diagnose",
     "loads": "prescribed_motion", "platform": "platform", "measured": "measured", "sweep": "sweep",
-    "compile": "compile",
+    "compile": "compile", "stability": "stability",
 }
 # each subcommand's one-line help, as its module gives it (the top-level help imports no module)
 COMMAND_HELP = {
@@ -43,6 +43,7 @@ COMMAND_HELP = {
     "measured": "measured runs: import basin files as bags",
     "sweep": "load cases x seeds x drag models x platform variants on a Dask cluster",
     "compile": "compile the model's kernels into the cache (set-up; first runs start fast)",
+    "stability": "surge and pitch periods and damping with the rotor and its controller",
 }
 
 # commands whose arguments are their own (ROS arguments after --ros-args, or the bag tools')

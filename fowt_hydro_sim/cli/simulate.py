@@ -4,16 +4,29 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.errors import InputError
-from fowt_hydro_sim.physics.config import HYDRO_OPTION_NAMES, RunConfig, load_case, load_platform, load_run_file
+from fowt_hydro_sim.physics.config import (
+    DEFAULT_PLATFORM,
+    HYDRO_OPTION_NAMES,
+    RunConfig,
+    load_case,
+    load_platform,
+    load_run_file,
+)
 from fowt_hydro_sim.studies.psd import TRANSIENT_S
 
 # the paper's study (studies.load_case_study.STUDY_CASES, imported only when it runs: it imports the model)
 STUDY_CASES = ("lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4", "lc6.1")
 
+# the turbine's settings a coupled run takes (--turbine rosco; the turbine itself: --turbine-model)
+TURBINE_OPTIONS = ("hub_height_m", "wind", "wind_speed_m_s", "wind_end_m_s", "wind_start_s", "wind_ramp_s", "wind_file",
+                   "rotor_start", "rotor_speed_rad_s", "pitch_rad", "fixed_platform")
+TURBINE_MODEL = "iea15_umaine"  # the packaged turbine a coupled run takes by default
+TURBINE_DEFAULTS_NOTE = "the turbine node's (fowt-sim turbine --help)"
 RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",
                "initial_state", *HYDRO_OPTION_NAMES, "mooring")
 
@@ -28,6 +41,9 @@ def simulate(args: argparse.Namespace) -> int:
         run = RunConfig(**{k: v for k, v in options.values(args, RunConfig, RUN_OPTIONS).items() if v is not None})
         still_water = args.still_water
         sea, case = (None, None) if still_water or args.waves_comp or args.elevation else options.sea_state(args)
+    coupled = args.turbine == "rosco" or (args.system and args.turbine is None)
+    if args.system:
+        run, args.turbine_model = _system(args, run)
     platform = load_platform(run.platform)
     if still_water:
         waves, info = None, {"source": "still water"}
@@ -38,8 +54,35 @@ def simulate(args: argparse.Namespace) -> int:
                                                    platform)
     else:
         waves, info = study.sea_state_waves(sea, run.duration_s, case)
+    if coupled:
+        return _coupled(args, run, waves, info)
+    given = [options.flag(name) for name in TURBINE_OPTIONS if getattr(args, name) is not None]
+    if given or args.turbine_model != TURBINE_MODEL:
+        raise InputError(f"{(given or ['--turbine-model'])[0]}: a turbine option needs --turbine rosco")
     summary = study.simulate(run, waves, info, Path(args.output), args.transient, args.overwrite)
     sys.stdout.write(study.summary_text(summary, Path(args.output)) + "\n")
+    return 0
+
+
+def _system(args: argparse.Namespace, run: RunConfig) -> tuple[RunConfig, str]:
+    """The run and the turbine of ``--system`` (filling the platform, mooring and turbine
+    left at their defaults)."""
+    from fowt_hydro_sim.turbine.system import system_values
+    values = system_values(args.system, {"platform": run.platform, "mooring": run.mooring,
+                                         "turbine": args.turbine_model},
+                           {"platform": DEFAULT_PLATFORM, "mooring": "", "turbine": TURBINE_MODEL})
+    return replace(run, platform=values["platform"], mooring=values["mooring"]), values["turbine"]
+
+
+def _coupled(args: argparse.Namespace, run: RunConfig, waves, info: dict) -> int:
+    """``simulate --turbine rosco``: the turbine and its ROSCO in the loop."""
+    from fowt_hydro_sim.studies.coupled_run import coupled_summary_text, simulate_coupled
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
+    given = {k: v for k, v in options.values(args, TurbineSettings, TURBINE_OPTIONS).items() if v is not None}
+    turbine = TurbineSettings(turbine=args.turbine_model, platform=run.platform, **given)
+    initial = None if args.config is None and args.initial_state is None else run.initial_state
+    summary = simulate_coupled(run, turbine, waves, info, Path(args.output), args.transient, args.overwrite, initial)
+    sys.stdout.write(coupled_summary_text(summary, Path(args.output)) + "\n")
     return 0
 
 
@@ -69,7 +112,22 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     waves.add_argument("--elevation-point", type=float, nargs=2, default=(0.0, 0.0), metavar=("X", "Y"),
                        help="where --elevation was measured, world x y [m] (default 0 0)")
     waves.add_argument("--still-water", action="store_true", help="no waves")
-    options.add(p, RunConfig, RUN_OPTIONS)
+    options.add(p, RunConfig, RUN_OPTIONS, defaults={"initial_state": None},
+                notes={"initial_state": "; not given: 0, or with --turbine the static offset under the initial "
+                                        "thrust"})
+    turbine = p.add_argument_group("turbine (--turbine rosco: the rotor and NREL's ROSCO in the loop, no ROS)")
+    turbine.add_argument("--system", help="named system: platform, turbine (with its controller) and mooring "
+                                          "that belong together, a packaged name (iea15_volturnus_s) or a system "
+                                          "YAML; fills --platform, --mooring and --turbine-model, and implies "
+                                          "--turbine rosco")
+    turbine.add_argument("--turbine", choices=("none", "rosco"),
+                         help="none: the platform alone; rosco: the turbine and its ROSCO controller stepped with "
+                              "the platform every controller step (default none, or rosco with --system)")
+    turbine.add_argument("--turbine-model", default=TURBINE_MODEL,
+                         help="packaged turbine name or turbine YAML (default %(default)s)")
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
+    options.add(turbine, TurbineSettings, TURBINE_OPTIONS, defaults=dict.fromkeys(TURBINE_OPTIONS),
+                notes=dict.fromkeys(TURBINE_OPTIONS, f"; default: {TURBINE_DEFAULTS_NOTE}"))
     p.add_argument("--transient", type=float, help=f"seconds at the start left out of the summary statistics "
                                                      f"(start-up; default {TRANSIENT_S:g}, as analyze drops, or 0 "
                                                      f"for a run not longer than that)")

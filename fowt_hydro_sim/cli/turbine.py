@@ -9,9 +9,9 @@ import argparse
 import logging
 import sys
 
-NODE_OPTIONS = ("platform", "drag_model", "load_case", "hs_m", "tp_s", "seed", "duration_s", "dt_s",
+NODE_OPTIONS = ("system", "platform", "drag_model", "load_case", "hs_m", "tp_s", "seed", "duration_s", "dt_s",
                 "real_time_factor", "publish_rate_hz", "initial_state", "lockstep_timeout_s", "controller_lost",
-                "controller_timeouts")
+                "controller_timeouts", "mooring")
 TURBINE_OPTIONS = ("turbine", "hub_height_m", "wind", "wind_speed_m_s", "wind_end_m_s", "wind_start_s", "wind_ramp_s",
                    "wind_file", "wind_bag", "wind_topic", "rotor_start", "rotor_speed_rad_s", "pitch_rad",
                    "fixed_platform", "rosco_logging")
@@ -63,6 +63,7 @@ def _settings(argv: list[str], args: argparse.Namespace) -> tuple[dict, dict]:
             node.pop(name, None)
         for name in ("wait_for_subscribers", "rosco_debug_dir"):  # the loop's own (beside the new bag)
             turbine.pop(name, None)
+    node, turbine = loop.with_systems(node, turbine)
     if args.still_water:
         node["wave_source"] = "none"
     if not node.get("duration_s"):

@@ -82,31 +82,43 @@ def _stop(process: subprocess.Popen, timeout_s: float = 20.0, grace_s: float = 0
 
 
 def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float, ...]:
-    """The platform's offset K^-1 F under the turbine's steady thrust in the initial wind (K:
-    the platform's restoring matrix at rest), where a closed loop starts without a start-up
-    swing."""
+    """The platform's offset K^-1 (F0 + F) under the turbine's steady thrust F in the initial
+    wind (K, F0: the platform's restoring matrix and wrench at rest with its mooring,
+    ``turbine.coupled.restoring``), where a closed loop starts without a start-up swing (as
+    the offline coupled run does)."""
     import numpy as np
 
     from fowt_hydro_sim.physics.config import load_platform
     from fowt_hydro_sim.physics.model import PlatformModel
     from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.turbine.coupled import restoring, steady_thrust_wrench
     from fowt_hydro_sim.turbine.description import load_turbine
     from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
-    from fowt_hydro_sim.turbine.rotor import aero_loads, steady_operating_point
 
     settings = TurbineSettings(**{k: v for k, v in turbine.items() if v is not None})
     description = load_turbine(settings.turbine)
     coefficients = RotorCoefficients(read_table(description.performance_path))
-    wind = settings.make_wind().at(0.0)
-    speed, pitch, _ = steady_operating_point(description, coefficients, wind)
-    thrust, _ = aero_loads(description, coefficients, wind, speed, pitch)
     platform = load_platform(node.get("platform") or "windmoor12")
-    hub = np.array(platform.hub_point_m)
+    point = np.array(platform.hub_point_m)
     if settings.hub_height_m:
-        hub[2] = settings.hub_height_m
-    force = np.array([thrust, 0.0, 0.0])
-    stiffness = PlatformModel(platform, None).restoring_matrix()
-    return tuple(float(v) for v in np.linalg.solve(stiffness, np.concatenate([force, np.cross(hub, force)])))
+        point[2] = settings.hub_height_m
+    wrench = steady_thrust_wrench(description, coefficients, settings.make_wind().at(0.0), point)
+    at_rest, stiffness = restoring(PlatformModel(platform, None, mooring_model=node.get("mooring") or ""))
+    return tuple(float(v) for v in np.linalg.solve(stiffness, at_rest + wrench))
+
+
+def with_systems(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The two nodes' parameters with the named system (``system``, given to either) filled
+    in: the platform and mooring of the platform node, the platform and turbine of the
+    turbine node; ConfigError if one was given otherwise than the system says."""
+    from fowt_hydro_sim.ros.node import NodeSettings
+    from fowt_hydro_sim.ros.turbine_node import TurbineSettings
+    from fowt_hydro_sim.turbine.system import filled
+
+    system = node.get("system") or turbine.get("system")
+    if not system:
+        return node, turbine
+    return filled(NodeSettings, {**node, "system": system}), filled(TurbineSettings, {**turbine, "system": system})
 
 
 def _wait_for_recording(record_log: Path, processes: dict[str, subprocess.Popen], timeout_s: float) -> None:
@@ -189,11 +201,14 @@ def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrit
     import yaml
 
     bag = Path(bag)
+    node, turbine = with_systems(node, turbine)
     if node.get("initial_state") is None:
         node = {**node, "initial_state": list(static_offset(node, turbine))}
         log.info(f"the platform starts at its static offset under the initial thrust: "
                  f"{', '.join(f'{v:.4g}' for v in node['initial_state'])}")
     node = {**node, "lockstep": True}
+    if node.get("platform") and not turbine.get("platform"):  # the rotor on the platform's own hub point
+        turbine = {**turbine, "platform": node["platform"]}
     # the turbine answers the platform only once the recorder subscribes to its topics: no sample missed
     turbine = {**turbine, "wait_for_subscribers": turbine.get("wait_for_subscribers") or 1}
     logs = Path(f"{bag}.logs")

@@ -69,6 +69,7 @@ from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, RecordingStopped
 from fowt_hydro_sim.settings import like, setting
+from fowt_hydro_sim.turbine.system import with_system
 from msg_adapters import cdr, topics
 from msg_adapters.sim_time import nanoseconds, nanoseconds_array
 
@@ -120,6 +121,8 @@ class NodeSettings:
     """The node's parameters: run and sea-state settings (their defaults, meanings and ranges
     from ``physics.config``), and the node's own."""
 
+    system: str = setting("", "named system (packaged name or system YAML: platform, turbine and mooring that "
+                              "belong together, e.g. iea15_volturnus_s); fills platform and mooring")
     platform: str = like(RunConfig, "platform")
     drag_model: str = like(RunConfig, "drag_model", default="filtered")
     wetted_length: str = like(RunConfig, "wetted_length")
@@ -207,7 +210,7 @@ class SimulatorNode(Node):
         super().__init__("fowt_hydro_sim", **node_kwargs)
         parameters.declare(self, NodeSettings)
         parameters.refuse_unknown(self)
-        self.settings = parameters.read(self, NodeSettings)
+        self.settings = with_system(parameters.read(self, NodeSettings))
         s = self.settings
         platform = load_platform(s.platform)
         waves = None

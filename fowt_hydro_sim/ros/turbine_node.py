@@ -22,73 +22,30 @@ from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 
 import msg_adapters as adapt
-from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
+from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.startup import init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.settings import like, setting
-from fowt_hydro_sim.turbine.description import load_turbine
+from fowt_hydro_sim.turbine import settings
+from fowt_hydro_sim.turbine.coupled import STAMP_TOLERANCE_S, turbine_on_platform
 from fowt_hydro_sim.turbine.discon import ControllerError
-from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
-from fowt_hydro_sim.turbine.rosco import Rosco
-from fowt_hydro_sim.turbine.rotor import HubMotion, TurbineModel, aero_loads, hub_motion, steady_operating_point
-from fowt_hydro_sim.turbine.wind import DEFAULT_WIND_M_S, WIND_KINDS, Wind, check_series, read_series, series_wind
+from fowt_hydro_sim.turbine.system import with_system
+from fowt_hydro_sim.turbine.wind import Wind
 from msg_adapters import topics
 
-STAMP_TOLERANCE_S = 1e-9  # odometry stamps closer than this are the same time
+
+def bag_series(path: str, topic: str) -> tuple[np.ndarray, np.ndarray]:
+    """A turbine quantity topic of a bag: its times and values."""
+    series = Bag(path).scalar(topic)
+    return series.time_s, series.values[:, 0]
 
 
 @dataclass(frozen=True)
-class TurbineSettings:
-    """The turbine node's parameters."""
+class TurbineSettings(settings.TurbineSettings):
+    """The turbine node's parameters (``turbine.settings``), its wind read from a bag too."""
 
-    turbine: str = setting("iea15_umaine", "packaged turbine name or turbine YAML file")
-    platform: str = like(RunConfig, "platform", note="; its hub point is where the wrench is applied")
-    hub_height_m: float = setting(0.0, "height of the thrust point above the platform's reference point [m]; "
-                                       "0 = the platform's hub point", ge=0.0)
-    wind: str = setting("steady", "wind input: steady, step, ramp (from wind_speed_m_s to wind_end_m_s at "
-                                  "wind_start_s, ramp over wind_ramp_s), file (wind_file), bag (wind_topic of "
-                                  "wind_bag)", choices=(*WIND_KINDS, "bag"))
-    wind_speed_m_s: float = setting(DEFAULT_WIND_M_S, "hub-height wind speed (before the step or ramp) [m/s]",
-                                    ge=0.0, le=80.0)
-    wind_end_m_s: float = setting(DEFAULT_WIND_M_S, "wind speed after the step or ramp [m/s]", ge=0.0, le=80.0)
-    wind_start_s: float = setting(0.0, "time of the step or start of the ramp [s]", ge=0.0)
-    wind_ramp_s: float = setting(60.0, "duration of the ramp [s]", gt=0.0)
-    wind_file: str = setting("", "CSV of time [s] and hub-height wind speed [m/s] (wind file)")
-    wind_bag: str = setting("", "bag holding a hub-height wind speed series (wind bag)")
-    wind_topic: str = setting(topics.TURBINE["wind_speed"][0],
-                              "topic of wind_bag with the wind speed (a turbine quantity topic: Vector3Stamped, x)")
-    rotor_start: str = setting("steady", "steady: the turbine starts at its steady operating point in the "
-                                           "initial wind; given: at rotor_speed_rad_s and pitch_rad",
-                                 choices=("steady", "given"))
-    rotor_speed_rad_s: float = setting(0.5, "initial rotor speed (rotor_start given) [rad/s]", ge=0.0)
-    pitch_rad: float = setting(0.0, "initial blade pitch (rotor_start given) [rad]", ge=-0.5, le=1.6)
-    fixed_platform: bool = setting(False, "ignore the platform's motion (a turbine on a fixed foundation)")
-    rosco_logging: int = setting(0, "ROSCO's LoggingLevel: 0 none, 1 its debug channels (rosco.RO.dbg), 2 and its "
-                                    "local variables (.dbg2), 3 and the swap array (.dbg3)", ge=0, le=3)
-    rosco_debug_dir: str = setting("", "folder where ROSCO's debug files are copied when the node ends "
-                                       "(rosco_logging > 0); empty: not kept")
-    wait_for_subscribers: int = setting(0, "before answering the first odometry, wait (at most 60 wall seconds) "
-                                           "until this many subscribers are connected to each /turbine/ topic (a "
-                                           "recorder started alongside, so that its bag misses no sample) and one "
-                                           "to the wrench", ge=0)
-
-    def __post_init__(self) -> None:
-        if self.wind == "file" and not self.wind_file:
-            raise ConfigError("parameter wind_file: wind file needs the path of a CSV of time and speed")
-        if self.wind == "bag" and not self.wind_bag:
-            raise ConfigError("parameter wind_bag: wind bag needs the path of a bag with a wind speed topic")
-        if self.rosco_debug_dir and not self.rosco_logging:
-            raise ConfigError("parameter rosco_debug_dir: ROSCO writes debug files only with rosco_logging > 0")
-
-    def make_wind(self) -> Wind:
-        if self.wind == "file":
-            return series_wind(*read_series(self.wind_file))
-        if self.wind == "bag":
-            series = Bag(self.wind_bag).scalar(self.wind_topic)
-            check_series(series.time_s, series.values[:, 0], f"wind bag {self.wind_bag} {self.wind_topic}")
-            return series_wind(series.time_s, series.values[:, 0])
-        return Wind(self.wind, self.wind_speed_m_s, self.wind_end_m_s, self.wind_start_s, self.wind_ramp_s)
+    def make_wind(self, bag_series: settings.BagSeries | None = bag_series) -> Wind:
+        return super().make_wind(bag_series)
 
 
 class TurbineNode(Node):
@@ -97,19 +54,12 @@ class TurbineNode(Node):
         self.set_parameters([Parameter("use_sim_time", Parameter.Type.BOOL, True)])
         parameters.declare(self, TurbineSettings)
         parameters.refuse_unknown(self)
-        s = self.settings = parameters.read(self, TurbineSettings)
-        self.turbine = load_turbine(s.turbine)
-        self.wind = s.make_wind()
-        self.hub_point_m = np.array(load_platform(s.platform).hub_point_m)
-        self.thrust_height_m = s.hub_height_m or float(self.hub_point_m[2])
-        self.coefficients = RotorCoefficients(read_table(self.turbine.performance_path))
-        start = (steady_operating_point(self.turbine, self.coefficients, self.wind.at(0.0))
-                 if s.rotor_start == "steady" else (s.rotor_speed_rad_s, s.pitch_rad, 0.0))
-        self.rosco = Rosco(self.turbine.discon_path, self.turbine.controller_dt_s, self.turbine.generator_efficiency,
-                           s.rosco_logging, pitch_rad=start[1])
-        self.model = TurbineModel(self.turbine, self.coefficients, self.rosco, *start)
+        s = self.settings = with_system(parameters.read(self, TurbineSettings))
+        start = None if s.rotor_start == "steady" else (s.rotor_speed_rad_s, s.pitch_rad, 0.0)
+        self.rotor = turbine_on_platform(s.turbine, load_platform(s.platform), s.make_wind(), s.hub_height_m, start,
+                                         s.fixed_platform, s.rosco_logging)
+        self.turbine, self.model, self.wind = self.rotor.turbine, self.rotor.model, self.rotor.wind
         self.failed = False
-        self._last: HubMotion | None = None  # the hub's motion at the last odometry answered
         qos = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
         self._wrench = self.create_publisher(WrenchStamped, topics.EXTERNAL_WRENCH, qos)
         self._state = {name: self.create_publisher(Vector3Stamped, topic, qos)
@@ -117,7 +67,7 @@ class TurbineNode(Node):
         self.create_subscription(Odometry, topics.MOTION["odom"][0], self._on_odometry, qos)
         self.get_logger().info(
             f"{self.turbine.name}: ROSCO every {self.turbine.controller_dt_s:g} s, wind {s.wind}, thrust at "
-            f"{self.thrust_height_m:g} m" + (", platform held fixed" if s.fixed_platform else ""))
+            f"{self.rotor.thrust_height_m:g} m" + (", platform held fixed" if s.fixed_platform else ""))
 
     def wait_for_subscribers(self, timeout_s: float = 60.0) -> None:
         """Until each turbine quantity topic has ``wait_for_subscribers`` subscribers and the
@@ -137,37 +87,23 @@ class TurbineNode(Node):
         if self.failed:
             return
         t, twist = adapt.body_twist_from_odometry(msg)
-        if self._last is not None and t <= self._last.time_s + STAMP_TOLERANCE_S:
+        last = self.rotor.last_time_s
+        if last is not None and t <= last + STAMP_TOLERANCE_S:
             # the odometry of a stamp already answered (sent again while the platform waited): its wrench again,
             # not the turbine's state (the bag would hold it twice at one stamp); an older one is ignored
-            if t >= self._last.time_s - STAMP_TOLERANCE_S:
-                self._publish_wrench(self._last.time_s)
+            if t >= last - STAMP_TOLERANCE_S:
+                self._publish_wrench(last)
             return
-        motion = hub_motion(t, twist, self._last, self.thrust_height_m, self.settings.fixed_platform)
-        model, dt = self.model, self.model.dt_s
         try:
-            while model.state.time_s + dt <= t + STAMP_TOLERANCE_S:
-                model.step(self.wind.at(model.state.time_s + dt), motion.velocity_m_s,
-                           motion.pitch_acceleration_rad_s2,
-                           fore_aft_acceleration_m_s2=motion.fore_aft_acceleration_m_s2)
+            self.rotor.answer(t, twist)
         except ControllerError as exc:
             self.get_logger().error(f"{exc}; the turbine stops answering")
             self.failed = True
             return
-        if self._last is None:  # the first odometry: the loads of the initial state
-            s = model.state
-            s.wind_m_s = self.wind.at(t)
-            s.relative_wind_m_s = s.wind_m_s - motion.velocity_m_s
-            s.thrust_n, s.aero_torque_nm = aero_loads(self.turbine, self.coefficients, s.relative_wind_m_s,
-                                                      s.rotor_speed_rad_s, s.pitch_rad)
-        self._last = motion
         self._publish(t)
 
     def _publish_wrench(self, t: float) -> None:
-        thrust, torque = self.model.hub_wrench()
-        offset = self.thrust_height_m - float(self.hub_point_m[2])  # thrust point above the platform's hub point
-        wrench = np.array([thrust, 0.0, 0.0, torque, offset * thrust, 0.0])
-        self._wrench.publish(adapt.wrench_msg(t, wrench, "hub"))
+        self._wrench.publish(adapt.wrench_msg(t, self.rotor.hub_wrench(), "hub"))
 
     def _publish(self, t: float) -> None:
         self._publish_wrench(t)
@@ -197,7 +133,7 @@ def main(args: list[str] | None = None) -> int:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
-        copies = node.rosco.close(node.settings.rosco_debug_dir or None)
+        copies = node.rotor.close(node.settings.rosco_debug_dir or None)
         if copies:
             log.info(f"ROSCO's debug files: {', '.join(map(str, copies))}")
         node.destroy_node()

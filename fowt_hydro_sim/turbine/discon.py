@@ -64,6 +64,7 @@ class Discon:
                                          ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p]
         self._library.DISCON.restype = None
         self.swap = np.zeros(SWAP_SIZE, dtype=np.float32)
+        self._swap_pointer = self.swap.ctypes.data_as(ctypes.POINTER(ctypes.c_float))  # made once: every call
         self._fail = ctypes.c_int32()
         self._infile = str(infile).encode()
         self._outname = outname.encode()
@@ -87,8 +88,8 @@ class Discon:
         return self._message.value.decode(errors="replace").strip()
 
     def _call(self, when: str) -> None:
-        self._library.DISCON(self.swap.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), ctypes.byref(self._fail),
-                             self._infile, self._outname, self._message)
+        self._library.DISCON(self._swap_pointer, ctypes.byref(self._fail), self._infile, self._outname,
+                             self._message)
         if self._fail.value < 0:
             raise ControllerError(f"{self.name} failed {when}: {self.message or 'no message'}")
 

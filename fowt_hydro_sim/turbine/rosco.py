@@ -2,11 +2,14 @@
 interface (``turbine.discon``): only the library and its files are used, not ROSCO's Python
 toolbox, so that the turbine needs neither WISDEM nor the toolbox's start-up time.
 
-ROSCO keeps its state in the library's globals: one controller per process. It reads its
-DISCON.IN and writes its debug files under a folder of its own (a copy of the DISCON.IN
-with the performance table's path made absolute, debug output off unless asked)."""
+ROSCO keeps its state in the library's globals: each controller loads a copy of the library
+of its own (several turbines in one process, e.g. the offline coupled runs of a study, do
+not share their state). It reads its DISCON.IN and writes its debug files under a folder
+of its own (a copy of the DISCON.IN with the performance table's path made absolute, debug
+output off unless asked)."""
 from __future__ import annotations
 
+import ctypes
 import logging
 import re
 import shutil
@@ -49,8 +52,10 @@ class Rosco:
         folder = Path(self._folder.name)
         param = discon_copy(Path(discon), folder, logging_level)
         self.dt_s, self._efficiency = dt_s, generator_efficiency
+        ctypes.CDLL(discon_lib_path)  # the installed library loads the libraries it needs beside it (its rpath)
+        library = shutil.copy2(discon_lib_path, folder / Path(discon_lib_path).name)  # the copy: its own globals
         # its integrators start at pitch_rad
-        self._discon = Discon(discon_lib_path, param, str(folder / "rosco"), dt_s, pitch_rad, name="ROSCO")
+        self._discon = Discon(library, param, str(folder / "rosco"), dt_s, pitch_rad, name="ROSCO")
 
     def step(self, t_s: float, wind_m_s: float, rotor_speed_rad_s: float, generator_speed_rad_s: float,
              pitch_rad: float, generator_torque_nm: float, pitch_acceleration_rad_s2: float = 0.0,

@@ -51,8 +51,8 @@ def hub_motion(t: float, twist: np.ndarray, last: HubMotion | None, thrust_heigh
     (zero at the first one); all zero with ``fixed`` (a fixed foundation)."""
     if fixed:
         return HubMotion(t, 0.0, 0.0, 0.0, 0.0)
-    velocity = float((twist[:3] + np.cross(twist[3:], np.array([0.0, 0.0, thrust_height_m])))[0])
     rate = float(twist[4])
+    velocity = float(twist[0]) + rate * thrust_height_m  # body x of v + omega x r, r = (0, 0, h)
     if last is None or t <= last.time_s:
         return HubMotion(t, rate, velocity, 0.0, 0.0)
     dt = t - last.time_s

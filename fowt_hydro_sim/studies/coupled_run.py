@@ -1,0 +1,150 @@
+"""Offline coupled runs (``fowt-sim simulate --turbine rosco``): the platform model and the
+turbine with ROSCO stepped together in one process (``turbine.coupled.run_coupled``),
+written as ``fowt-sim simulate`` writes a run (``timeseries.csv`` and ``summary.json``),
+with the turbine's channels as more columns and their statistics in the summary."""
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Iterable
+from dataclasses import asdict
+from pathlib import Path
+
+import numpy as np
+
+from fowt_hydro_sim import __version__
+from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
+from fowt_hydro_sim.physics.waves.components import WaveComponents
+from fowt_hydro_sim.rosbag.reader import Bag
+from fowt_hydro_sim.studies.psd import default_transient
+from fowt_hydro_sim.studies.simulate import (
+    MotionRecord,
+    column_names,
+    model_for,
+    performance_of,
+    statistics,
+    summary_text,
+    tension_statistics,
+)
+from fowt_hydro_sim.turbine.coupled import CHANNELS, CoupledPart, run_coupled, static_offset, turbine_on_platform
+from fowt_hydro_sim.turbine.settings import TurbineSettings
+
+
+def bag_series(path: str, topic: str) -> tuple[np.ndarray, np.ndarray]:
+    """A turbine quantity topic of a bag (a wind series): its times and values."""
+    series = Bag(path).scalar(topic)
+    return series.time_s, series.values[:, 0]
+
+
+def write_coupled(folder: Path, parts: Iterable[CoupledPart]) -> tuple[MotionRecord, np.ndarray]:
+    """Write a coupled run's parts to ``timeseries.csv`` as they come (``simulate``'s columns,
+    then the turbine's ``CHANNELS``); its motion record and turbine channels."""
+    folder.mkdir(parents=True, exist_ok=True)
+    kept: list[tuple[MotionRecord, np.ndarray]] = []
+    with (folder / "timeseries.csv").open("w") as out:
+        for part in parts:
+            r, n = part.result, len(part.result.time_s)
+            if not kept:
+                out.write(",".join(column_names(part.tensions.shape[1]) + list(CHANNELS)) + "\n")
+            rows = slice(1 if kept else 0, None)  # a later part's first row is the last one written
+            table = np.column_stack([r.time_s, r.motion, r.velocity, r.acceleration, r.loads.reshape(n, -1),
+                                     r.wave_elevation_m, part.tensions.reshape(n, -1), part.turbine])[rows]
+            np.savetxt(out, table, delimiter=",", fmt="%.9g")
+            kept.append((MotionRecord(r.time_s[rows], r.motion[rows], r.wave_elevation_m[rows], part.tensions[rows]),
+                         part.turbine[rows]))
+    record = MotionRecord(*(np.concatenate(column) for column in zip(*(k[0] for k in kept))))
+    return record, np.concatenate([k[1] for k in kept])
+
+
+def channel_statistics(time_s: np.ndarray, channels: np.ndarray, transient_s: float) -> dict:
+    """Each turbine channel's mean, STD, minimum and maximum after ``transient_s``."""
+    keep = time_s >= time_s[0] + transient_s
+    return {name: {"mean": float(x.mean()), "std": float(x.std()), "min": float(x.min()), "max": float(x.max())}
+            for name, x in zip(CHANNELS, channels[keep].T)}
+
+
+def simulate_coupled(run: RunConfig, turbine: TurbineSettings, waves: WaveComponents | None, wave_info: dict,
+                     output: Path, transient_s: float | None = None, overwrite: bool = False,
+                     initial_state: tuple[float, ...] | None = None) -> dict:
+    """The platform of ``run`` with the turbine of ``turbine`` and its ROSCO in the loop: run,
+    write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the summary (as
+    ``studies.simulate.simulate``). ``initial_state`` None: the platform starts at its static
+    offset under the initial thrust (``turbine.coupled.static_offset``)."""
+    output = Path(output)
+    if transient_s is None:
+        transient_s = default_transient(run.duration_s)
+    if not 0 <= transient_s < run.duration_s:
+        raise ConfigError(f"--transient: must be in [0, duration {run.duration_s:g} s), got {transient_s:g}")
+    if output.exists() and any(output.iterdir()) and not overwrite:
+        raise ConfigError(f"{output}: exists and is not empty (pass --overwrite to replace its files)")
+    platform = load_platform(run.platform)
+    start = time.perf_counter()
+    model = model_for(platform, run, waves)
+    start_rotor = None if turbine.rotor_start == "steady" else (turbine.rotor_speed_rad_s, turbine.pitch_rad, 0.0)
+    rotor = turbine_on_platform(turbine.turbine, platform, turbine.make_wind(bag_series), turbine.hub_height_m,
+                                start_rotor, turbine.fixed_platform)
+    if initial_state is None:
+        initial_state = tuple(float(v) for v in static_offset(model, rotor))
+    model.reset(motion=np.array(initial_state))
+    built = time.perf_counter()
+    try:
+        record, channels = write_coupled(output, run_coupled(model, rotor, run.duration_s, run.output_interval_s))
+    finally:
+        rotor.close()
+    performance = performance_of(run, start, built, time.perf_counter())
+    summary = {
+        "software": {"name": "fowt_hydro_sim", "version": __version__},
+        "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
+        "mooring": model.platform.mooring.model,
+        "waves": wave_info,
+        "turbine": {"name": rotor.turbine.name, "controller": "ROSCO", "controller_dt_s": rotor.model.dt_s,
+                    "thrust_height_m": rotor.thrust_height_m,
+                    "settings": {k: v for k, v in asdict(turbine).items() if k != "platform"}},
+        "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
+                "initial_state": list(initial_state), "wave_table_step_s": model.wave_table_step_s,
+                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
+        "performance": performance,
+        "statistics": statistics(record, transient_s),
+        "turbine_statistics": channel_statistics(record.time_s, channels, transient_s),
+        "mooring_tensions": tension_statistics(record, transient_s),
+    }
+    (output / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    return summary
+
+
+def coupled_summary_text(summary: dict, output: Path) -> str:
+    """The summary as the command prints it: ``simulate``'s, then the turbine's channels."""
+    lines = summary_text(summary, output).splitlines()
+    t = summary["turbine"]
+    table = [f"turbine {t['name']} with ROSCO every {t['controller_dt_s']:g} s, thrust at {t['thrust_height_m']:g} m:",
+             f"{'':26s}{'mean':>12s}{'std':>12s}{'min':>12s}{'max':>12s}"]
+    for name, s in summary["turbine_statistics"].items():
+        table.append(f"{name:26s}{s['mean']:12.5g}{s['std']:12.5g}{s['min']:12.5g}{s['max']:12.5g}")
+    return "\n".join(lines[:-1] + table + lines[-1:])
+
+
+def steady_state(system: str, wind_m_s: float, duration_s: float = 900.0, average_s: float = 400.0) -> dict:
+    """The coupled system's steady state in still water and steady wind (``system`` a named
+    system, ``turbine.system``): the offline loop run ``duration_s`` from the static offset,
+    the platform's motion and the turbine's channels averaged over the last ``average_s``
+    (several surge periods: a slow swing left averages out)."""
+    from fowt_hydro_sim.physics.model import PlatformModel, RunResult
+    from fowt_hydro_sim.turbine.system import load_system
+    from fowt_hydro_sim.turbine.wind import Wind
+
+    chosen = load_system(system)
+    platform = load_platform(chosen.platform)
+    model = PlatformModel(platform, None, dt_s=0.05, mooring_model=chosen.mooring)
+    rotor = turbine_on_platform(chosen.turbine, platform, Wind(speed_m_s=wind_m_s))
+    try:
+        model.reset(motion=static_offset(model, rotor))
+        parts = list(run_coupled(model, rotor, duration_s, 0.25))
+    finally:
+        rotor.close()
+    result = RunResult.joined([p.result for p in parts])
+    channels = np.concatenate([parts[0].turbine] + [p.turbine[1:] for p in parts[1:]])
+    keep = result.time_s >= result.time_s[-1] - average_s
+    motion, mean = result.motion[keep], channels[keep].mean(axis=0)
+    return {"surge_m": float(motion[:, 0].mean()), "heave_m": float(motion[:, 2].mean()),
+            "pitch_rad": float(motion[:, 4].mean()), "surge_std_m": float(motion[:, 0].std()),
+            **{name: float(v) for name, v in zip(CHANNELS, mean)}}
