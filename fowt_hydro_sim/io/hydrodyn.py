@@ -64,12 +64,13 @@ from typing import Any
 
 import numpy as np
 
+from fowt_hydro_sim.io.hydrodyn_layouts import current_layout
 from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
 
 # (field, the field it follows, value): lines older layouts lack, in the order to add them
 _ADDED_LINES = (("ExctnDisp", "ExctnMod", "0"), ("ExctnCutOff", "ExctnDisp", "10"), ("PtfmYMod", "ExctnCutOff", "0"),
                 ("PtfmRefY", "PtfmYMod", "0"), ("PtfmYCutOff", "PtfmRefY", "0.01"), ("NExctnHdg", "PtfmYCutOff", "36"),
-                ("NAddDOF", "PtfmCOByt", "0"), ("HstMod", "AMMod", "1"))
+                ("NAddDOF", "PtfmCOByt", "0"), ("AMMod", "WaveDisp", "0"), ("HstMod", "AMMod", "1"))
 # lines of newer layouts openfast-io does not read: potential-flow settings the import does not use
 _DROPPED_LINES = ("FKMod", "GeoFile")
 # integer fields the import uses: a deck read out of step gives them text or a fraction
@@ -101,7 +102,7 @@ def read_deck(path: str | Path) -> dict[str, Any]:
     path = Path(path)
     reader = InputReader_OpenFAST()
     try:
-        text = v5_layout(path.read_text())
+        text = v5_layout(current_layout(path.read_text(), str(path)))
     except (OSError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot be read ({type(exc).__name__}: {exc})") from None
     failure = ""
