@@ -26,7 +26,10 @@ member's MG coefficients (CdMG, CaMG, CpMG; CbMG 1) its ``growth_zone``
 (physics/marine_growth.py); the axial MG coefficients are not read (the grown pieces' tapered
 walls take the member's own).
 
-Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts before it),
+Decks of the OpenFAST 3.x layouts (the deck's own water depth and density, one cross-section
+table, coefficient tables without Cb, members without MSecGeom, MSpinOrient, MHstLMod) are first
+rewritten as the current fields by ``hydrodyn_layouts.current_layout``, or refused naming the
+field it cannot map. Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts before it),
 which lack some of the lines openfast-io reads (NAddDOF, HstMod; ExctnDisp, ExctnCutOff,
 PtfmYMod, PtfmRefY, PtfmYCutOff, NExctnHdg), are read with those lines added at the value
 that keeps the older meaning (no additional DOF; HstMod 1: before HstMod existed HydroDyn
