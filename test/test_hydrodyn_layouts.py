@@ -90,3 +90,18 @@ def test_decks_of_the_current_layout_are_not_rewritten():
         assert not is_older_layout(deck.read_text()), deck
         assert current_layout(deck.read_text(), str(deck)) == deck.read_text()
     assert all(is_older_layout(p.read_text()) for p in (TRIPOD, JACKET, COLUMN_OLDER))
+
+
+def test_older_layout_rows_with_trailing_comments_read_as_without(tmp_path):
+    """Rows ending in a ``!`` comment (as the OC4 semi's member-based coefficients do) are
+    widened by their values, not their words."""
+    lines = TRIPOD.read_text().splitlines(keepends=True)
+    rows = ("    1     1.00     1.00     1.00", "       1.00        0.00        1.00",
+            "    1         1          4           1            1         1.0000      1        FALSE")
+    commented = [line.rstrip("\r\n") + "   ! a comment\n" if line.startswith(rows) else line for line in lines]
+    assert sum(a != b for a, b in zip(lines, commented)) == 3
+    deck = tmp_path / "commented.inp"
+    deck.write_text("".join(commented))
+    plain, with_comments = read_deck(TRIPOD), read_deck(deck)
+    for field in ("AxFDMod", "CylSimplCb", "CylSimplCbMG", "MSecGeom", "MHstLMod", "MDivSize", "MCoefMod", "PropPot"):
+        assert with_comments[field] == plain[field], field

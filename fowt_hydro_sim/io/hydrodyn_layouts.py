@@ -68,9 +68,15 @@ def _count(line: str, field: str, source: str) -> int:
         raise ConfigError(f"{source}: field {field} reads as {line.split()[:1]}, not an integer") from None
 
 
+def _values(row: str) -> list[str]:
+    """A table row's values, without its trailing ``!`` comment."""
+    return row.split("!", 1)[0].split()
+
+
 def _widen(row: str, columns: int, added: list[str], field: str, source: str) -> str:
-    """A table row of ``columns`` values with ``added`` appended (an older table's row)."""
-    values = row.split()
+    """A table row of ``columns`` values with ``added`` appended (an older table's row; its
+    comment dropped)."""
+    values = _values(row)
     if len(values) < columns:
         raise ConfigError(f"{source}: a row of the {field} table has {len(values)} values, not {columns}: "
                           f"{row.strip()!r}")
@@ -91,7 +97,7 @@ def is_older_layout(text: str) -> bool:
         return True
     if "NAxCoef" in names:  # an axial table of four columns
         start = [_name(line) for line in lines].index("NAxCoef")
-        return any(len(row.split()) == 4 for row in lines[start + 3:start + 3 + _count(lines[start], "NAxCoef", "")])
+        return any(len(_values(row)) == 4 for row in lines[start + 3:start + 3 + _count(lines[start], "NAxCoef", "")])
     return False
 
 
@@ -134,7 +140,7 @@ def current_layout(text: str, source: str) -> str:
             rows = _count(line, name, source)
             out.extend(lines[i:i + 3])
             for row in lines[i + 3:i + 3 + rows]:
-                out.append(_widen(row, 4, ["0", "0.0", "1.0"], name, source) if len(row.split()) == 4 else row)
+                out.append(_widen(row, 4, ["0", "0.0", "1.0"], name, source) if len(_values(row)) == 4 else row)
             i += 3 + rows
             continue
         if name == "NPropSets" and older_tables:
@@ -159,7 +165,7 @@ def current_layout(text: str, source: str) -> str:
                                            else (25, ["1.0"] * 4, _RECTANGULAR_MEMBERS))
             out.append(line.replace(name, f"{name}Cyl", 1))
             out.extend(lines[i + 1:i + 3])
-            out.extend(_widen(row, columns, added, name, source) if len(row.split()) == columns else row
+            out.extend(_widen(row, columns, added, name, source) if len(_values(row)) == columns else row
                        for row in lines[i + 3:i + 3 + rows])
             out.extend(rectangular)
             i += 3 + rows
