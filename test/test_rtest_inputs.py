@@ -120,3 +120,19 @@ def test_deck_of_the_newer_layout_imports_without_its_potential_flow_lines(tmp_p
     assert (member["end_a_m"], member["end_b_m"]) == ([-5.0, 3.0, -21.0], [2.0, 6.0, 18.0])
     assert (member["diameter_m"], member["diameter_b_m"], member["strip_length_m"]) == (8.0, 6.0, 3.0)
     assert member["zones"] == [{"name": "all", "cd": 0.0, "ca": 0.0, "cp": 0.0}]
+
+
+def test_steady_prp_inputs_of_a_driver_are_a_motion_row(tmp_path):
+    """PRPInputsMod 1 (the OC3 tripod's driver): uPRPInSteady, uDotPRPInSteady and
+    uDotDotPRPInSteady, comma-separated, as the 18 values of a PRP motion row; a driver
+    without one of them is refused naming it."""
+    from fowt_hydro_sim.testing.rtest_suite import steady_prp_inputs
+
+    driver = RTEST / "hd_OC3tripod_offshore_fixedbottom_wavesirr" / "hd_driver.inp"
+    row = steady_prp_inputs(driver)
+    assert row.tolist() == [0.1, 0.1, -0.1] + [0.0] * 15
+    lacking = tmp_path / "hd_driver.inp"
+    lacking.write_text("".join(line for line in driver.read_text().splitlines(keepends=True)
+                               if "uDotDotPRPInSteady" not in line))
+    with pytest.raises(ValueError, match="uDotDotPRPInSteady"):
+        steady_prp_inputs(lacking)

@@ -42,6 +42,26 @@ def test_regular_wave_gets_the_phase_fitted_to_hydrodyns_elevation():
     assert np.rad2deg(waves.direction_rad[0]) == pytest.approx(15.0)
 
 
+def test_regular_wave_of_given_phase_needs_no_random_seed(tmp_path):
+    """WaveMod 1P# draws nothing: with an integer WaveSeed(2) (the compiler's generator) it is
+    the regular wave of that phase, as with RANLUX; WaveMod 1 with it is refused."""
+    text = (RTEST / "hd_MHstLMod2_RectMmbr" / "SeaState.dat").read_text()
+    given = text.replace("             1   WaveMod", "\"1P79.244\"   WaveMod", 1)
+    assert given != text
+    waves = []
+    for seed in ("RANLUX", "1011121314"):
+        path = tmp_path / f"{seed}.dat"
+        path.write_text(given.replace("RANLUX   WaveSeed(2)", f"{seed}   WaveSeed(2)", 1))
+        waves.append(seastate.seastate_waves(seastate.read_seastate(path)))
+    assert "1011121314   WaveSeed(2)" in path.read_text()
+    assert np.rad2deg(waves[1].phase_rad) == pytest.approx([79.244], abs=1e-9)
+    for name in ("frequency_hz", "amplitude_m", "phase_rad", "direction_rad"):
+        assert getattr(waves[1], name) == pytest.approx(getattr(waves[0], name), abs=0)
+    path.write_text(text.replace("RANLUX   WaveSeed(2)", "1011121314   WaveSeed(2)", 1))
+    with pytest.raises(seastate.ConfigError, match="WaveSeed"):
+        seastate.seastate_waves(seastate.read_seastate(path))
+
+
 @pytest.mark.parametrize("edit, field", [
     (("RANLUX   WaveSeed(2)", "  1011   WaveSeed(2)"), "WaveSeed(2)"),
     (("2   WaveMod", "5   WaveMod"), "WaveMod 5"),

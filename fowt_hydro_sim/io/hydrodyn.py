@@ -26,7 +26,10 @@ member's MG coefficients (CdMG, CaMG, CpMG; CbMG 1) its ``growth_zone``
 (physics/marine_growth.py); the axial MG coefficients are not read (the grown pieces' tapered
 walls take the member's own).
 
-Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts before it),
+Decks of the OpenFAST 3.x layouts (the deck's own water depth and density, one cross-section
+table, coefficient tables without Cb, members without MSecGeom, MSpinOrient, MHstLMod) are first
+rewritten as the current fields by ``hydrodyn_layouts.current_layout``, or refused naming the
+field it cannot map. Decks of older layouts (HydroDyn v4 as in the OpenFAST r-test, and the layouts before it),
 which lack some of the lines openfast-io reads (NAddDOF, HstMod; ExctnDisp, ExctnCutOff,
 PtfmYMod, PtfmRefY, PtfmYCutOff, NExctnHdg), are read with those lines added at the value
 that keeps the older meaning (no additional DOF; HstMod 1: before HstMod existed HydroDyn
@@ -64,12 +67,13 @@ from typing import Any
 
 import numpy as np
 
+from fowt_hydro_sim.io.hydrodyn_layouts import current_layout
 from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
 
 # (field, the field it follows, value): lines older layouts lack, in the order to add them
 _ADDED_LINES = (("ExctnDisp", "ExctnMod", "0"), ("ExctnCutOff", "ExctnDisp", "10"), ("PtfmYMod", "ExctnCutOff", "0"),
                 ("PtfmRefY", "PtfmYMod", "0"), ("PtfmYCutOff", "PtfmRefY", "0.01"), ("NExctnHdg", "PtfmYCutOff", "36"),
-                ("NAddDOF", "PtfmCOByt", "0"), ("HstMod", "AMMod", "1"))
+                ("NAddDOF", "PtfmCOByt", "0"), ("AMMod", "WaveDisp", "0"), ("HstMod", "AMMod", "1"))
 # lines of newer layouts openfast-io does not read: potential-flow settings the import does not use
 _DROPPED_LINES = ("FKMod", "GeoFile")
 # integer fields the import uses: a deck read out of step gives them text or a fraction
@@ -101,7 +105,7 @@ def read_deck(path: str | Path) -> dict[str, Any]:
     path = Path(path)
     reader = InputReader_OpenFAST()
     try:
-        text = v5_layout(path.read_text())
+        text = v5_layout(current_layout(path.read_text(), str(path)))
     except (OSError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: cannot be read ({type(exc).__name__}: {exc})") from None
     failure = ""

@@ -103,6 +103,21 @@ def driver_settings(path: Path) -> dict[str, str]:
     return settings
 
 
+def steady_prp_inputs(path: Path) -> np.ndarray:
+    """A driver file's uPRPInSteady, uDotPRPInSteady and uDotDotPRPInSteady (PRPInputsMod 1) as
+    the 18 values of a PRP motion row (displacements and rotations, their rates, their
+    accelerations; m, rad)."""
+    rows = {}
+    for line in path.read_text().splitlines():
+        words = line.replace(",", " ").split()
+        if len(words) >= 7 and words[6] in ("uPRPInSteady", "uDotPRPInSteady", "uDotDotPRPInSteady"):
+            rows[words[6]] = [float(w) for w in words[:6]]
+    missing = {"uPRPInSteady", "uDotPRPInSteady", "uDotDotPRPInSteady"} - set(rows)
+    if missing:
+        raise ValueError(f"{path}: PRPInputsMod 1 without the line(s) {', '.join(sorted(missing))}")
+    return np.array(rows["uPRPInSteady"] + rows["uDotPRPInSteady"] + rows["uDotDotPRPInSteady"])
+
+
 def _cli(arguments: list[str]) -> tuple[int, str]:
     """``fowt-sim`` in this process: its exit code and the last line it wrote to stderr."""
     return _cli_module(main, arguments)
@@ -132,13 +147,18 @@ def run_case(case: Case, folder: Path) -> Result:
     mode = int(driver["PRPInputsMod"])
     if mode == 2:
         motion = case.driver.parent / driver["PRPInputsFile"]
-    elif mode == 0:
-        motion = folder / f"{case.name}_rest.dat"
-        rest = np.zeros((time_s.size, 19))
-        rest[:, 0] = time_s
-        np.savetxt(motion, rest)
+    elif mode in (0, 1):  # at rest, or the driver's steady displacement, velocity and acceleration
+        motion = folder / f"{case.name}_steady.dat"
+        steady = np.zeros((time_s.size, 19))
+        steady[:, 0] = time_s
+        if mode == 1:
+            try:
+                steady[:, 1:] = steady_prp_inputs(case.driver)
+            except ValueError as exc:
+                return Result(case, refusal=str(exc))
+        np.savetxt(motion, steady)
     else:
-        return Result(case, refusal=f"{case.driver}: PRPInputsMod {mode}: the suite runs 0 and 2 only")
+        return Result(case, refusal=f"{case.driver}: PRPInputsMod {mode}: the suite runs 0, 1 and 2 only")
     out = folder / f"{case.name}_loads.csv"
     comp = case.waves
     if comp is not None and comp.suffix.lower() != ".comp":  # a SeaState input file: its synthesised sea

@@ -15,7 +15,8 @@ WaveMod 7 reads the file WvKinFile names (``.Comp``), inside the cut-offs.
 
 Refused, in one line naming the field: WaveMod 4, 5, 6 (a user spectrum routine, an elevation
 record, full kinematics), ``WaveSeed(2)`` other than RANLUX (the Fortran compiler's intrinsic
-generator, which depends on the compiler), WaveDirMod 1 with more than one direction (the
+generator, which depends on the compiler) unless the wave is 1P# (its phase given, its amplitude
+Hs / 2: the draws are not used), WaveDirMod 1 with more than one direction (the
 directions' random assignment is not reproduced), ConstWaveMod (constrained waves),
 WvDiffQTF / WvSumQTF (second-order waves) and CurrMod (current).
 
@@ -201,7 +202,7 @@ def _refuse_unsupported(sea: SeaStateInput, wave_mod: int) -> None:
         raise ConfigError(f"{sea.path}: CurrMod {sea.integer('CurrMod')}: current is not reproduced")
     if wave_mod == 7:
         return
-    if sea.text("WaveSeed(2)").upper() != "RANLUX":
+    if wave_mod != 10 and sea.text("WaveSeed(2)").upper() != "RANLUX":  # 1P#: no random number is used
         raise ConfigError(f"{sea.path}: WaveSeed(2) {sea.text('WaveSeed(2)')}: an integer seed selects the "
                           "Fortran compiler's intrinsic generator, which is not reproduced (RANLUX is)")
     if wave_mod == 2 and "ConstWaveMod" in sea.fields and sea.integer("ConstWaveMod") != 0:
