@@ -17,6 +17,8 @@ RTEST = REPO / "test" / "data" / "openfast_rtest"
 TRIPOD = RTEST / "hd_OC3tripod_offshore_fixedbottom_wavesirr" / "hd_primary.inp"
 JACKET = RTEST / "hd_5MW_OC4Jckt_DLL_WTurb_WavesIrr_MGrowth" / "NRELOffshrBsline5MW_OC4Jacket_HydroDyn.dat"
 COLUMN_OLDER = RTEST / "hd_WaveStMod3" / "hydrodyn_input_e4f825bd.dat"  # one cross-section table
+OC4_SEMI = RTEST / "hd_5MW_OC4Semi_WSt_WavesWN" / "NRELOffshrBsline5MW_OC4DeepCwindSemi_HydroDyn.dat"
+OLDER = (TRIPOD, JACKET, COLUMN_OLDER, OC4_SEMI)
 COLUMN = RTEST / "hd_WaveStMod3" / "hydrodyn_input.dat"  # the same column, r-test c00e123e
 
 
@@ -84,12 +86,12 @@ def test_decks_of_the_current_layout_are_not_rewritten():
     """Every deck of the suite in the current or v4 layout passes through unchanged, so they
     import exactly as before."""
     decks = [p for p in RTEST.glob("*/*") if p.suffix in (".dat", ".inp") and "HydroDyn Input" in p.read_text()[:200]]
-    current = [p for p in decks if p not in (TRIPOD, JACKET, COLUMN_OLDER)]
+    current = [p for p in decks if p not in OLDER]
     assert len(current) >= 8
     for deck in current:
         assert not is_older_layout(deck.read_text()), deck
         assert current_layout(deck.read_text(), str(deck)) == deck.read_text()
-    assert all(is_older_layout(p.read_text()) for p in (TRIPOD, JACKET, COLUMN_OLDER))
+    assert all(is_older_layout(p.read_text()) for p in OLDER)
 
 
 def test_older_layout_rows_with_trailing_comments_read_as_without(tmp_path):
