@@ -208,7 +208,7 @@ def topics_page() -> str:
 def load_components_page() -> str:
     """The load registry: its rows in order."""
     from fowt_hydro_sim.physics.loads import COMPONENTS
-    rows = [(row, f"`{c.name}`", c.summary, "yes" if c.summed else "no",
+    rows = [(row, f"`{c.name}`", c.summary, "yes" if c.summed else "no", "yes" if c.restoring else "no",
              f"`/platform/loads/{c.name}`" if c.published else "none",
              f"`physics/loads/{c.module}.py`" if c.module else "Morison strip model (`physics/morison.py`)")
             for row, c in enumerate(COMPONENTS)]
@@ -216,9 +216,10 @@ def load_components_page() -> str:
             "`fowt_hydro_sim/physics/loads/__init__.py`): `RunResult.load(name)`, the `NAME_fx_n` ... "
             "`NAME_mz_nm` columns of `timeseries.csv` (`fowt-sim simulate`), the `NAME_Fx` ... `NAME_Mz` columns "
             "of `fowt-sim loads` and the node's topics follow it. "
-            "`/platform/loads/total` is the sum of the components summed into the total. World axes, about the "
+            "`/platform/loads/total` is the sum of the components summed into the total; the restoring ones make "
+            "the model's restoring matrix (`PlatformModel.restoring_matrix`). World axes, about the "
             "reference point.", "",
-            *_table(("row", "component", "what it is", "summed into total", "own topic", "code"), rows)]
+            *_table(("row", "component", "what it is", "summed into total", "restoring", "own topic", "code"), rows)]
     return _page("Load components", body)
 
 

@@ -47,6 +47,7 @@ from fowt_hydro_sim.physics.dynamics import (
 from fowt_hydro_sim.physics.loads import (
     FIRST_MODULE_ROW,
     N_LOADS,
+    RESTORING,
     ROW,
     ComponentInputs,
     component_data,
@@ -732,13 +733,14 @@ class PlatformModel:
         return rigid + work.world_added_mass + work.masses.sum(axis=0)
 
     def restoring_matrix(self, step: float = 1e-4) -> np.ndarray:
-        """Linear restoring matrix (hydrostatics, gravity, mooring) at rest, by central
-        differences of the static loads in still water."""
+        """Linear restoring matrix at rest, by central differences in still water of the static
+        restoring loads (the registry's ``restoring`` components: hydrostatics, gravity,
+        mooring, a potential-flow hull's .hst and AddCLin)."""
         still = self._data.waves._replace(values=np.zeros_like(self._data.waves.values[:4]))
         data = self._data._replace(waves=still)
         out = np.zeros((6, 6))
         work = dynamics.workspace(data)
-        restoring = [ROW[name] for name in ("hydrostatic", "mooring", "gravity")]
+        restoring = [ROW[name] for name in RESTORING]
         for j in range(6):
             wrench = []
             for sign in (1.0, -1.0):

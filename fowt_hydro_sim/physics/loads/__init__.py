@@ -44,13 +44,16 @@ warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
 class LoadComponent:
     """One row of the loads: its name, a one-line summary (the reference tables' and the
     topic's meaning), whether it is summed into the total and published on a topic of its
-    own, and the module computing it (``fowt_hydro_sim.physics.loads.<module>``)."""
+    own, the module computing it (``fowt_hydro_sim.physics.loads.<module>``), and whether it
+    is a static restoring load (a function of the position alone in still water, at rest: the
+    model's restoring matrix differentiates these rows)."""
 
     name: str
     summary: str
     summed: bool  # part of the contract's total (/platform/loads/total)
     published: bool  # a topic of its own, /platform/loads/NAME
     module: str | None = None  # None: a row of the Morison strip model
+    restoring: bool = False  # in PlatformModel.restoring_matrix
 
 
 COMPONENTS = (
@@ -58,27 +61,28 @@ COMPONENTS = (
     LoadComponent("inertia", "Froude-Krylov and added-mass force from the fluid acceleration", True, True),
     LoadComponent("added_mass", "strip added mass on the body acceleration (-A a; it sits on the mass side of the "
                                 "equations) and its centripetal part", False, True),
-    LoadComponent("hydrostatic", "buoyancy and hydrostatic restoring", True, True, "hydrostatic"),
-    LoadComponent("mooring", "mooring lines", True, True, "mooring"),
-    LoadComponent("gravity", "weight at the centre of gravity", False, True, "gravity"),
+    LoadComponent("hydrostatic", "buoyancy and hydrostatic restoring", True, True, "hydrostatic", restoring=True),
+    LoadComponent("mooring", "mooring lines", True, True, "mooring", restoring=True),
+    LoadComponent("gravity", "weight at the centre of gravity", False, True, "gravity", restoring=True),
     LoadComponent("external", "external wrench (controller, rotor) as applied, moved to the reference point",
                   True, True, "external"),
     LoadComponent("drift", "second-order slow drift (Newman's approximation from the platform's drift table; "
                            "zero with slow_drift none, streamed waves or no table)", True, True, "drift"),
     LoadComponent("potential_hydrostatic", "a potential-flow hull's hydrostatics: rho g PtfmVol0 at the centre of "
                                            "buoyancy minus the WAMIT .hst restoring C q", True, True,
-                  "potential_hydrostatic"),
+                  "potential_hydrostatic", restoring=True),
     LoadComponent("radiation", "a potential-flow hull's radiation: A_inf on the mass side (-A_inf a) and the "
                                "memory convolution of the retardation kernel from B(w)", True, True, "radiation"),
     LoadComponent("excitation", "a potential-flow hull's first-order wave excitation from the WAMIT .3 file",
                   True, True, "excitation"),
     LoadComponent("added_matrices", "HydroDyn's additional preload, stiffness and damping of a potential-flow hull "
-                                    "(AddF0, AddCLin, AddBLin, AddBQuad)", True, True, "added_matrices"),
+                                    "(AddF0, AddCLin, AddBLin, AddBQuad)", True, True, "added_matrices",
+                  restoring=True),
     LoadComponent("added_quadratic_bands", "a potential-flow hull's AddBQuad split into the drag bands (one matrix "
                                            "per band on the band-filtered velocity; filtered drag model)", True,
                   True, "added_quadratic_bands"),
     LoadComponent("linear_mooring", "a mooring given as a wrench at rest and a 6x6 stiffness (F0 - K q)", True, True,
-                  "linear_mooring"),
+                  "linear_mooring", restoring=True),
     LoadComponent("extension", "loads beyond the Morison model (the gap diagnosis's effects)", False, False,
                   "extension"),
     LoadComponent("user", "a Python force passed to the model (PlatformModel user_force)", False, False, "user"),
@@ -89,6 +93,7 @@ N_LOADS = len(COMPONENTS)
 ROW = {name: row for row, name in enumerate(NAMES)}
 SUMMED = tuple(c.name for c in COMPONENTS if c.summed)
 PUBLISHED = tuple(c.name for c in COMPONENTS if c.published)
+RESTORING = tuple(c.name for c in COMPONENTS if c.restoring)
 MODULE_COMPONENTS = tuple(c for c in COMPONENTS if c.module is not None)
 FIRST_MODULE_ROW = ROW[MODULE_COMPONENTS[0].name]
 if any(c.module is None for c in COMPONENTS[FIRST_MODULE_ROW:]):
