@@ -15,7 +15,7 @@ from fowt_hydro_sim.studies.simulate import read_run  # noqa: E402
 from fowt_hydro_sim.testing import fowt_sim  # noqa: E402
 from fowt_hydro_sim.turbine.coupled import (  # noqa: E402
     CHANNELS,
-    restoring_matrix,
+    restoring,
     run_coupled,
     static_offset,
     turbine_on_platform,
@@ -52,7 +52,8 @@ def test_the_static_offset_balances_the_steady_thrust_with_the_restoring_matrix(
     the offset is downwind and pitched back by the thrust."""
     platform = load_platform(PLATFORM)
     model = PlatformModel(platform, None)
-    k = restoring_matrix(model)
+    k = restoring(model)[1]
+    np.testing.assert_allclose(k, model.restoring_matrix(), rtol=0, atol=1e-9 * np.abs(k).max())  # the model's own
     assert k[0, 0] == pytest.approx(platform.linear_mooring.stiffness[0][0], rel=1e-6)
     assert np.all(np.diag(k) > 0), np.diag(k)
     rotor = turbine_on_platform("iea15_umaine", platform, Wind(speed_m_s=WIND_M_S))

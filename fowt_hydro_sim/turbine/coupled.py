@@ -25,7 +25,7 @@ from typing import NamedTuple
 import numpy as np
 
 from fowt_hydro_sim.physics.config import ConfigError, Platform
-from fowt_hydro_sim.physics.loads import N_LOADS, ROW
+from fowt_hydro_sim.physics.loads import N_LOADS, RESTORING, ROW
 from fowt_hydro_sim.physics.model import WAVE_BLOCK_S, PlatformModel, RunResult
 from fowt_hydro_sim.turbine.description import TurbineDescription, load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
@@ -33,8 +33,6 @@ from fowt_hydro_sim.turbine.rosco import Rosco
 from fowt_hydro_sim.turbine.rotor import HubMotion, TurbineModel, aero_loads, hub_motion, steady_operating_point
 from fowt_hydro_sim.turbine.wind import Wind
 
-# the loads that depend on the position alone (the restoring matrix's)
-RESTORING = ("hydrostatic", "mooring", "gravity", "potential_hydrostatic", "added_matrices", "linear_mooring")
 STAMP_TOLERANCE_S = 1e-9  # platform times closer than this are the same time
 # the turbine's channels, as the turbine node publishes them (/turbine/<name>) and timeseries.csv names them
 CHANNELS = ("rotor_speed_rad_s", "generator_torque_nm", "generator_power_w", "blade_pitch_rad", "wind_speed_m_s",
@@ -144,7 +142,7 @@ def steady_thrust_wrench(turbine: TurbineDescription, coefficients: RotorCoeffic
 
 def restoring(model: PlatformModel, step: float = 1e-4) -> tuple[np.ndarray, np.ndarray]:
     """The wrench at rest (6: world axes, reference point) and the 6x6 restoring matrix there
-    of every load that depends on the position alone (``RESTORING``: the member or
+    of every load that depends on the position alone (the registry's ``RESTORING``: the member or
     potential-flow hydrostatics, gravity, the mooring in any of its forms, HydroDyn's added
     stiffness), from the loads of a prescribed motion (the matrix by central differences; the
     moordyn lines: their quasi-static moorpy twin). A platform whose rest
@@ -161,11 +159,6 @@ def restoring(model: PlatformModel, step: float = 1e-4) -> tuple[np.ndarray, np.
     loads = still.prescribed_motion_loads(np.zeros(13), motion, np.zeros((13, 6)), np.zeros((13, 6)))
     wrench = loads[:, rows].sum(axis=1)
     return wrench[12], -(wrench[0:12:2] - wrench[1:12:2]).T / (2 * step)
-
-
-def restoring_matrix(model: PlatformModel) -> np.ndarray:
-    """The 6x6 restoring matrix at rest (``restoring``)."""
-    return restoring(model)[1]
 
 
 def static_offset(model: PlatformModel, rotor: TurbineOnPlatform) -> np.ndarray:
