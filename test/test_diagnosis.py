@@ -52,7 +52,8 @@ def drift_bags(tmp_path_factory, platform):
 def test_diagnose_names_slow_drift_and_closes_the_blind_gap(drift_bags, tmp_path):
     out = tmp_path / "report"
     result = fowt_sim("diagnose", "--measured", str(drift_bags["lc5.2"]), str(drift_bags["lc5.3"]),
-                      "--blind", str(drift_bags["lc6.4"]), "--effects", *CANDIDATES, "--workers", "2", "-o", str(out))
+                      "--blind", str(drift_bags["lc6.4"]), "--effects", *CANDIDATES, "--max-evaluations", "2",
+                      "--workers", "2", "-o", str(out))
     assert result.returncode == 0, result.stderr
     data = json.loads((out / "diagnosis.json").read_text())
     assert data["verdict"] == "explained" and data["chosen"] == "slow_drift", result.stdout
