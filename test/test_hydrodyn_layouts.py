@@ -40,6 +40,7 @@ def test_deck_with_one_cross_section_table_imports_as_its_newer_version(tmp_path
     assert documents[0] == documents[1]
 
 
+@pytest.mark.slow
 def test_deck_of_the_openfast3_layout_reads_field_by_field():
     """The OC3 tripod's deck (environment section, four axial columns, no Cb, eight member
     columns): every table read in step, with the values the older layout meant."""
