@@ -96,8 +96,8 @@ def rotor_from_windio(path: Path, rhub_m: float, n_span: int = 30) -> tuple[dict
     for foil in d["airfoils"]:
         polar = foil["polars"][0]["re_sets"][0]
         alpha = np.array(polar["cl"]["grid"], dtype=float)
-        data = np.column_stack([alpha, polar["cl"]["values"], np.interp(alpha, polar["cd"]["grid"], polar["cd"]["values"]),
-                                np.interp(alpha, polar["cm"]["grid"], polar["cm"]["values"])])
+        cd, cm = (np.interp(alpha, polar[k]["grid"], polar[k]["values"]) for k in ("cd", "cm"))
+        data = np.column_stack([alpha, polar["cl"]["values"], cd, cm])
         airfoils.append({"name": foil["name"], "relative_thickness": float(foil["rthick"]),
                          "data": data.tolist()})
     return raft_blade, airfoils
