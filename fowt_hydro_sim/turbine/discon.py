@@ -11,10 +11,18 @@ The library keeps its state in globals: one controller per library per process.
 """
 from __future__ import annotations
 
+import contextlib
 import ctypes
+import logging
+import os
+import sys
+import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
+
+log = logging.getLogger(__name__)
 
 SWAP_SIZE = 500
 MESSAGE_SIZE = 1000
@@ -80,7 +88,8 @@ class Discon:
         s[OUTNAME_LENGTH], s[51] = len(self._outname), MESSAGE_SIZE // 2
         s[STATUS] = 0
         self.finished = False  # the last call (status -1) made: the library closed its files
-        self._call("starting")
+        with _standard_output_logged(f"{self.name} at start-up"):  # (ROSCO's banner: not the command's output)
+            self._call("starting")
 
     @property
     def message(self) -> str:
@@ -118,3 +127,24 @@ class Discon:
             self.swap[STATUS] = -1
             self.finished = True
             self._call(f"finishing at t = {float(self.swap[TIME_S]):.3f} s")
+
+
+@contextlib.contextmanager
+def _standard_output_logged(source: str) -> Iterator[None]:
+    """What a library writes on the process's standard output (file descriptor 1) inside the
+    block goes to the log instead: its lines that say error or warning as a warning, the rest
+    (a banner) at debug level."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with tempfile.TemporaryFile() as captured:
+        os.dup2(captured.fileno(), 1)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
+            captured.seek(0)
+            for line in captured.read().decode(errors="replace").splitlines():
+                if line.strip():
+                    alarm = any(word in line.lower() for word in ("error", "warning"))
+                    log.log(logging.WARNING if alarm else logging.DEBUG, f"{source}: {line.strip()}")
