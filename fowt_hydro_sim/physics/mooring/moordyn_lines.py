@@ -13,8 +13,8 @@ OpenFAST's glue code extrapolates a module's outputs. At the committed time itse
 committed forces are used.
 
 MoorDyn reads a copy of the file with its OUTPUTS list emptied (``without_outputs``: nothing
-reads MoorDyn's output files, and writing them at every step costs about a fifth of MoorDyn's
-own time); what it still writes goes into a temporary folder, removed with the object.
+reads MoorDyn's channel files, which grow by a row at every step for as long as a node runs);
+what it still writes goes into a temporary folder, removed with the object.
 MoorDyn-C prints its progress to the process's standard output at every
 step; that output is discarded (standard output is redirected while MoorDyn steps). What it
 writes while reading the file goes to the log at debug level; after that its verbosity is
