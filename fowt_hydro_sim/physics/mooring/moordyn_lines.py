@@ -229,9 +229,9 @@ class MoorDynLines:
             velocity = (x - self._x) / dt
             started, started_cpu = time.perf_counter(), time.process_time()
             try:
-                with _redirected(self._null, self._capture):
-                    moordyn.Step(self._system, self._x.tolist(), velocity.tolist(), self._time, dt)
-                forces = np.array([moordyn.GetPointForce(p) for p in self._points], dtype=float)
+                with _redirected(self._null, self._capture):  # Step returns the coupled points' forces
+                    forces = np.array(moordyn.Step(self._system, self._x.tolist(), velocity.tolist(), self._time,
+                                                   dt), dtype=float).reshape(-1, 3)
             except Exception:
                 raise InputError(f"{self.file}: MoorDyn failed at t = {self._time:g} s ({self._error()})") from None
             finally:
