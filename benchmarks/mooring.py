@@ -12,12 +12,23 @@ Prints:
 - the lines' damping: free surge decays from 10 m with ``moorpy`` (quasi-static: no line
   damping) and ``moordyn`` (line drag and inertia), each fitted over its first cycles
   (``studies.simulate.fit_free_decay``), and the difference in % of critical.
-Run: python benchmarks/mooring.py [--duration S] [--repeats N]
+- ``--moordyn``: MoorDyn's cost on VolturnUS-S (its own hull and the lines of its deck), for
+  the deck's ``dtM`` and ``NumSegs`` and coarser ones: (a) MoorDyn-C's own ``Step`` calls
+  alone, replaying the fairlead motion of (c) through a bare MoorDyn system; (b) our coupling
+  (the stepwise loop, the compiled model, the kinematics and ctypes calls: (c) less MoorDyn's
+  steps inside it); (c) the whole model with ``moordyn`` (lc5.3, dt 0.05 s), each as x real
+  time on CPU time of one core, with the load average; then each coarser deck's accuracy
+  against the deck's on a free surge decay from 10 m (largest surge and fairlead tension
+  differences, fitted damping).
+Run: python benchmarks/mooring.py [--duration S] [--repeats N] [--moordyn]
 """
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import os
+import re
+import tempfile
 import time
 from pathlib import Path
 
@@ -111,11 +122,113 @@ def coupling_and_damping(duration_s: float) -> None:
     print(f"the lines' own damping (moordyn - moorpy): {100 * extra:.2f} % of critical")
 
 
+def deck_variant(folder: Path, dt_m: float, segments: int) -> Path:
+    """The VolturnUS-S deck with MoorDyn's time step ``dt_m`` and each line's ``segments``."""
+    text = LINES.read_text()
+    text = re.sub(r"^\S+(\s+dtM\b)", f"{dt_m:g}\\1", text, flags=re.M)
+    text = re.sub(r"^(\d+\s+main\s+\d+\s+\d+\s+\S+\s+)\d+", rf"\g<1>{segments}", text, flags=re.M)
+    path = folder / f"lines_dtM{dt_m:g}_segs{segments}.dat"
+    path.write_text(text)
+    return path
+
+
+def volturnus(file: Path):
+    """VolturnUS-S moored by the lines of ``file``."""
+    p = load_platform("volturnus_s")
+    return dataclasses.replace(p, mooring=dataclasses.replace(p.mooring, file=str(file)))
+
+
+def moordyn_alone(file: Path, fairleads: np.ndarray, time_s: np.ndarray, motion: np.ndarray) -> float:
+    """CPU seconds of MoorDyn-C's own Step calls (fairleads (n, 3) in the body frame) replaying
+    the platform motion (n, 6) at
+    ``time_s`` (the fairleads on a straight line between rows, as the coupling moves them)."""
+    import moordyn
+
+    from fowt_hydro_sim.physics.mooring.moordyn_file import without_outputs
+    from fowt_hydro_sim.physics.mooring.moordyn_lines import _fairlead_kinematics, _redirected
+
+    n = len(fairleads)
+    x, v, arms = np.empty((len(motion), 3 * n)), np.empty(3 * n), np.empty((n, 3))
+    for k, m in enumerate(motion):
+        _fairlead_kinematics(np.concatenate([m, np.zeros(6)]), fairleads, x[k], v, arms)
+    x_list = x.tolist()
+    v_list = (np.diff(x, axis=0) / np.diff(time_s)[:, None]).tolist()
+    dt = np.diff(time_s).tolist()
+    with tempfile.TemporaryDirectory() as folder:
+        copy = Path(folder) / file.name
+        copy.write_text(file.read_text())
+        without_outputs(copy)
+        null = os.open(os.devnull, os.O_WRONLY)
+        try:
+            with _redirected(null, null):
+                system = moordyn.Create(str(copy))
+                moordyn.SetVerbosity(system, moordyn.LEVEL_ERR)
+                moordyn.Init(system, x_list[0], [0.0] * (3 * n))
+                start = time.process_time()
+                for k in range(len(dt)):
+                    moordyn.Step(system, x_list[k], v_list[k], float(time_s[k]), dt[k])
+                used = time.process_time() - start
+                moordyn.Close(system)
+        finally:
+            os.close(null)
+    return used
+
+
+def moordyn_cost(duration_s: float, decks: list[tuple[float, int]]) -> None:
+    """(a) MoorDyn alone, (b) our coupling, (c) the whole model, per deck variant."""
+    waves = synthesize(load_case("lc5.3").sea_state, 3600.0)
+    with tempfile.TemporaryDirectory() as folder:
+        for dt_m, segments in decks:
+            file = deck_variant(Path(folder), dt_m, segments)
+            model = PlatformModel(volturnus(file), waves, mooring_model="moordyn")
+            model.run(1.0)  # compiled, blocks made
+            lines = model.mooring_lines
+            inside = lines.moordyn_cpu_s
+            start = time.process_time()
+            result = model.run(duration_s, 0.05)
+            whole = time.process_time() - start
+            inside = lines.moordyn_cpu_s - inside
+            alone = moordyn_alone(file, lines.fairleads_m, result.time_s, result.motion)
+            load = os.getloadavg()[0]
+            print(f"moordyn dtM {dt_m:g} s, {segments} segments/line: (a) MoorDyn alone {duration_s / alone:5.1f}x "
+                  f"({alone:.2f} s CPU for {duration_s:g} s); (b) our coupling {duration_s / (whole - inside):5.0f}x "
+                  f"({whole - inside:.2f} s); (c) whole model {duration_s / whole:5.1f}x ({whole:.2f} s; MoorDyn "
+                  f"inside it {inside:.2f} s); load average {load:.2f} on {os.cpu_count()} cores", flush=True)
+
+
+def moordyn_accuracy(decks: list[tuple[float, int]], duration_s: float = 420.0) -> None:
+    """Free surge decays from 10 m on each deck variant against the first (the deck's own)."""
+    runs = {}
+    with tempfile.TemporaryDirectory() as folder:
+        for dt_m, segments in decks:
+            model = PlatformModel(volturnus(deck_variant(Path(folder), dt_m, segments)), None,
+                                  mooring_model="moordyn")
+            model.reset(motion=np.array([10.0, 0, 0, 0, 0, 0]))
+            result = model.run(duration_s, 0.05)
+            runs[(dt_m, segments)] = (result.time_s, result.motion[:, 0],
+                                      model.mooring_tensions(result.time_s, result.motion)[:, :, 0])
+    t, x0, tension0 = runs[decks[0]]
+    for (dt_m, segments), (_, x, tension) in runs.items():
+        fit = fit_free_decay(t, x)
+        print(f"decay from 10 m, dtM {dt_m:g} s, {segments} segments/line: period {fit['period_s']:.2f} s, damping "
+              f"{100 * fit['damping_ratio']:.3f} % of critical; against dtM {decks[0][0]:g} s, {decks[0][1]} "
+              f"segments: largest surge difference {np.abs(x - x0).max():.4f} m, largest fairlead tension "
+              f"difference {np.nanmax(np.abs(tension - tension0)) / 1e3:.2f} kN "
+              f"({100 * np.nanmax(np.abs(tension - tension0) / tension0):.3f} %)", flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--duration", type=float, default=600.0, help="simulated seconds of the speed runs")
     parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--moordyn", action="store_true",
+                        help="only MoorDyn's cost on VolturnUS-S over dtM and segments, and their accuracy")
     args = parser.parse_args()
+    if args.moordyn:
+        decks = [(0.001, 50), (0.002, 50), (0.004, 50), (0.001, 25)]
+        moordyn_cost(args.duration, decks)
+        moordyn_accuracy(decks)
+        return
     speed(args.duration, args.repeats)
     tabulation()
     coupling_and_damping(600.0)

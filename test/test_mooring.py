@@ -225,6 +225,21 @@ def test_a_moordyn_v1_file_gives_the_lines_of_its_v2_twin(model):
     assert np.allclose(v1.mooring_tensions(*rest), v2.mooring_tensions(*rest), rtol=1e-9)
 
 
+
+def test_moordyn_reads_the_file_without_its_output_channels(tmp_path):
+    """The copy MoorDyn steps holds every section of the file but the OUTPUTS channels (their
+    header and END kept): MoorDyn writes no channel file at its steps, and the sections after
+    OUTPUTS are kept."""
+    from fowt_hydro_sim.physics.mooring.moordyn_file import without_outputs
+    copy = tmp_path / "lines.dat"
+    shutil.copyfile(VOLTURNUS_LINES, copy)
+    text = without_outputs(copy).read_text().splitlines()
+    original = VOLTURNUS_LINES.read_text().splitlines()
+    outputs = next(i for i, line in enumerate(text) if "OUTPUTS" in line)
+    assert text[:outputs + 1] == original[:outputs + 1]
+    assert text[outputs + 1].strip() == "END" and "need this line" in text[outputs + 2]
+    assert not any(line.strip() in ("FairTen1", "Con1fx", "fx") for line in text)
+
 # ---------------------------------------------------------------------- references
 @pytest.mark.slow
 @pytest.mark.reference

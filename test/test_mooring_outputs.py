@@ -134,3 +134,43 @@ def test_a_run_file_chooses_the_mooring(tmp_path):
     (tmp_path / "bad.yaml").write_text("platform: windmoor12\nrun: {mooring: chain}\n")
     with pytest.raises(ConfigError, match="bad.yaml: run.mooring: must be one of spring, linear, moorpy, moordyn"):
         load_run_file(tmp_path / "bad.yaml")
+
+
+@pytest.mark.slow
+@pytest.mark.dask
+def test_a_sweep_row_and_bag_carry_the_tensions_simulate_gives_for_the_same_run(tmp_path):
+    """A sweep of two runs of VolturnUS-S on its catenary lines (moorpy), bags on: the row of
+    seed 1 holds the worst line's fairlead tension mean, STD, maximum and DEL that ``simulate``
+    of the same settings writes (its time series analysed as ``analyze`` does), and the run's
+    bag each line's tensions on its ``/platform/mooring/lineN/tension`` topic, as the node
+    records them."""
+    from fowt_hydro_sim.physics.config import RunConfig, load_case
+    from fowt_hydro_sim.rosbag.reader import Bag
+    from fowt_hydro_sim.studies import simulate
+    from fowt_hydro_sim.studies.sweep import RUNS_FILE, TENSION_METRICS, Sweep, Variant, read_rows, run_sweep
+    from fowt_hydro_sim.studies.tensions import tension_rows
+    from msg_adapters import topics
+
+    run = RunConfig(duration_s=40.0, mooring="moorpy")
+    sweep = Sweep(("lc5.3",), (1, 2), ("constant",), (Variant("lines", platform="volturnus_s"),), run,
+                  transient_s=10.0)
+    run_sweep(sweep, tmp_path / "sweep", workers=1, bags=True)
+    rows = {int(r["seed"]): r for r in read_rows(tmp_path / "sweep" / RUNS_FILE)}
+    assert set(rows) == {1, 2}
+
+    sea = dataclasses.replace(load_case("lc5.3").sea_state, seed=1)
+    single = dataclasses.replace(run, platform="volturnus_s")
+    simulate.simulate(single, *simulate.sea_state_waves(sea, 40.0, "lc5.3"), tmp_path / "single", transient_s=10.0)
+    columns = read_run(tmp_path / "single")
+    lines = {f"line{i}": columns[f"line{i}_fairlead_tension_n"] for i in (1, 2, 3)}
+    analysed = tension_rows("single", columns["time_s"], lines, 10.0)
+    for metric, key in zip(TENSION_METRICS, ("mean_n", "std_n", "max_n", "del_n")):
+        # (the CSV's significant digits move the rainflow ranges by parts in 1e8)
+        assert float(rows[1][metric]) == pytest.approx(max(r[key] for r in analysed), rel=1e-6), metric
+
+    bag = Bag(tmp_path / "sweep" / "bags" / "lc5.3_seed1_constant_lines")
+    for i in (1, 2, 3):
+        series = bag.series(topics.tension_topic(i))  # (the CSV holds tensions to 0.01 N)
+        assert np.allclose(series.time_s, columns["time_s"])
+        assert np.allclose(series.values[:, 0], columns[f"line{i}_fairlead_tension_n"], rtol=0, atol=0.01)
+        assert np.allclose(series.values[:, 1], columns[f"line{i}_anchor_tension_n"], rtol=0, atol=0.01)

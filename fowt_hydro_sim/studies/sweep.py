@@ -275,15 +275,19 @@ def run_one(key: dict, platform: Platform, run: RunConfig, transient_s: float, b
     built = time.perf_counter()
     result = model.run(settings.duration_s, output_interval_s=settings.output_interval_s)
     performance = performance_of(settings, start, built, time.perf_counter())
+    line_tensions = model.mooring_tensions(result.time_s, result.motion)
     if bag_folder is not None:
         write_bag(Path(bag_folder) / run_name(key), result, {"sweep_run": key, "waves": info,
-                                                             "run": asdict(settings), "platform": platform.name})
-    tensions = tension_metrics(result.time_s, model.mooring_tensions(result.time_s, result.motion), transient_s)
+                                                             "run": asdict(settings), "platform": platform.name},
+                  line_tensions)
+    tensions = tension_metrics(result.time_s, line_tensions, transient_s)
     return row_of(key, sea, statistics(result, transient_s), performance, tensions)
 
 
-def write_bag(path: Path, result: RunResult, config: dict) -> None:
-    """The run's outputs on the node's contract topics (as ``fowt-sim node`` records them)."""
+def write_bag(path: Path, result: RunResult, config: dict, tensions: np.ndarray | None = None) -> None:
+    """The run's outputs on the node's contract topics (as ``fowt-sim node`` records them),
+    with each mooring line's tensions (n, lines, 2: fairlead, anchor [N]) on its
+    ``/platform/mooring/lineN/tension`` topic when the platform has lines."""
     from fowt_hydro_sim.physics.loads import PUBLISHED, ROW, SUMMED
     from fowt_hydro_sim.rosbag.writer import BagWriter, qos_profiles
     from msg_adapters import cdr, topics
@@ -294,8 +298,13 @@ def write_bag(path: Path, result: RunResult, config: dict) -> None:
     samples = cdr.outputs(result.time_s, result.motion, result.velocity, result.acceleration,
                           result.loads[:, [ROW[c] for c in PUBLISHED]], total, result.wave_elevation_m,
                           "world", "platform")
+    outputs = list(topics.outputs(PUBLISHED).values())
+    if tensions is not None and tensions.shape[1]:
+        outputs += [(topics.tension_topic(i + 1), topics.VECTOR3_STAMPED) for i in range(tensions.shape[1])]
+        lines = zip(*map(cdr.messages, cdr.tension_blocks(result.time_s, tensions, "world")))
+        samples = [[*row, *line] for row, line in zip(samples, lines)]
     with BagWriter(path, config=config, overwrite=True) as bag:
-        channels = [bag.add_topic(topic, kind, qos_profiles()) for topic, kind in topics.outputs(PUBLISHED).values()]
+        channels = [bag.add_topic(topic, kind, qos_profiles()) for topic, kind in outputs]
         bag.write_rows((nanoseconds(t), zip(channels, messages))
                        for t, messages in zip(result.time_s.tolist(), samples))
 

@@ -119,6 +119,23 @@ def readable_copy(file: str | Path, folder: Path) -> Path:
     return copy
 
 
+def without_outputs(copy: Path) -> Path:
+    """The copy ``copy`` rewritten with its OUTPUTS section's channel list emptied (its header
+    and END kept): MoorDyn then writes no channels at its steps."""
+    lines = copy.read_text(errors="replace").splitlines()
+    out, skipping = [], False
+    for line in lines:
+        name = _section(line)
+        if skipping and (name is not None or line.strip().upper().startswith("END")):
+            skipping = False
+        if not skipping:
+            out.append(line)
+        if name is not None and name.startswith("OUTPUTS"):
+            skipping = True
+    copy.write_text("\n".join(out) + "\n")
+    return copy
+
+
 def read_lines(file: str | Path, depth_m: float) -> tuple[CatenaryLine, ...]:
     """The anchor-to-fairlead lines of a MoorDyn input file, read by MoorPy; InputError (one
     line naming the file) if MoorPy refuses it or a line does not run from a fixed point to a

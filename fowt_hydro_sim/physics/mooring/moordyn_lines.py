@@ -12,8 +12,10 @@ fairlead forces extrapolated linearly in time from the last two committed steps,
 OpenFAST's glue code extrapolates a module's outputs. At the committed time itself the
 committed forces are used.
 
-MoorDyn writes its output files (the input file's OUTPUTS) into a temporary folder, removed
-with the object. MoorDyn-C prints its progress to the process's standard output at every
+MoorDyn reads a copy of the file with its OUTPUTS list emptied (``without_outputs``: nothing
+reads MoorDyn's channel files, which grow by a row at every step for as long as a node runs);
+what it still writes goes into a temporary folder, removed with the object.
+MoorDyn-C prints its progress to the process's standard output at every
 step; that output is discarded (standard output is redirected while MoorDyn steps). What it
 writes while reading the file goes to the log at debug level; after that its verbosity is
 set to errors only, and its errors name the failure in the one-line message.
@@ -23,6 +25,7 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import logging
+import math
 import os
 import re
 import shutil
@@ -36,7 +39,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.errors import InputError
-from fowt_hydro_sim.physics.mooring.moordyn_file import readable_copy
+from fowt_hydro_sim.physics.mooring.moordyn_file import readable_copy, without_outputs
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 
 log = logging.getLogger(__name__)
@@ -44,28 +47,22 @@ _LIBC = ctypes.CDLL(None)
 
 
 @contextlib.contextmanager
-def _quiet(capture: Path | None = None, progress: bool = False) -> Iterator[None]:
-    """While MoorDyn runs: the process's standard output and standard error into ``capture``
-    (or /dev/null); with ``progress``, standard output (MoorDyn's progress) into /dev/null and
-    standard error into ``capture``."""
+def _redirected(out_fd: int, err_fd: int) -> Iterator[None]:
+    """While MoorDyn runs: the process's standard output into ``out_fd`` and standard error
+    into ``err_fd`` (descriptors held open by the caller: nothing is opened per step)."""
     sys.stdout.flush()
     sys.stderr.flush()
     _LIBC.fflush(None)
-    target = os.open(capture if capture is not None else os.devnull, os.O_WRONLY | os.O_CREAT | os.O_APPEND)
-    null = os.open(os.devnull, os.O_WRONLY) if progress else target
     saved = [os.dup(1), os.dup(2)]
     try:
-        os.dup2(null, 1)
-        os.dup2(target, 2)
+        os.dup2(out_fd, 1)
+        os.dup2(err_fd, 2)
         yield
     finally:
         _LIBC.fflush(None)
         for fd, old in zip((1, 2), saved):
             os.dup2(old, fd)
             os.close(old)
-        os.close(target)
-        if progress:
-            os.close(null)
 
 
 def _forward(text: str) -> None:
@@ -106,11 +103,13 @@ class MoorDynLines:
         self.file = Path(file)
         self._folder = Path(tempfile.mkdtemp(prefix="fowt_moordyn_"))
         self._system = None
+        self._log = self._folder / "moordyn_messages.txt"
+        self._capture = os.open(self._log, os.O_WRONLY | os.O_CREAT | os.O_APPEND)  # MoorDyn's messages
+        self._null = os.open(os.devnull, os.O_WRONLY)  # its progress, printed at every step
         try:
-            copy = readable_copy(self.file, self._folder)
-            self._log = self._folder / "moordyn_messages.txt"
+            copy = without_outputs(readable_copy(self.file, self._folder))
             try:
-                with _quiet(self._log):
+                with _redirected(self._capture, self._capture):
                     self._system = moordyn.Create(str(copy))
             except Exception:  # the wheel raises RuntimeError (or anything) on a file it refuses
                 raise InputError(f"{self.file}: MoorDyn cannot read it ({self._error()})") from None
@@ -158,9 +157,13 @@ class MoorDynLines:
     def close(self) -> None:
         """Free MoorDyn's system and remove its folder."""
         if self._system is not None:
-            with _quiet():
+            with _redirected(self._null, self._null):
                 self._md.Close(self._system)
             self._system = None
+        for fd in (self._capture, self._null):
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self._capture = self._null = -1
         shutil.rmtree(self._folder, ignore_errors=True)
 
     def __del__(self) -> None:
@@ -182,16 +185,16 @@ class MoorDynLines:
         import moordyn
 
         x, v, _ = self._kinematics(y)
-        self._log.write_text("")
+        os.ftruncate(self._capture, 0)
         try:
-            with _quiet(self._log):
+            with _redirected(self._capture, self._capture):
                 status = moordyn.Init(self._system, list(x), list(v))
         except Exception:
             status = -1
         if status != 0:
             raise InputError(f"{self.file}: MoorDyn's initial equilibrium failed ({self._error()})")
         log.debug("MoorDyn %s initialised: %s", self.file, self._messages().strip()[-2000:])
-        self._log.write_text("")
+        os.ftruncate(self._capture, 0)
         self._time, self._x, self._previous = t, x, None
         self._forces = np.array([moordyn.GetPointForce(p) for p in self._points], dtype=float)
         self.times, self._raw = [t], [self._raw_tensions()]
@@ -218,8 +221,7 @@ class MoorDynLines:
     def wrench(self, t: float, y: np.ndarray, commit: bool) -> np.ndarray:
         """The lines' wrench (world axes, about the reference point) at time t and state y;
         ``commit``: y is the state at the end of a step, MoorDyn advances to t."""
-        import moordyn
-
+        moordyn = self._md
         x, v, arms = self._kinematics(y)
         forces = self._forces
         if t > self._time + 1e-9 and commit:
@@ -227,18 +229,18 @@ class MoorDynLines:
             velocity = (x - self._x) / dt
             started, started_cpu = time.perf_counter(), time.process_time()
             try:
-                with _quiet(self._log, progress=True):
-                    moordyn.Step(self._system, list(self._x), list(velocity), self._time, dt)
-                forces = np.array([moordyn.GetPointForce(p) for p in self._points], dtype=float)
+                with _redirected(self._null, self._capture):  # Step returns the coupled points' forces
+                    forces = np.array(moordyn.Step(self._system, self._x.tolist(), velocity.tolist(), self._time,
+                                                   dt), dtype=float).reshape(-1, 3)
             except Exception:
                 raise InputError(f"{self.file}: MoorDyn failed at t = {self._time:g} s ({self._error()})") from None
             finally:
                 self.moordyn_s += time.perf_counter() - started
                 self.moordyn_cpu_s += time.process_time() - started_cpu
-            if self._log.stat().st_size:
+            if os.fstat(self._capture).st_size:
                 _forward(self._messages())
-                self._log.write_text("")
-            if not np.all(np.isfinite(forces)):
+                os.ftruncate(self._capture, 0)
+            if not math.isfinite(forces.sum()):
                 raise InputError(f"{self.file}: MoorDyn failed at t = {self._time:g} s (non-finite fairlead forces)")
             self._previous = (self._time, self._forces)
             self._time, self._x, self._forces = t, x, forces
