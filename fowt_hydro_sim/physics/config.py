@@ -9,7 +9,7 @@ and parameters from them.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -177,7 +177,8 @@ class Mooring:
     ``linear_mooring`` (a wrench at rest and a 6x6 stiffness); ``moorpy`` and ``moordyn``: the lines
     of the MoorDyn input file ``file`` (an absolute path; relative to the platform YAML in
     the YAML), its fairleads and anchors included. A platform may give both, so that a run
-    can choose (``RunConfig.mooring``)."""
+    can choose (``RunConfig.mooring``). ``moordyn_dt_s``: MoorDyn's internal time step for
+    the ``moordyn`` model, in place of the file's dtM (None: the file's)."""
 
     stiffness_n_m: float = 0.0
     pretension_n: float = 0.0
@@ -185,6 +186,7 @@ class Mooring:
     lines: tuple[MooringLine, ...] = ()
     model: str = "spring"
     file: str | None = None
+    moordyn_dt_s: float | None = None
 
     def chosen(self, model: str) -> Mooring:
         """This mooring with ``model`` in use ("" or None: as it is), or ConfigError if the
@@ -196,8 +198,7 @@ class Mooring:
             raise ConfigError("mooring spring: the platform has no spring lines (mooring.lines)")
         if model in LINE_FILE_MODELS and self.file is None:
             raise ConfigError(f"mooring {model}: the platform has no MoorDyn input file (mooring.file)")
-        return Mooring(self.stiffness_n_m, self.pretension_n, self.unstretched_length_m, self.lines, model,
-                       self.file)
+        return replace(self, model=model)
 
 
 @dataclass(frozen=True)
@@ -742,7 +743,8 @@ def _potential_flow_document(flow: PotentialFlow, bands: tuple[DragBand, ...]) -
 
 def _mooring(f: _Fields, folder: Path | None) -> Mooring:
     """The mooring section: ``model`` (default spring), ``file`` (a MoorDyn input file, relative
-    to ``folder``, the platform YAML's), and the spring fields (needed for model spring)."""
+    to ``folder``, the platform YAML's), ``moordyn_dt_s`` (optional), and the spring fields
+    (needed for model spring)."""
     model = f.text("model", "spring", MOORING_MODELS)
     file = None
     if f.data.get("file") is not None:
@@ -752,6 +754,7 @@ def _mooring(f: _Fields, folder: Path | None) -> Mooring:
             raise ConfigError(f"{f.at('file')}: {path}: no such file")
         file = str(path.resolve())
     f.used.add("file")
+    moordyn_dt_s = f.optional_number("moordyn_dt_s", positive=True)
     spring = model == "spring" or "lines" in f.data
     lines = []
     for line in f.items("lines") if spring else ():
@@ -760,7 +763,7 @@ def _mooring(f: _Fields, folder: Path | None) -> Mooring:
     mooring = Mooring(f.number("stiffness_n_m", non_negative=True) if spring else 0.0,
                       f.number("pretension_n", non_negative=True) if spring else 0.0,
                       f.number("unstretched_length_m", positive=True) if spring else 0.0,
-                      tuple(lines), model, file)
+                      tuple(lines), model, file, moordyn_dt_s)
     f.finish()
     if model in LINE_FILE_MODELS and file is None:
         raise ConfigError(f"{f.at('file')}: missing (mooring model {model} reads a MoorDyn input file)")
@@ -907,6 +910,8 @@ def _mooring_document(mooring: Mooring) -> dict:
         out["model"] = mooring.model
     if mooring.file is not None:
         out["file"] = mooring.file
+    if mooring.moordyn_dt_s is not None:
+        out["moordyn_dt_s"] = mooring.moordyn_dt_s
     if mooring.lines:
         out.update({"stiffness_n_m": mooring.stiffness_n_m, "pretension_n": mooring.pretension_n,
                     "unstretched_length_m": mooring.unstretched_length_m,

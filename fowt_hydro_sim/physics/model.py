@@ -169,7 +169,7 @@ class PlatformModel:
         self.platform = platform
         self.mooring_lines: MoorDynLines | None = None
         if platform.mooring.model == "moordyn":
-            self.mooring_lines = MoorDynLines(platform.mooring.file)
+            self.mooring_lines = MoorDynLines(platform.mooring.file, platform.mooring.moordyn_dt_s)
         self.waves = waves
         self.dt_s = float(dt_s)
         self.drag_model = drag_model

@@ -136,6 +136,25 @@ def without_outputs(copy: Path) -> Path:
     return copy
 
 
+def with_time_step(copy: Path, dt_s: float) -> Path:
+    """The copy ``copy`` (v2 layout) rewritten with MoorDyn's internal time step dtM set to
+    ``dt_s``: its OPTIONS line replaced, or one added at the top of the OPTIONS section."""
+    lines = copy.read_text(errors="replace").splitlines()
+    option = f"{dt_s!r}    dtM       - time step to use in mooring integration (s)"
+    for i, line in enumerate(lines):
+        fields = line.split()
+        if len(fields) >= 2 and fields[1] == "dtM":
+            lines[i] = option
+            break
+    else:
+        options = [i for i, line in enumerate(lines) if "OPTIONS" in (_section(line) or "")]
+        if not options:
+            raise InputError(f"{copy.name}: no OPTIONS section to set MoorDyn's time step dtM in")
+        lines.insert(options[0] + 1, option)
+    copy.write_text("\n".join(lines) + "\n")
+    return copy
+
+
 def read_lines(file: str | Path, depth_m: float) -> tuple[CatenaryLine, ...]:
     """The anchor-to-fairlead lines of a MoorDyn input file, read by MoorPy; InputError (one
     line naming the file) if MoorPy refuses it or a line does not run from a fixed point to a

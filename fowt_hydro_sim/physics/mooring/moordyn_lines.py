@@ -12,7 +12,8 @@ fairlead forces extrapolated linearly in time from the last two committed steps,
 OpenFAST's glue code extrapolates a module's outputs. At the committed time itself the
 committed forces are used.
 
-MoorDyn reads a copy of the file with its OUTPUTS list emptied (``without_outputs``: nothing
+MoorDyn reads a copy of the file (its dtM replaced when a time step is given: the platform's
+``mooring.moordyn_dt_s``) with its OUTPUTS list emptied (``without_outputs``: nothing
 reads MoorDyn's channel files, which grow by a row at every step for as long as a node runs);
 what it still writes goes into a temporary folder, removed with the object.
 MoorDyn-C prints its progress to the process's standard output at every
@@ -39,7 +40,7 @@ import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.errors import InputError
-from fowt_hydro_sim.physics.mooring.moordyn_file import readable_copy, without_outputs
+from fowt_hydro_sim.physics.mooring.moordyn_file import readable_copy, with_time_step, without_outputs
 from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 
 log = logging.getLogger(__name__)
@@ -96,7 +97,8 @@ class MoorDynLines:
     """MoorDyn's lines of one input file, their fairleads on the platform (the file's coupled or
     vessel points: body frame, relative to the reference point at rest)."""
 
-    def __init__(self, file: str | Path):
+    def __init__(self, file: str | Path, dt_s: float | None = None):
+        """``dt_s``: MoorDyn's internal time step in place of the file's dtM (None: the file's)."""
         import moordyn
 
         self._md = moordyn  # held: closing at interpreter exit imports nothing
@@ -108,6 +110,8 @@ class MoorDynLines:
         self._null = os.open(os.devnull, os.O_WRONLY)  # its progress, printed at every step
         try:
             copy = without_outputs(readable_copy(self.file, self._folder))
+            if dt_s is not None:
+                with_time_step(copy, dt_s)
             try:
                 with _redirected(self._capture, self._capture):
                     self._system = moordyn.Create(str(copy))
