@@ -143,6 +143,9 @@ def test_list_defaults_are_printed_as_the_option_takes_them():
     text = " ".join(fowt_sim("load-cases", "--help").stdout.split())
     assert " ".join(STUDY) in text
     assert "(default: surge heave pitch)" in " ".join(fowt_sim("analyze", "--help").stdout.split())
+    for command in ("stability", "simulate"):  # an empty default is said, not left blank
+        text = " ".join(fowt_sim(command, "--help").stdout.split())
+        assert "(default )" not in text and "(default: empty)" in text, text
 
 
 @pytest.mark.slow

@@ -121,6 +121,8 @@ def _default_text(action: argparse.Action) -> str:
         return "required"
     if isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction)):
         return "default off" if action.default is False else "default on"
+    if action.default == "":
+        return "default: empty"
     return "default: none" if action.default is None else f"default {_words(action.default)}"
 
 

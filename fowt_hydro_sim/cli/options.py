@@ -22,7 +22,7 @@ def flag(name: str) -> str:
 def _help(item: Described, default: Any, note: str) -> str:
     s = item.setting
     extras = [f"default {default if not isinstance(default, tuple) else ' '.join(map(str, default))}"
-              if default is not None else "", s.range_text() if not s.choices else ""]
+              if default not in (None, "") else "", s.range_text() if not s.choices else ""]
     text = s.description + note
     extras = [e for e in extras if e]
     return text + (f" ({'; '.join(extras)})" if extras else "")
