@@ -22,6 +22,7 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.physics.loads import ROW
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.testing import REPO
+from fowt_hydro_sim.testing.decay import free_decay_periods
 from fowt_hydro_sim.testing.references import read_hydrodyn_out
 
 DRIVER = Path(__file__).parent / "data" / "oc4_semi" / "driver_excerpt.out"
@@ -84,19 +85,7 @@ SURGE_PERIOD_GAP = ("measured +7.0 %: the capytaine hull's low-frequency surge a
 def oc4_decays() -> dict[str, float]:
     """Free-decay periods of oc4_semi in still water about its own equilibrium: surge from +5 m
     (700 s), heave from +1 m (150 s), pitch from +2 deg (250 s)."""
-    from test_potential_flow_decay import decay_period, equilibrium
-
-    model = PlatformModel(load_platform("oc4_semi"), None, dt_s=0.05)
-    rest = equilibrium(model)
-    periods = {}
-    for name, dof, offset, duration in (("surge", 0, 5.0, 700.0), ("heave", 2, 1.0, 150.0),
-                                        ("pitch", 4, np.radians(2.0), 250.0)):
-        start = rest.copy()
-        start[dof] += offset
-        model.reset(motion=start)
-        result = model.run(duration)
-        periods[name] = decay_period(result.time_s, result.motion[:, dof] - rest[dof])
-    return periods
+    return free_decay_periods(load_platform("oc4_semi"), {"surge": 700.0, "heave": 150.0, "pitch": 250.0})
 
 
 @pytest.mark.slow

@@ -15,6 +15,8 @@ from fowt_hydro_sim.physics.config import LinearMooring, load_platform
 from fowt_hydro_sim.physics.hydro import wamit
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import WaveComponents
+from fowt_hydro_sim.testing import decay
+from fowt_hydro_sim.testing.decay import equilibrium
 
 LIN = Path(__file__).parent / "data" / "volturnus_s" / "lin_00.1.A.lin"
 MOORDYN = (Path(str(resources.files("fowt_hydro_sim.physics"))) / "data" / "platforms" / "volturnus_s"
@@ -72,24 +74,6 @@ def moorpy_mooring(offset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return system.bodyList[0].getForces(lines_only=True), system.getCoupledStiffness(lines_only=True)
 
 
-def equilibrium(model: PlatformModel) -> np.ndarray:
-    """The still-water pose where the model's loads balance (Newton on its prescribed-motion loads)."""
-    q, zero = np.zeros(6), np.zeros((1, 6))
-    total = lambda pose: model.prescribed_motion_loads(np.zeros(1), pose[None], zero, zero)[0].sum(axis=0)  # noqa: E731
-    for _ in range(4):
-        f = total(q)
-        jacobian = np.stack([(total(q + 1e-3 * np.eye(6)[j]) - f) / 1e-3 for j in range(6)], axis=1)
-        q = q - np.linalg.solve(jacobian, f)
-    return q
-
-
-def decay_period(time_s: np.ndarray, x: np.ndarray) -> float:
-    """The mean interval between up-crossings of zero."""
-    up = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0))
-    crossings = time_s[up] - x[up] * (time_s[up + 1] - time_s[up]) / (x[up + 1] - x[up])
-    return float(np.diff(crossings).mean())
-
-
 def lin_mooring_platform(platform):
     """The platform with its mooring linearised by MoorPy at the .lin's operating point (the
     force at rest kept at the undisplaced position's)."""
@@ -101,17 +85,7 @@ def lin_mooring_platform(platform):
 def free_decay_periods(platform) -> dict[str, float]:
     """Free-decay periods (still water, rotor absent from the loads): surge from +5 m (800 s),
     heave from +1 m (200 s), pitch from +2 deg (300 s), each about the model's own equilibrium."""
-    model = PlatformModel(platform, None, dt_s=0.05)
-    rest = equilibrium(model)
-    periods = {}
-    for name, dof, offset, duration in (("surge", 0, 5.0, 800.0), ("heave", 2, 1.0, 200.0),
-                                        ("pitch", 4, np.radians(2.0), 300.0)):
-        start = rest.copy()
-        start[dof] += offset
-        model.reset(motion=start)
-        result = model.run(duration)
-        periods[name] = decay_period(result.time_s, result.motion[:, dof] - rest[dof])
-    return periods
+    return decay.free_decay_periods(platform, {"surge": 800.0, "heave": 200.0, "pitch": 300.0})
 
 
 @pytest.fixture(scope="module")

@@ -13,12 +13,12 @@ from pathlib import Path
 import numpy as np
 
 from fowt_hydro_sim import __version__
-from fowt_hydro_sim.physics.config import ConfigError, RunConfig, load_platform
+from fowt_hydro_sim.physics.config import RunConfig, load_platform
 from fowt_hydro_sim.physics.waves.components import WaveComponents
 from fowt_hydro_sim.rosbag.reader import Bag
-from fowt_hydro_sim.studies.psd import default_transient
 from fowt_hydro_sim.studies.simulate import (
     MotionRecord,
+    checked_output,
     column_names,
     model_for,
     performance_of,
@@ -70,13 +70,7 @@ def simulate_coupled(run: RunConfig, turbine: TurbineSettings, waves: WaveCompon
     write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the summary (as
     ``studies.simulate.simulate``). ``initial_state`` None: the platform starts at its static
     offset under the initial thrust (``turbine.coupled.static_offset``)."""
-    output = Path(output)
-    if transient_s is None:
-        transient_s = default_transient(run.duration_s)
-    if not 0 <= transient_s < run.duration_s:
-        raise ConfigError(f"--transient: must be in [0, duration {run.duration_s:g} s), got {transient_s:g}")
-    if output.exists() and any(output.iterdir()) and not overwrite:
-        raise ConfigError(f"{output}: exists and is not empty (pass --overwrite to replace its files)")
+    output, transient_s = checked_output(output, run, transient_s, overwrite)
     platform = load_platform(run.platform)
     start = time.perf_counter()
     model = model_for(platform, run, waves)

@@ -138,12 +138,11 @@ def free_decay(result: RunResult | MotionRecord, initial_state: tuple[float, ...
     return fits
 
 
-def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, output: Path,
-             transient_s: float | None = None, overwrite: bool = False) -> dict:
-    """Run the model, write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the
-    summary; its statistics leave out the first ``transient_s`` seconds (None: ``TRANSIENT_S``,
-    as ``fowt-sim analyze`` does, or nothing of a run not longer than that). ``waves`` None is
-    still water."""
+def checked_output(output: Path | str, run: RunConfig, transient_s: float | None,
+                   overwrite: bool) -> tuple[Path, float]:
+    """A run's output folder and the transient its statistics leave out (None: the default,
+    ``default_transient``); ConfigError for a transient outside the run or a folder that holds
+    files without ``overwrite``."""
     output = Path(output)
     if transient_s is None:
         transient_s = default_transient(run.duration_s)
@@ -151,6 +150,16 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
         raise ConfigError(f"--transient: must be in [0, duration {run.duration_s:g} s), got {transient_s:g}")
     if output.exists() and any(output.iterdir()) and not overwrite:
         raise ConfigError(f"{output}: exists and is not empty (pass --overwrite to replace its files)")
+    return output, transient_s
+
+
+def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, output: Path,
+             transient_s: float | None = None, overwrite: bool = False) -> dict:
+    """Run the model, write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the
+    summary; its statistics leave out the first ``transient_s`` seconds (None: ``TRANSIENT_S``,
+    as ``fowt-sim analyze`` does, or nothing of a run not longer than that). ``waves`` None is
+    still water."""
+    output, transient_s = checked_output(output, run, transient_s, overwrite)
     platform = load_platform(run.platform)
     start = time.perf_counter()
     model = model_for(platform, run, waves)
