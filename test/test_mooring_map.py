@@ -22,7 +22,8 @@ VOLTURNUS_LINES = (Path(__file__).parents[1] / "fowt_hydro_sim" / "physics" / "d
 DEPTH = 200.0  # [m] the OpenFAST model's water depth (its SeaState deck), the MAP deck's "depth"
 SURGE = np.arange(-20.0, 21.0, 5.0)  # [m] the offset sweep
 STEPS = {0: 0.5, 2: 0.5, 4: 0.005}  # central-difference steps: surge, heave [m], pitch [rad]
-# Tolerances, fixed from what differs between the two decks before they were compared. Both
+# Tolerances, fixed from what differs between the two decks before they were compared (the
+# figures below are the estimates made then). Both
 # decks give the same chain (d 0.333 m, 685 kg/m, EA 3.27e9 N, 850 m, fairleads at 58 m radius,
 # 14 m deep). The MAP deck's anchors are 0.2 m further out (837.8 m against 837.6 m) and its
 # seabed friction CB 1.0 (none in the MoorDyn deck as MoorPy and MoorDyn read it) shortens the
@@ -100,6 +101,26 @@ def test_the_moorpy_model_gives_the_map_decks_pretension_stiffness_and_surge_res
         assert abs(stiff[dof] - theirs["stiffness"][dof]) / abs(theirs["stiffness"][dof]) < STIFFNESS_TOL, dof
     nonzero = SURGE != 0
     assert np.max(np.abs(surge - theirs["surge"])[nonzero] / np.abs(theirs["surge"][nonzero])) < SWEEP_TOL
+
+
+@pytest.mark.reference
+def test_the_moorpy_model_gives_the_map_decks_pretension_with_its_seabed_friction():
+    """MoorPy 1.2.1's System drops the MAP deck's seabed friction (CB 1.0); MoorPy's catenary
+    solves it when called directly: one MAP line at rest (anchor to fairlead 779.8 m across,
+    186 m up) with CB 1.0, as MAP++ solves it, against the project's moorpy model's fairlead
+    pretension, within the same 1.5 %."""
+    from moorpy.Catenary import catenary
+    line = read_map_deck(MAP_DECK, DEPTH)[0]
+    kind = line.line_type
+    weight = (kind.mass_kg_m - 1025.0 * np.pi / 4 * kind.diameter_m**2) * 9.80665
+    across = np.hypot(*(np.subtract(line.fairlead_m, line.anchor_m)[:2]))
+    up = line.fairlead_m[2] - line.anchor_m[2]
+    _, _, horizontal, vertical, _ = catenary(across, up, line.length_m, kind.ea_n, weight, CB=kind.cb, Tol=1e-6)
+    theirs = np.hypot(horizontal, vertical)
+    model = PlatformModel(load_platform("volturnus_s"), None, mooring_model="moorpy")
+    pretension = model.mooring_tensions(np.zeros(1), np.zeros((1, 6)))[0][:, 0]
+    LOG.info("MAP line with CB %s: pretension %.6g N; moorpy model %s N", kind.cb, theirs, pretension)
+    assert np.max(np.abs(pretension - theirs) / theirs) < PRETENSION_TOL
 
 
 @pytest.mark.slow

@@ -6,8 +6,9 @@ body frame, ``connect`` points; ``depth`` for the seabed), ``LINE PROPERTIES`` (
 unstretched length, anchor and fairlead node) and ``SOLVER OPTIONS``, whose ``repeat a1 a2 ...``
 copies every line turned about the vertical axis by each angle [deg]. :func:`read_map_deck`
 reads one; :func:`moorpy_system` builds the lines in a MoorPy ``System`` on one coupled body at
-the reference point (the fairleads attached to it), with each line type's CB as MoorPy's seabed
-friction.
+the reference point (the fairleads attached to it). MoorPy 1.2.1 solves them without seabed
+friction whatever CB the deck gives (its ``Line.staticSolve`` replaces the line's ``cb`` by the
+anchor's height above the seabed, zero for an anchor on it); MAP++ applies CB.
 """
 from __future__ import annotations
 
@@ -106,7 +107,8 @@ def read_map_deck(path: str | Path, depth_m: float) -> list[MapLine]:
 def moorpy_system(lines: list[MapLine], depth_m: float, rho: float = 1025.0, g: float = 9.80665):
     """A MoorPy ``System`` of ``lines`` on one coupled body at the reference point (at rest),
     initialised: each line from its anchor (end A) to its fairlead (end B), its weight in water
-    ``(m - rho pi d^2 / 4) g``, its type's CB as seabed friction."""
+    ``(m - rho pi d^2 / 4) g``. The type's CB is handed to MoorPy, which (1.2.1) solves lines
+    with an anchor on the seabed without friction."""
     import moorpy as mp
 
     system = mp.System(depth=depth_m, rho=rho, g=g)
