@@ -103,24 +103,68 @@ def test_the_moorpy_model_gives_the_map_decks_pretension_stiffness_and_surge_res
     assert np.max(np.abs(surge - theirs["surge"])[nonzero] / np.abs(theirs["surge"][nonzero])) < SWEEP_TOL
 
 
-@pytest.mark.reference
-def test_the_moorpy_model_gives_the_map_decks_pretension_with_its_seabed_friction():
-    """MoorPy 1.2.1's System drops the MAP deck's seabed friction (CB 1.0); MoorPy's catenary
-    solves it when called directly: one MAP line at rest (anchor to fairlead 779.8 m across,
-    186 m up) with CB 1.0, as MAP++ solves it, against the project's moorpy model's fairlead
-    pretension, within the same 1.5 %."""
+def friction_wrench(motion: np.ndarray, cb: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The MAP deck's lines with their seabed friction (CB, or ``cb`` if given), as MAP++ solves
+    them, with the platform at ``motion``: MoorPy's catenary called directly for each line
+    (MoorPy 1.2.1's System drops CB). The lines' wrench [N, N m] about the reference point and
+    the fairlead tensions [N]."""
     from moorpy.Catenary import catenary
-    line = read_map_deck(MAP_DECK, DEPTH)[0]
-    kind = line.line_type
-    weight = (kind.mass_kg_m - 1025.0 * np.pi / 4 * kind.diameter_m**2) * 9.80665
-    across = np.hypot(*(np.subtract(line.fairlead_m, line.anchor_m)[:2]))
-    up = line.fairlead_m[2] - line.anchor_m[2]
-    _, _, horizontal, vertical, _ = catenary(across, up, line.length_m, kind.ea_n, weight, CB=kind.cb, Tol=1e-6)
-    theirs = np.hypot(horizontal, vertical)
+
+    from fowt_hydro_sim.frames import rotation_matrix
+    wrench, tensions = np.zeros(6), []
+    for line in read_map_deck(MAP_DECK, DEPTH):
+        kind = line.line_type
+        weight = (kind.mass_kg_m - 1025.0 * np.pi / 4 * kind.diameter_m**2) * 9.80665
+        arm = rotation_matrix(*motion[3:6]) @ np.array(line.fairlead_m)
+        span = np.array(line.anchor_m) - (motion[:3] + arm)
+        across = np.hypot(span[0], span[1])
+        _, _, horizontal, vertical, _ = catenary(across, -span[2], line.length_m, kind.ea_n, weight,
+                                                 CB=kind.cb if cb is None else cb,
+                                                 Tol=1e-8)
+        # catenary's end-B forces in the line's plane, x from the anchor to the fairlead
+        force = np.array([*(-horizontal * span[:2] / across), vertical])
+        wrench += np.concatenate([force, np.cross(arm, force)])
+        tensions.append(np.hypot(horizontal, vertical))
+    return wrench, np.array(tensions)
+
+
+def test_the_lines_solved_one_by_one_without_friction_give_moorpys_system(map_figures):
+    """``friction_wrench`` with CB 0 against MoorPy's System on the same deck (which drops CB):
+    the same pretension, stiffness and surge force within 0.05 %, so its directions and signs
+    are MoorPy's."""
+    assert np.allclose(friction_wrench(np.zeros(6), cb=0.0)[1], map_figures["pretension"], rtol=5e-4)
+    stiff = stiffness(lambda motion: friction_wrench(motion, cb=0.0)[0])
+    assert all(abs(stiff[dof] / map_figures["stiffness"][dof] - 1) < 5e-4 for dof in STEPS)
+    surge = np.array([-friction_wrench(np.array([x, 0, 0, 0, 0, 0]), cb=0.0)[0][0] for x in SURGE])
+    assert np.allclose(surge, map_figures["surge"], rtol=5e-4, atol=1.0)
+
+
+@pytest.mark.reference
+def test_the_moorpy_model_gives_the_map_decks_figures_with_its_seabed_friction():
+    """MoorPy 1.2.1's System drops the MAP deck's seabed friction (CB 1.0); its catenary solves
+    it when called directly (``friction_wrench``), as MAP++ does. Against that, the project's
+    moorpy model: pretension within 1.5 %, surge, heave and pitch stiffness and the surge
+    restoring force at -20 .. 20 m within 5 % (the same tolerances)."""
     model = PlatformModel(load_platform("volturnus_s"), None, mooring_model="moorpy")
+
+    def wrench(motion: np.ndarray) -> np.ndarray:
+        model.reset(motion=motion)
+        return np.array(model.loads[ROW["mooring"]], dtype=float)
+
     pretension = model.mooring_tensions(np.zeros(1), np.zeros((1, 6)))[0][:, 0]
-    LOG.info("MAP line with CB %s: pretension %.6g N; moorpy model %s N", kind.cb, theirs, pretension)
-    assert np.max(np.abs(pretension - theirs) / theirs) < PRETENSION_TOL
+    stiff = stiffness(wrench)
+    surge = np.array([-wrench(np.array([x, 0, 0, 0, 0, 0]))[0] for x in SURGE])
+    model.reset()
+    theirs_pretension = friction_wrench(np.zeros(6))[1]
+    theirs_stiff = stiffness(lambda motion: friction_wrench(motion)[0])
+    theirs_surge = np.array([-friction_wrench(np.array([x, 0, 0, 0, 0, 0]))[0][0] for x in SURGE])
+    LOG.info("MAP deck with CB (catenary): pretension %s N, stiffness %s, surge force %s N",
+             theirs_pretension, theirs_stiff, theirs_surge)
+    assert np.max(np.abs(pretension - theirs_pretension.mean()) / theirs_pretension.mean()) < PRETENSION_TOL
+    for dof in STEPS:
+        assert abs(stiff[dof] - theirs_stiff[dof]) / abs(theirs_stiff[dof]) < STIFFNESS_TOL, dof
+    nonzero = SURGE != 0
+    assert np.max(np.abs(surge - theirs_surge)[nonzero] / np.abs(theirs_surge[nonzero])) < SWEEP_TOL
 
 
 @pytest.mark.slow
