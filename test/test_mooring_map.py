@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.physics.loads import ROW
 from fowt_hydro_sim.physics.model import PlatformModel
@@ -74,6 +75,19 @@ def test_the_map_deck_reads_three_lines_turned_by_its_repeat_angles():
                        [[-58.0, 0.0, -14.0], [29.0, -50.229, -14.0], [29.0, 50.229, -14.0]], atol=1e-3)
     assert all(line.anchor_m[2] == -DEPTH and line.length_m == 850.0 and line.line_type.cb == 1.0
                for line in lines)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda text: text.replace("2   Vessel", "2   Connect"), "node 2 is of type Connect; only fix and vessel"),
+    (lambda text: text.replace("LINE PROPERTIES", "LINE THINGS"),
+     "not a MAP\\+\\+ deck \\(no LINE PROPERTIES section\\)"),
+    (lambda text: text.replace("850.00", "long"), "MAP\\+\\+ deck not readable \\(ValueError"),
+])
+def test_a_map_deck_that_cannot_be_read_is_refused_in_one_line_naming_the_file(tmp_path, edit, message):
+    deck = tmp_path / "edited_MAP.dat"
+    deck.write_text(edit(MAP_DECK.read_text()))
+    with pytest.raises(InputError, match=f"^edited_MAP.dat: {message}"):
+        read_map_deck(deck, DEPTH)
 
 
 @pytest.mark.reference

@@ -96,6 +96,8 @@ def read_map_deck(path: str | Path, depth_m: float) -> list[MapLine]:
             if (kind_a, kind_b) != ("fix", "vessel"):
                 raise InputError(f"{path.name}: line {row[0]} does not run from a fix node to a vessel node")
             lines.append(MapLine(types[row[1]], float(row[2]), anchor, fairlead))
+    except InputError:
+        raise
     except (IndexError, KeyError, ValueError) as error:
         raise InputError(f"{path.name}: MAP++ deck not readable ({type(error).__name__}: {error})") from None
     angles = [float(value) for row in sections.get("SOLVER OPTIONS", []) if row[0].lower() == "repeat"
