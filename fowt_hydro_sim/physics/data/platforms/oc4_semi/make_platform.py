@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from fowt_hydro_sim.physics.mooring.map_file import MapLine, MapLineType, moorpy_system, turned
+
 HERE = Path(__file__).parent
 RHO, G, DEPTH = 1025.0, 9.80665, 200.0
 # ElastoDyn deck (NRELOffshrBsline5MW_OC4DeepCwindSemi_ElastoDyn.dat)
@@ -114,28 +116,13 @@ def mass_properties() -> tuple[float, np.ndarray, np.ndarray]:
     return mass, cog, inertia
 
 
-def _turned(point: tuple[float, float, float], angle_deg: float) -> tuple[float, float, float]:
-    """``point`` turned about the z axis by ``angle_deg``."""
-    c, s = math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg))
-    return c * point[0] - s * point[1], s * point[0] + c * point[1], point[2]
-
-
 def mooring() -> tuple[np.ndarray, np.ndarray]:
     """The three lines in MoorPy about the undisplaced platform: their wrench and 6x6 stiffness."""
-    import moorpy as mp
-
-    system = mp.System(depth=DEPTH, rho=RHO, g=G)
-    system.addBody(-1, np.zeros(6))
-    weight = (LINE_MASS - RHO * math.pi / 4 * LINE_D**2) * G
-    system.lineTypes["main"] = {"name": "main", "d_vol": LINE_D, "m": LINE_MASS, "EA": LINE_EA, "w": weight,
-                                "input_d": LINE_D, "MBL": 0, "EI": 0, "Cd": 0, "Ca": 0, "CdAx": 0, "CaAx": 0}
-    for angle in (0.0, 240.0, 120.0):
-        anchor, fairlead = (_turned(p, angle) for p in (ANCHOR, FAIRLEAD))
-        system.addPoint(1, anchor)
-        system.addPoint(1, fairlead)
-        system.bodyList[0].attachPoint(len(system.pointList), fairlead)
-        system.addLine(LINE_LENGTH, "main", pointA=len(system.pointList) - 1, pointB=len(system.pointList))
-    system.initialize()
+    main_type = MapLineType("main", LINE_D, LINE_MASS, LINE_EA, 0.0)
+    line = MapLine(main_type, LINE_LENGTH, ANCHOR, FAIRLEAD)
+    system = moorpy_system([MapLine(main_type, LINE_LENGTH, turned(line.anchor_m, angle),
+                                    turned(line.fairlead_m, angle)) for angle in (0.0, 240.0, 120.0)],
+                           DEPTH, RHO, G)
     system.solveEquilibrium()
     return system.bodyList[0].getForces(lines_only=True), system.getCoupledStiffness(lines_only=True)
 
