@@ -27,6 +27,7 @@ import msg_adapters as adapt  # noqa: E402
 from fowt_hydro_sim.physics.config import HydroOptions, load_case, load_platform  # noqa: E402
 from fowt_hydro_sim.physics.model import PlatformModel  # noqa: E402
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize  # noqa: E402
+from fowt_hydro_sim.rosbag.reader import Bag  # noqa: E402
 from fowt_hydro_sim.testing.ros import Listener, command_line, finish, start  # noqa: E402
 from msg_adapters import topics  # noqa: E402
 
@@ -344,6 +345,29 @@ def test_bad_controller_parameters_end_with_one_line(args: dict, message: str):
     controller = start("controller", **args)
     output = finish(controller, 60)
     assert controller.returncode == 2 and message in output and "Traceback" not in output, output
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("second_s", [0.1, 0.15, 0.2])
+def test_a_second_ctrl_c_during_the_clean_up_does_not_cut_it(tmp_path, second_s: float):
+    """Ctrl-C at a terminal reaches every process of the group, and a parent that stops its
+    children (closed-loop) sends its own: a second SIGINT while the node closes its bag. The node
+    still exits 0 with its bag closed and readable. Before, it could abort mid-clean-up (exit
+    -6, or -2) about one time in four."""
+    listener = Listener({"/clock": Clock})
+    node = start("node", real_time_factor=0.0, duration_s=600.0, drag_model="constant", record=str(tmp_path / "bag"))
+    try:
+        assert listener.wait_for(lambda: any(adapt.seconds(m.clock) > 1.0 for m in listener.messages["/clock"]),
+                                 60.0)
+        node.send_signal(signal.SIGINT)
+        time.sleep(second_s)
+        if node.poll() is None:
+            node.send_signal(signal.SIGINT)
+    finally:
+        output = finish(node, 60)
+        listener.close()
+    assert node.returncode == 0 and "stepping ended" in output, (node.returncode, output[-2000:])
+    assert Bag(tmp_path / "bag").motion().time_s[-1] > 1.0
 
 
 @pytest.mark.serial

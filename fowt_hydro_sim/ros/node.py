@@ -65,7 +65,7 @@ from fowt_hydro_sim.physics.wave_feed import WaveFeed
 from fowt_hydro_sim.physics.waves.components import repeat_period, synthesize
 from fowt_hydro_sim.ros import parameters
 from fowt_hydro_sim.ros.run_config import run_config
-from fowt_hydro_sim.ros.startup import init_ros
+from fowt_hydro_sim.ros.startup import ignore_stop_signals, init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.rosbag.writer import BagError, BagWriter, RecordingStopped
 from fowt_hydro_sim.settings import like, setting
@@ -739,6 +739,7 @@ def main(args: list[str] | None = None) -> int:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
+        ignore_stop_signals()
         node.stop()
         executor.shutdown(timeout_sec=1.0)
         node.destroy_node()

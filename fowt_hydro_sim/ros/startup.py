@@ -44,3 +44,12 @@ def init_ros(args: list[str] | None) -> None:
     # SIGINT too: a shell starting the node in the background (`&`) leaves SIGINT ignored
     for stop in (signal.SIGINT, signal.SIGTERM):
         signal.signal(stop, signal.default_int_handler)
+
+
+def ignore_stop_signals() -> None:
+    """SIGINT and SIGTERM ignored from here on: a node's clean-up after it was stopped (its
+    threads joined, its bag closed, each with a timeout) is not cut by a second signal, such
+    as the one a terminal's Ctrl-C sends to a whole process group and its parent then
+    forwards."""
+    for stop in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(stop, signal.SIG_IGN)

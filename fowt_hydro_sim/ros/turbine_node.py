@@ -24,7 +24,7 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 import msg_adapters as adapt
 from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.ros import parameters
-from fowt_hydro_sim.ros.startup import init_ros
+from fowt_hydro_sim.ros.startup import ignore_stop_signals, init_ros
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.turbine import settings
 from fowt_hydro_sim.turbine.coupled import STAMP_TOLERANCE_S, turbine_on_platform
@@ -133,6 +133,7 @@ def main(args: list[str] | None = None) -> int:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
+        ignore_stop_signals()
         copies = node.rotor.close(node.settings.rosco_debug_dir or None)
         if copies:
             log.info(f"ROSCO's debug files: {', '.join(map(str, copies))}")
