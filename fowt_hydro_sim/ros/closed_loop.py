@@ -236,7 +236,10 @@ def run(bag: str | Path, node: dict[str, Any], turbine: dict[str, Any], overwrit
         interrupted = True
     finally:
         main = threading.current_thread() is threading.main_thread()
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None  # a second Ctrl-C: no effect
+        stops: list[int] = []  # a Ctrl-C from here on: noted, no effect on the clean-up
+        previous = signal.signal(signal.SIGINT, lambda signum, _: stops.append(signum)) if main else None
+        time.sleep(0.05)  # a Ctrl-C already pending (its children may end first) is taken here: noted
+        interrupted = interrupted or bool(stops)
         try:
             for name in ("node", "turbine", "record"):
                 if name in processes:
