@@ -12,7 +12,6 @@ from pathlib import Path
 
 import numpy as np
 
-from fowt_hydro_sim import __version__
 from fowt_hydro_sim.physics.config import RunConfig, load_platform
 from fowt_hydro_sim.physics.waves.components import WaveComponents
 from fowt_hydro_sim.rosbag.reader import Bag
@@ -23,6 +22,7 @@ from fowt_hydro_sim.studies.simulate import (
     model_for,
     performance_of,
     statistics,
+    summary_head,
     summary_text,
     tension_statistics,
 )
@@ -87,16 +87,10 @@ def simulate_coupled(run: RunConfig, turbine: TurbineSettings, waves: WaveCompon
         rotor.close()
     performance = performance_of(run, start, built, time.perf_counter())
     summary = {
-        "software": {"name": "fowt_hydro_sim", "version": __version__},
-        "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
-        "mooring": model.platform.mooring.model,
-        "waves": wave_info,
+        **summary_head(run, model, waves, wave_info, initial_state),
         "turbine": {"name": rotor.turbine.name, "controller": "ROSCO", "controller_dt_s": rotor.model.dt_s,
                     "thrust_height_m": rotor.thrust_height_m,
                     "settings": {k: v for k, v in asdict(turbine).items() if k != "platform"}},
-        "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
-                "initial_state": list(initial_state), "wave_table_step_s": model.wave_table_step_s,
-                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
         "performance": performance,
         "statistics": statistics(record, transient_s),
         "turbine_statistics": channel_statistics(record.time_s, channels, transient_s),

@@ -153,6 +153,21 @@ def checked_output(output: Path | str, run: RunConfig, transient_s: float | None
     return output, transient_s
 
 
+def summary_head(run: RunConfig, model: PlatformModel, waves: WaveComponents | None, wave_info: dict,
+                 initial_state: tuple[float, ...]) -> dict:
+    """The first entries of a run's ``summary.json``: software, platform, drag model, hydro
+    options, mooring, waves and run settings."""
+    return {
+        "software": {"name": "fowt_hydro_sim", "version": __version__},
+        "platform": model.platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
+        "mooring": model.platform.mooring.model,
+        "waves": wave_info,
+        "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
+                "initial_state": list(initial_state), "wave_table_step_s": model.wave_table_step_s,
+                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
+    }
+
+
 def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, output: Path,
              transient_s: float | None = None, overwrite: bool = False) -> dict:
     """Run the model, write ``timeseries.csv`` and ``summary.json`` to ``output`` and return the
@@ -168,13 +183,7 @@ def simulate(run: RunConfig, waves: WaveComponents | None, wave_info: dict, outp
                               model.mooring_tensions, model.n_mooring_lines)
     performance = performance_of(run, start, built, time.perf_counter())
     summary = {
-        "software": {"name": "fowt_hydro_sim", "version": __version__},
-        "platform": platform.name, "drag_model": run.drag_model, "hydro_options": asdict(run.hydro_options),
-        "mooring": model.platform.mooring.model,
-        "waves": wave_info,
-        "run": {"dt_s": run.dt_s, "duration_s": run.duration_s, "output_interval_s": run.output_interval_s or run.dt_s,
-                "initial_state": list(run.initial_state), "wave_table_step_s": model.wave_table_step_s,
-                "n_wave_components": 0 if waves is None else int(waves.frequency_hz.size)},
+        **summary_head(run, model, waves, wave_info, run.initial_state),
         "performance": performance,
         "statistics": statistics(result, transient_s),
         "mooring_tensions": tension_statistics(result, transient_s),
