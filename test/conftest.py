@@ -12,6 +12,7 @@ need ROS (rclpy, the message packages and a middleware) are marked ``ros``, thos
 ROSCO's Python toolbox ``rosco``: without them installed they are skipped, unless
 FOWT_REQUIRE_ROS=1 (set by .ci/run), where a missing rclpy or toolbox fails the session.
 """
+import collections
 import importlib.util
 import os
 import subprocess
@@ -53,6 +54,12 @@ def pytest_configure(config):
 
 
 def pytest_collection_modifyitems(config, items):
+    # The files with the most slow tests first (a stable sort: each file's tests stay in order):
+    # with --no-loadscope-reorder, pytest-xdist hands whole files to its processes in this order,
+    # so the minutes-long files start early and the last ones are quick, which keeps both
+    # processes busy to the end (xdist's own order, by number of tests, left a long file last).
+    slow = collections.Counter(item.path for item in items if item.get_closest_marker("slow"))
+    items.sort(key=lambda item: -slow[item.path])
     for marker, (present, install) in NEEDS.items():
         if present:
             continue
