@@ -1,0 +1,123 @@
+"""The coupled turbine in sweeps and in ``analyze``: a system's sweep row is ``simulate
+--system`` of the same run; the turbine side's tower-base moment and DELs against closed
+forms; the steady start within ROSCO's limits."""
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fowt_hydro_sim.physics.config import RunConfig, SeaState
+from fowt_hydro_sim.studies.tensions import damage_equivalent_load
+from fowt_hydro_sim.studies.turbine_loads import TOWER_SN_SLOPE, AboveTowerBase, tower_base_moment
+
+SYSTEM = "iea15_volturnus_s"
+DOFS = (("surge", "m"), ("sway", "m"), ("heave", "m"), ("roll", "deg"), ("pitch", "deg"), ("yaw", "deg"))
+
+
+def read_table(path: Path) -> list[dict]:
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+@pytest.mark.slow
+@pytest.mark.dask
+@pytest.mark.rosco
+def test_a_system_sweep_row_is_simulate_of_the_same_run_and_resumes(tmp_path: Path):
+    """lc5.3 x winds 8, 18 m/s x seed 1, 60 s on a 1-worker LocalCluster: the 18 m/s row
+    against ``simulate --system`` of the same run (platform, turbine and tension statistics);
+    a rerun into the folder runs nothing."""
+    pytest.importorskip("rosco")
+    from fowt_hydro_sim.studies import simulate
+    from fowt_hydro_sim.studies.coupled_run import simulate_coupled
+    from fowt_hydro_sim.studies.sweep import RUNS_FILE, SUMMARY_FILE, Sweep, run_sweep, system_variants
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
+
+    sweep = Sweep(("lc5.3",), (1,), ("constant",), system_variants(SYSTEM), RunConfig(duration_s=60.0),
+                  transient_s=10.0, system=SYSTEM, wind_speeds_m_s=(8.0, 18.0))
+    outcome = run_sweep(sweep, tmp_path / "sweep", workers=1)
+    assert outcome["runs"] == outcome["new"] == 2
+    rows = read_table(tmp_path / "sweep" / RUNS_FILE)
+    assert [float(r["wind_speed_m_s"]) for r in rows] == [8.0, 18.0]
+    row = rows[1]
+
+    run = RunConfig(platform="volturnus_s", mooring="moorpy", duration_s=60.0)
+    sea = SeaState(float(row["hs_m"]), float(row["tp_s"]), float(row["gamma"]), seed=1)
+    summary = simulate_coupled(run, TurbineSettings(turbine="iea15_umaine", wind_speed_m_s=18.0),
+                               *simulate.sea_state_waves(sea, 60.0, "lc5.3"), tmp_path / "single", 10.0)
+    expected = {}
+    for name, unit in DOFS:
+        s = summary["statistics"][name]
+        expected.update({f"{name}_{k}_{unit}": s[k] for k in ("mean", "std", "min", "max")})
+    for channel, short, unit in (("rotor_speed_rad_s", "rotor_speed", "rad_s"),
+                                 ("blade_pitch_rad", "blade_pitch", "rad"),
+                                 ("generator_torque_nm", "generator_torque", "nm"),
+                                 ("generator_power_w", "generator_power", "w"), ("thrust_n", "thrust", "n")):
+        s = summary["turbine_statistics"][channel]
+        expected.update({f"{short}_{k}_{unit}": s[k] for k in ("mean", "std", "min", "max")})
+    expected["fairlead_tension_max_n"] = max(s["max"] for name, s in summary["mooring_tensions"].items()
+                                             if name.endswith("_fairlead"))
+    for column, value in expected.items():
+        assert float(row[column]) == pytest.approx(value, rel=1e-9, abs=1e-12), column
+    assert float(rows[0]["blade_pitch_mean_rad"]) < 0.01 < float(row["blade_pitch_mean_rad"])  # below / above rated
+    assert float(row["tower_base_moment_del_nm"]) > 0
+
+    summary_rows = read_table(tmp_path / "sweep" / SUMMARY_FILE)
+    assert {float(r["wind_speed_m_s"]) for r in summary_rows} == {8.0, 18.0}
+    again = run_sweep(sweep, tmp_path / "sweep", workers=1)
+    assert (again["runs"], again["new"]) == (2, 0)
+
+
+# the structure above the tower base of the closed forms: 2000 t, centre 3 m upwind and 95 m above the reference
+# point, the base 15 m up; the thrust at 150 m
+ABOVE = AboveTowerBase(base_height_m=15.0, mass_kg=2.0e6, cog_x_m=-3.0, cog_z_m=95.0, iyy_kg_m2=6.0e9)
+HUB, G = (-12.0, 150.0), 9.80665
+
+
+def moment(thrust_n: float = 0.0, pitch_rad: float = 0.0, surge_acceleration: float = 0.0,
+           above: AboveTowerBase = ABOVE) -> float:
+    """The tower-base moment of one row: the platform pitched and accelerating in surge."""
+    motion, velocity, acceleration = np.zeros((1, 6)), np.zeros((1, 6)), np.zeros((1, 6))
+    motion[0, 4], acceleration[0, 0] = pitch_rad, surge_acceleration
+    return float(tower_base_moment(motion, velocity, acceleration, np.array([thrust_n]), above, HUB, G)[0])
+
+
+def test_the_tower_base_moment_of_a_steady_thrust_is_thrust_times_height_plus_the_overhung_weight():
+    """Closed forms of statics and d'Alembert: a steady thrust T at rest gives T (h - z_b)
+    (massless structure) plus m g c_x (the centre of mass upwind of the tower axis); a pitch
+    theta tilts the weight: m g ((c_z - z_b) sin(theta) + c_x cos(theta)); a surge
+    acceleration a at theta 0: -m a (c_z - z_b)."""
+    massless = AboveTowerBase(15.0, 0.0, 0.0, 0.0, 0.0)
+    assert moment(2.5e6, above=massless) == pytest.approx(2.5e6 * 135.0, rel=1e-12)
+    assert moment(2.5e6) == pytest.approx(2.5e6 * 135.0 + 2.0e6 * G * -3.0, rel=1e-12)
+    theta = math.radians(5.0)
+    assert moment(pitch_rad=theta) == pytest.approx(2.0e6 * G * (80.0 * math.sin(theta) - 3.0 * math.cos(theta)),
+                                                    rel=1e-12)
+    assert moment(surge_acceleration=0.4) == pytest.approx(2.0e6 * G * -3.0 - 2.0e6 * 0.4 * 80.0, rel=1e-12)
+
+
+def test_the_del_of_a_pure_sine_is_its_closed_form():
+    """A sine of amplitude A and frequency f over T seconds (from trough to trough): n = f T
+    cycles of range 2A, so the 1 Hz DEL at slope m is 2A (n / (1 Hz T))^(1/m)."""
+    amplitude, frequency, duration = 3.0e7, 0.1, 600.0
+    time_s = np.arange(0.0, duration + 1e-9, 0.05)
+    x = 1.0e8 - amplitude * np.cos(2 * math.pi * frequency * time_s)
+    for slope in (TOWER_SN_SLOPE, 3.0):
+        closed = 2 * amplitude * (frequency * duration / (1.0 * duration)) ** (1 / slope)
+        assert damage_equivalent_load(x, duration, slope) == pytest.approx(closed, rel=1e-9), slope
+
+
+def test_the_volturnus_s_structure_above_the_tower_base_is_its_elastodyn_parts():
+    """The tower, yaw bearing, nacelle, hub and blades of the ElastoDyn deck: the published
+    IEA 15 MW masses (NREL/TP-5000-75698 Table 1: RNA 1017 t, tower 1263 t; the deck's tower
+    file and blades give 2414 t together here) within 6 %, centre of mass up the tower."""
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.studies.turbine_loads import above_tower_base
+    above = above_tower_base(load_platform("volturnus_s"))
+    assert above.base_height_m == 15.0
+    assert above.mass_kg == pytest.approx(1017e3 + 1263e3, rel=0.06)
+    assert 60.0 < above.cog_z_m < 120.0 and -8.0 < above.cog_x_m < 0.0
+    assert above_tower_base(load_platform("windmoor12")) is None
