@@ -121,3 +121,50 @@ def test_the_volturnus_s_structure_above_the_tower_base_is_its_elastodyn_parts()
     assert above.mass_kg == pytest.approx(1017e3 + 1263e3, rel=0.06)
     assert 60.0 < above.cog_z_m < 120.0 and -8.0 < above.cog_x_m < 0.0
     assert above_tower_base(load_platform("windmoor12")) is None
+
+
+
+def discon_values(names: tuple[str, ...]) -> dict[str, list[float]]:
+    """Numbers of the system's DISCON.IN (``VALUES ! NAME - comment``), read here from the file."""
+    from fowt_hydro_sim.turbine.description import load_turbine
+    out = {}
+    for line in load_turbine("iea15_umaine").discon_path.read_text().splitlines():
+        values, _, comment = line.partition("!")
+        if comment.split() and comment.split()[0] in names:
+            out[comment.split()[0]] = [float(v) for v in values.split()]
+    return out
+
+
+@pytest.mark.slow
+@pytest.mark.rosco
+@pytest.mark.parametrize("wind", [5.0, 10.2])
+def test_the_steady_start_respects_the_minimum_rotor_speed_and_peak_shaving(wind: float):
+    """The turbine as ``simulate --system`` and the turbine node start it
+    (``turbine_on_platform``, steady start), on a fixed platform in steady wind, at 5 m/s (the
+    tip-speed ratio's rotor speed below ROSCO's VS_MinOMSpd) and 10.2 m/s (below rated,
+    where peak shaving's PS_BldPitchMin pitches the blades): at t = 0 the rotor turns at
+    least at the minimum speed and the blades are at least at the peak-shaving pitch, and
+    after ROSCO's own start-up (its filters and wind-speed estimator starting; settled within
+    1 % of the rotor speed by 100 s, much less than the 600 s simulate and analyze drop) the
+    turbine is back where it started: rotor speed within 1 %, pitch within 0.3 deg."""
+    pytest.importorskip("rosco")
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.studies.psd import TRANSIENT_S
+    from fowt_hydro_sim.turbine.coupled import CHANNELS, turbine_on_platform
+    from fowt_hydro_sim.turbine.wind import Wind
+    limits = discon_values(("VS_MinOMSpd", "PS_WindSpeeds", "PS_BldPitchMin"))
+    rotor = turbine_on_platform("iea15_umaine", load_platform("volturnus_s"), Wind(speed_m_s=wind), fixed=True)
+    try:
+        channels = []
+        for k in range(2401):  # 120 s
+            rotor.answer(0.05 * k, np.zeros(6))
+            channels.append(rotor.channels())
+    finally:
+        rotor.close()
+    speed, pitch = (np.array(channels)[:, CHANNELS.index(c)] for c in ("rotor_speed_rad_s", "blade_pitch_rad"))
+    least_pitch = float(np.interp(wind, limits["PS_WindSpeeds"], limits["PS_BldPitchMin"]))
+    assert speed[0] >= limits["VS_MinOMSpd"][0] - 1e-6 and pitch[0] >= least_pitch - 1e-6, (speed[0], pitch[0])
+    settled = slice(2000, None)  # after 100 s
+    assert 100.0 < TRANSIENT_S
+    assert np.abs(speed[settled] / speed[0] - 1).max() < 0.01, (speed[0], speed[settled].min(), speed[settled].max())
+    assert np.degrees(np.abs(pitch[settled] - pitch[0]).max()) < 0.3, (pitch[0], pitch[settled].min())
