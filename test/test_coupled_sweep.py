@@ -29,7 +29,9 @@ def read_table(path: Path) -> list[dict]:
 def test_a_system_sweep_row_is_simulate_of_the_same_run_and_resumes(tmp_path: Path):
     """lc5.3 x winds 8, 18 m/s x seed 1, 60 s on a 1-worker LocalCluster: the 18 m/s row
     against ``simulate --system`` of the same run (platform, turbine and tension statistics);
-    a rerun into the folder runs nothing."""
+    ``analyze`` of that run's time series (--bags) gives the row's tower-base moment, its
+    mean the quasi-static closed form T (h - z_b) + m g ((c_z - z_b) sin(pitch) + c_x
+    cos(pitch)) of the mean thrust and pitch within 3 %; a rerun into the folder runs nothing."""
     pytest.importorskip("rosco")
     from fowt_hydro_sim.studies import simulate
     from fowt_hydro_sim.studies.coupled_run import simulate_coupled
@@ -38,7 +40,7 @@ def test_a_system_sweep_row_is_simulate_of_the_same_run_and_resumes(tmp_path: Pa
 
     sweep = Sweep(("lc5.3",), (1,), ("constant",), system_variants(SYSTEM), RunConfig(duration_s=60.0),
                   transient_s=10.0, system=SYSTEM, wind_speeds_m_s=(8.0, 18.0))
-    outcome = run_sweep(sweep, tmp_path / "sweep", workers=1)
+    outcome = run_sweep(sweep, tmp_path / "sweep", workers=1, bags=True)
     assert outcome["runs"] == outcome["new"] == 2
     rows = read_table(tmp_path / "sweep" / RUNS_FILE)
     assert [float(r["wind_speed_m_s"]) for r in rows] == [8.0, 18.0]
@@ -64,6 +66,24 @@ def test_a_system_sweep_row_is_simulate_of_the_same_run_and_resumes(tmp_path: Pa
         assert float(row[column]) == pytest.approx(value, rel=1e-9, abs=1e-12), column
     assert float(rows[0]["blade_pitch_mean_rad"]) < 0.01 < float(row["blade_pitch_mean_rad"])  # below / above rated
     assert float(row["tower_base_moment_del_nm"]) > 0
+
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings, analyze_bags
+    from fowt_hydro_sim.studies.turbine_loads import above_tower_base
+    text, _ = analyze_bags([tmp_path / "sweep" / "bags" / f"lc5.3_wind18_seed1_constant_{SYSTEM}"], [],
+                           AnalysisSettings(transient_s=10.0, segment_s=20.0), tmp_path / "report")
+    assert "tower_base_moment" in text and "S-N slope m = 10" in text
+    turbine = {r["quantity"]: r for r in read_table(tmp_path / "report" / "turbine.csv")}
+    assert set(turbine) == {"rotor_speed", "blade_pitch", "generator_torque", "generator_power", "thrust",
+                            "tower_base_moment"}
+    for stat in ("mean", "std", "max", "del"):
+        assert float(turbine["tower_base_moment"][stat]) * 1e6 == pytest.approx(
+            float(row[f"tower_base_moment_{stat}_nm"]), rel=1e-5), stat
+    above, pitch = above_tower_base(load_platform("volturnus_s")), math.radians(float(row["pitch_mean_deg"]))
+    closed = (float(row["thrust_mean_n"]) * (summary["turbine"]["thrust_height_m"] - above.base_height_m)
+              + above.mass_kg * G * ((above.cog_z_m - above.base_height_m) * math.sin(pitch)
+                                     + above.cog_x_m * math.cos(pitch)))
+    assert float(row["tower_base_moment_mean_nm"]) == pytest.approx(closed, rel=0.03)
 
     summary_rows = read_table(tmp_path / "sweep" / SUMMARY_FILE)
     assert {float(r["wind_speed_m_s"]) for r in summary_rows} == {8.0, 18.0}
