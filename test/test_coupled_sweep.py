@@ -188,3 +188,36 @@ def test_the_steady_start_respects_the_minimum_rotor_speed_and_peak_shaving(wind
     assert 100.0 < TRANSIENT_S
     assert np.abs(speed[settled] / speed[0] - 1).max() < 0.01, (speed[0], speed[settled].min(), speed[settled].max())
     assert np.degrees(np.abs(pitch[settled] - pitch[0]).max()) < 0.3, (pitch[0], pitch[settled].min())
+
+
+@pytest.mark.slow
+def test_the_turbine_side_of_a_closed_loop_bag_with_a_topic_missing_its_first_sample(tmp_path: Path):
+    """A bag of the turbine node's topics (no thrust there: no tower-base moment), one of them
+    without its first sample: every quantity at the rotor speed's stamps, rows after the
+    transient with the DEL of the sine the rotor speed is (range 0.02 rad/s = 0.191 rpm, 0.1 Hz)."""
+    from fowt_hydro_sim.rosbag.writer import BagWriter
+    from fowt_hydro_sim.studies.analysis import AnalysisSettings, turbine_report, turbine_series
+    from msg_adapters import cdr, topics
+
+    bag = tmp_path / "loop"
+    writer = BagWriter(bag)
+    channels = {name: writer.add_topic(*topics.TURBINE[name])
+                for name in ("rotor_speed", "blade_pitch", "generator_torque", "generator_power")}
+    time_s = np.arange(0.0, 200.0 + 1e-9, 0.5)
+    speed = 0.7 - 0.01 * np.cos(2 * math.pi * 0.1 * time_s)
+    for i, t in enumerate(time_s):
+        stamp = int(round(t * 1e9))
+        for name, channel in channels.items():
+            if name == "generator_power" and i == 0:
+                continue
+            value = {"rotor_speed": speed[i], "blade_pitch": 0.1, "generator_torque": 2e7, "generator_power": 1.4e7}
+            writer.write(channel, stamp, cdr.point(t, float(value[name]), 0.0, 0.0, "hub"))
+    writer.close()
+    stamps, series = turbine_series(bag)
+    assert np.allclose(stamps, time_s) and set(series) == {"rotor_speed", "blade_pitch", "generator_torque",
+                                                            "generator_power"}
+    text, files = turbine_report([bag], AnalysisSettings(transient_s=100.0, segment_s=50.0), tmp_path / "report")
+    rows = {r["quantity"]: r for r in read_table(tmp_path / "report" / "turbine.csv")}
+    assert float(rows["generator_power"]["mean"]) == pytest.approx(14.0) and "tower_base_moment" not in rows
+    rpm = 60 / (2 * math.pi)
+    assert float(rows["rotor_speed"]["del"]) == pytest.approx(0.02 * rpm * (0.1 * 100 / 100) ** 0.1, rel=1e-6)

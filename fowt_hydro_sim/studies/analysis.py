@@ -323,12 +323,14 @@ def turbine_series(path: str | Path) -> tuple[np.ndarray, dict[str, np.ndarray]]
     path = Path(path)
     if (path / METADATA_FILE).exists():
         bag = Bag(path)
-        out, time_s = {}, np.zeros(0)
+        out, time_s = {}, None
         for _, quantity, _, _ in TURBINE_QUANTITIES:
             if quantity in topics.TURBINE and topics.TURBINE[quantity][0] in bag.topics:
                 series = bag.scalar(topics.TURBINE[quantity][0])
-                time_s, out[quantity] = series.time_s, series.values[:, 0]
-        return time_s, out
+                if time_s is None:  # the first topic's stamps; the others at them (a topic may miss a sample)
+                    time_s = series.time_s
+                out[quantity] = np.interp(time_s, series.time_s, series.values[:, 0])
+        return (np.zeros(0) if time_s is None else time_s), out
     from fowt_hydro_sim.studies.simulate import read_run
     columns = read_run(path)
     if "thrust_n" not in columns:
@@ -358,6 +360,7 @@ def turbine_report(runs: list[str | Path], settings: AnalysisSettings, folder: P
     from fowt_hydro_sim.studies.turbine_loads import channel_row
     units = {quantity: (unit, scale) for _, quantity, unit, scale in TURBINE_QUANTITIES}
     units[TOWER_BASE[0]] = TOWER_BASE[1:]
+    folder.mkdir(parents=True, exist_ok=True)
     rows, files = [], []
     for path in runs:
         time_s, series = turbine_series(path)
@@ -393,7 +396,8 @@ def plot_turbine_psd(name: str, time_s: np.ndarray, series: dict[str, np.ndarray
     for ax, (quantity, values) in zip(axes[:, 0], series.items()):
         _, grid = uniform(time_s, values[:, None])
         frequency, density = psd(grid[:, 0] - grid[:, 0].mean(), dt, settings.segment_s)
-        ax.semilogy(frequency[1:], density[1:], lw=0.9)
+        if np.any(density[1:] > 0):  # (a channel held constant, e.g. the power above rated, has no spectrum)
+            ax.semilogy(frequency[1:], density[1:], lw=0.9)
         ax.set_ylabel(f"{quantity}\n[{units[quantity][0]}$^2$/Hz]", fontsize=8)
         ax.grid(alpha=0.3, which="both")
     axes[0, 0].set_xlim(0, 0.5)
