@@ -604,6 +604,9 @@ def run_sweep(sweep: Sweep, folder: str | Path, scheduler: str | None = None, wo
     if todo:
         bag_folder = str(folder / "bags") if bags else None
         tasks = [(key, platforms[key["variant"]]) for key in todo]
+        if sweep.coupled:  # ROSCO's banner written at once, inside the window where it is logged, not at the
+            # worker's exit on the command's output (gfortran buffers a standard output that is no terminal)
+            os.environ.setdefault("GFORTRAN_UNBUFFERED_PRECONNECTED", "y")
         with dask_client(scheduler, workers) as client:
             for row in results_as_completed(client, _task, tasks, "sweep", done=len(sweep.runs()) - len(todo),
                                             run=sweep.run_settings(), transient_s=sweep.transient_s,
@@ -637,10 +640,11 @@ def summary_text(outcome: dict, statistics_shown: tuple[str, ...] | None = None)
     level = shown[0]["confidence"] if shown else 0.95
     lines = [f"{outcome['runs']} runs ({outcome['new']} new) in {outcome['wall_s']:.1f} s; mean over seeds "
              f"[{100 * level:g} % confidence interval: Student-t, log-normal for STDs]"]
+    width = max([14, *(len(r["variant"]) + 2 for r in shown)])
     for r in shown:
         interval = f"[{r['ci_low']:.4g}, {r['ci_high']:.4g}]" if r["n_seeds"] > 1 else "(one seed)"
         wind = f"{r[WIND]:5g} m/s  " if coupled else ""
-        lines.append(f"{r['load_case']:8s}{wind}{r['drag_model']:10s}{r['variant']:14s}{r['statistic']:28s}"
+        lines.append(f"{r['load_case']:8s}{wind}{r['drag_model']:10s}{r['variant']:{width}s}{r['statistic']:28s}"
                      f"{r['mean']:10.4g} {interval}  n={r['n_seeds']}")
     lines.append("wrote " + ", ".join(outcome["files"]))
     return "\n".join(lines)
