@@ -221,3 +221,28 @@ def test_the_turbine_side_of_a_closed_loop_bag_with_a_topic_missing_its_first_sa
     assert float(rows["generator_power"]["mean"]) == pytest.approx(14.0) and "tower_base_moment" not in rows
     rpm = 60 / (2 * math.pi)
     assert float(rows["rotor_speed"]["del"]) == pytest.approx(0.02 * rpm * (0.1 * 100 / 100) ** 0.1, rel=1e-6)
+
+
+@pytest.mark.parametrize(("args", "line"), [
+    (("--wind-speeds", "8"), "--wind-speeds: wind speeds need a turbine: give --system"),
+    (("--system", "nope"), "system 'nope': no such file and not a packaged system"),
+    (("--system", SYSTEM, "--platforms", "windmoor12", "other"), "--platforms: a system brings its platform"),
+    (("--system", SYSTEM, "--wind-speeds", "8", "8"), "sweep: wind_speeds has duplicates"),
+    (("--system", SYSTEM, "--wind-speeds", "0"), "sweep: wind speeds must be numbers in (0, 80] m/s"),
+])
+def test_bad_system_sweep_input_is_one_line_before_any_cluster(tmp_path: Path, capsys, args: tuple, line: str):
+    from fowt_hydro_sim.cli import main
+    assert main(["sweep", *args, "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"fowt-sim sweep: error: {line}") and "\n" not in err, err
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_folder_of_a_platform_sweep_refuses_a_system_sweep(tmp_path: Path):
+    from fowt_hydro_sim.physics.config import ConfigError
+    from fowt_hydro_sim.studies.sweep import Sweep, prepare_output, system_variants
+    prepare_output(tmp_path, Sweep(("lc5.3",), (1,), run=RunConfig(duration_s=60.0)), False)
+    coupled = Sweep(("lc5.3",), (1,), variants=system_variants(SYSTEM), run=RunConfig(duration_s=60.0),
+                    system=SYSTEM, wind_speeds_m_s=(8.0,))
+    with pytest.raises(ConfigError, match="holds a sweep of system .none: the platform alone"):
+        prepare_output(tmp_path, coupled, False)
