@@ -1,5 +1,6 @@
-"""``fowt-sim sweep``: load cases x seeds x drag models x platform variants on a Dask cluster,
-one table of statistics and band STDs, means over seeds with confidence intervals."""
+"""``fowt-sim sweep``: load cases x seeds x drag models x platform variants (x wind speeds with
+a named system's turbine in the loop) on a Dask cluster, one table of statistics and band
+STDs, means over seeds with confidence intervals."""
 from __future__ import annotations
 
 import argparse
@@ -10,6 +11,7 @@ from typing import TYPE_CHECKING
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import DEFAULT_PLATFORM, DRAG_MODELS, RunConfig
+from fowt_hydro_sim.turbine.wind import DEFAULT_WIND_M_S
 
 if TYPE_CHECKING:  # the study imports scipy and the model: imported when the command runs
     from fowt_hydro_sim.studies.sweep import Variant
@@ -33,8 +35,15 @@ def sweep(args: argparse.Namespace) -> int:
         if args.seed_count and len(args.seeds) != 1:
             raise InputError(f"--seed-count: give one count with --seeds, got {len(args.seeds)} numbers")
         seeds = tuple(range(1, args.seeds[0] + 1)) if args.seed_count else tuple(args.seeds)
-        table = study.Sweep(tuple(args.load_cases), seeds, tuple(args.drag_models),
-                            _variants(args.platforms, args.cd_scales), run, args.transient)
+        if args.wind_speeds and not args.system:
+            raise InputError("--wind-speeds: wind speeds need a turbine: give --system")
+        if args.system and args.platforms != [DEFAULT_PLATFORM]:
+            raise InputError("--platforms: a system brings its platform; vary it with --cd-scales")
+        variants = (study.system_variants(args.system, args.cd_scales) if args.system
+                    else _variants(args.platforms, args.cd_scales))
+        winds = tuple(args.wind_speeds or (DEFAULT_WIND_M_S,)) if args.system else ()
+        table = study.Sweep(tuple(args.load_cases), seeds, tuple(args.drag_models), variants, run, args.transient,
+                            args.system or "", winds)
     outcome = study.run_sweep(table, Path(args.output), args.scheduler, args.workers, args.bags, args.confidence,
                               args.overwrite)
     sys.stdout.write(study.summary_text(outcome) + "\n")
@@ -43,7 +52,8 @@ def sweep(args: argparse.Namespace) -> int:
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("sweep", help="load cases x seeds x drag models x platform variants on a Dask cluster",
-                       description="Run a table of runs (load cases x seeds x drag models x platform variants) on "
+                       description="Run a table of runs (load cases x seeds x drag models x platform variants; "
+                                   "with --system x wind speeds, the turbine and ROSCO in the loop) on "
                                    "a Dask cluster; runs.csv gets one row of statistics and band STDs per run as "
                                    "it finishes, summary.csv the means over seeds with confidence intervals "
                                    "(Student-t; log-normal for STDs, never below zero; Parquet copies when "
@@ -61,6 +71,11 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                        help=f"drag models, of {', '.join(DRAG_MODELS)} (default %(default)s)")
     table.add_argument("--platforms", nargs="+", default=[DEFAULT_PLATFORM], metavar="PLATFORM",
                        help="packaged platform names or platform YAML files (default %(default)s)")
+    table.add_argument("--system", help="named system (packaged name, e.g. iea15_volturnus_s, or system YAML): "
+                                        "the turbine and its ROSCO in the loop, each run a simulate --system run; "
+                                        "its platform replaces --platforms")
+    table.add_argument("--wind-speeds", nargs="+", type=float, metavar="M_S",
+                       help=f"steady hub-height wind speeds of a --system sweep [m/s] (default {DEFAULT_WIND_M_S:g})")
     table.add_argument("--cd-scales", nargs="+", type=float, default=[1.0], metavar="SCALE",
                        help="every drag coefficient times each scale: one variant per platform and scale "
                             "(default %(default)s)")

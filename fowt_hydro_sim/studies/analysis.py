@@ -295,8 +295,118 @@ def analyze_bags(runs: list[str | Path], references: list[str | Path], settings:
             f"fowt-sim simulate does; --transient)\n" + table_text(analysed, comparisons, settings))
     files = write_report(analysed, comparisons, settings, Path(output), reference_runs)
     loop_text, loop_files = closed_loop_report(runs, settings, Path(output))
+    turbine_text, turbine_files = turbine_report(runs, settings, Path(output))
     tension_text, tension_files = tension_report(runs, settings, Path(output))
-    return (text + loop_text + tension_text, files + loop_files + tension_files)
+    return (text + loop_text + turbine_text + tension_text, files + loop_files + turbine_files + tension_files)
+
+
+# the turbine side analysed: (timeseries.csv column or bag topic short name, quantity, unit, scale to that unit)
+TURBINE_QUANTITIES = (("rotor_speed_rad_s", "rotor_speed", "rpm", 60 / (2 * math.pi)),
+                      ("blade_pitch_rad", "blade_pitch", "deg", 180 / math.pi),
+                      ("generator_torque_nm", "generator_torque", "MN m", 1e-6),
+                      ("generator_power_w", "generator_power", "MW", 1e-6),
+                      ("thrust_n", "thrust", "MN", 1e-6))
+TOWER_BASE = ("tower_base_moment", "MN m", 1e-6)
+
+
+def turbine_series(path: str | Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """A coupled run's turbine channels [SI] by quantity (``TURBINE_QUANTITIES``) and its
+    tower-base fore-aft bending moment [N m] (``studies.turbine_loads``): from a simulate
+    folder of a coupled run all of them (the moment when its platform has an ElastoDyn
+    deck); from a bag the turbine topics it holds (no thrust there: no moment); none for a
+    run without a turbine."""
+    from fowt_hydro_sim.physics.config import load_platform
+    from fowt_hydro_sim.rosbag.reader import Bag
+    from fowt_hydro_sim.rosbag.writer import METADATA_FILE
+    from fowt_hydro_sim.studies.turbine_loads import above_tower_base, tower_base_moment
+    from msg_adapters import topics
+    path = Path(path)
+    if (path / METADATA_FILE).exists():
+        bag = Bag(path)
+        out, time_s = {}, None
+        for _, quantity, _, _ in TURBINE_QUANTITIES:
+            if quantity in topics.TURBINE and topics.TURBINE[quantity][0] in bag.topics:
+                series = bag.scalar(topics.TURBINE[quantity][0])
+                if time_s is None:  # the first topic's stamps; the others at them (a topic may miss a sample)
+                    time_s = series.time_s
+                out[quantity] = np.interp(time_s, series.time_s, series.values[:, 0])
+        return (np.zeros(0) if time_s is None else time_s), out
+    from fowt_hydro_sim.studies.simulate import read_run
+    columns = read_run(path)
+    if "thrust_n" not in columns:
+        return columns["time_s"], {}
+    out = {quantity: columns[column] for column, quantity, _, _ in TURBINE_QUANTITIES}
+    summary = json.loads((path / "summary.json").read_text()) if (path / "summary.json").is_file() else {}
+    try:
+        platform = load_platform(summary["platform"])
+    except (KeyError, ValueError):  # no summary, or a platform file no longer where it was
+        return columns["time_s"], out
+    above = above_tower_base(platform)
+    if above is not None and "turbine" in summary:
+        dofs = list(zip(DOF_NAMES, ("m", "m", "m", "rad", "rad", "rad")))
+        motion, velocity, acceleration = (np.column_stack([columns[pattern.format(d=d, u=u)] for d, u in dofs])
+                                          for pattern in ("{d}_{u}", "{d}_velocity_{u}_s", "{d}_acceleration_{u}_s2"))
+        out[TOWER_BASE[0]] = tower_base_moment(motion, velocity, acceleration, columns["thrust_n"], above,
+                                               (platform.hub_point_m[0], summary["turbine"]["thrust_height_m"]),
+                                               platform.environment.gravity_m_s2)
+    return columns["time_s"], out
+
+
+def turbine_report(runs: list[str | Path], settings: AnalysisSettings, folder: Path) -> tuple[str, list[Path]]:
+    """For the runs with a turbine: each quantity's (rotor speed, blade pitch, generator
+    torque and power, thrust, tower-base fore-aft moment) mean, STD, maximum and DEL
+    (rainflow, S-N slope m = 10 of the steel tower, 1 Hz equivalent over the analysed time)
+    after the transient, in ``turbine.csv``, and their PSDs (``turbine_psd_RUN.png``)."""
+    from fowt_hydro_sim.studies.turbine_loads import channel_row
+    units = {quantity: (unit, scale) for _, quantity, unit, scale in TURBINE_QUANTITIES}
+    units[TOWER_BASE[0]] = TOWER_BASE[1:]
+    folder.mkdir(parents=True, exist_ok=True)
+    rows, files = [], []
+    for path in runs:
+        time_s, series = turbine_series(path)
+        keep = time_s >= time_s[0] + settings.transient_s if time_s.size else time_s.astype(bool)
+        if not series or keep.sum() < 2:
+            continue
+        name = Path(path).name
+        duration = float(time_s[keep][-1] - time_s[keep][0])
+        scaled = {quantity: values[keep] * units[quantity][1] for quantity, values in series.items()}
+        rows += [{"run": name, **channel_row(quantity, values, duration), "unit": units[quantity][0]}
+                 for quantity, values in scaled.items()]
+        files.append(plot_turbine_psd(name, time_s[keep], scaled, units, settings,
+                                      folder / f"turbine_psd_{_slug(name)}.png"))
+    if not rows:
+        return "", []
+    files = [path for path in files if path is not None]  # figures: None without matplotlib or too short
+    files.append(_csv(folder / "turbine.csv", rows))
+    lines = ["", f"turbine (after {settings.transient_s:g} s; DEL: rainflow, S-N slope m = {rows[0]['sn_slope']:g}, "
+                 f"1 Hz equivalent cycles):"]
+    lines += [f"  {r['run']:<16} {r['quantity']:<18} mean {r['mean']:10.4g} std {r['std']:9.3g} max {r['max']:10.4g} "
+              f"DEL {r['del']:9.3g} {r['unit']}" for r in rows]
+    return "\n".join(lines), files
+
+
+def plot_turbine_psd(name: str, time_s: np.ndarray, series: dict[str, np.ndarray],
+                     units: dict[str, tuple[str, float]], settings: AnalysisSettings, path: Path) -> Path | None:
+    """Each turbine quantity's PSD, one panel each (None without matplotlib or too short)."""
+    plt = pyplot()
+    if plt is None or time_s.size < 64:
+        return None
+    dt, _ = uniform(time_s, np.zeros((time_s.size, 1)))
+    fig, axes = plt.subplots(len(series), 1, figsize=(7.5, 2.0 * len(series)), sharex=True, squeeze=False)
+    for ax, (quantity, values) in zip(axes[:, 0], series.items()):
+        _, grid = uniform(time_s, values[:, None])
+        frequency, density = psd(grid[:, 0] - grid[:, 0].mean(), dt, settings.segment_s)
+        if np.any(density[1:] > 0):  # (a channel held constant, e.g. the power above rated, has no spectrum)
+            ax.semilogy(frequency[1:], density[1:], lw=0.9)
+        ax.set_ylabel(f"{quantity}\n[{units[quantity][0]}$^2$/Hz]", fontsize=8)
+        ax.grid(alpha=0.3, which="both")
+    axes[0, 0].set_xlim(0, 0.5)
+    axes[0, 0].set_title(f"turbine PSDs: {name}, after {settings.transient_s:g} s", fontsize=9)
+    axes[-1, 0].set_xlabel("frequency [Hz]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
 
 
 def run_tensions(path: str | Path) -> tuple[np.ndarray, dict[str, np.ndarray]]:

@@ -10,6 +10,12 @@ A run is exactly ``fowt-sim simulate`` with the same settings (``studies.simulat
 and ``statistics``); a platform variant is a platform (packaged name or YAML file) with
 typed edits of ``physics.platform_edits`` (drag, added-mass and mooring-stiffness scales,
 coefficients by path).
+
+With a named system (``turbine.system``: platform, turbine with its ROSCO, mooring) the sweep
+is one of the coupled turbine: load cases x wind speeds x seeds x drag models x variants of
+the system's platform, each run exactly ``fowt-sim simulate --system SYSTEM --wind-speed W``
+(``studies.coupled_run.run_coupled_case``), its row with the turbine's statistics
+(``TURBINE_METRICS``) beside the platform's.
 """
 from __future__ import annotations
 
@@ -49,6 +55,7 @@ from fowt_hydro_sim.physics.platform_edits import (
 )
 from fowt_hydro_sim.studies.psd import BANDS_HZ
 from fowt_hydro_sim.studies.simulate import model_for, performance_of, sea_state_waves, statistics
+from fowt_hydro_sim.turbine.wind import DEFAULT_WIND_M_S
 
 log = logging.getLogger(__name__)
 
@@ -57,6 +64,9 @@ SUMMARY_FILE = "summary.csv"
 SETTINGS_FILE = "sweep.json"
 KEY = ("load_case", "seed", "drag_model", "variant")
 GROUP = ("load_case", "drag_model", "variant")
+WIND = "wind_speed_m_s"  # a coupled sweep's key column more
+COUPLED_KEY = ("load_case", WIND, "seed", "drag_model", "variant")
+COUPLED_GROUP = ("load_case", WIND, "drag_model", "variant")
 _STATS = ("mean", "std", "min", "max")
 _SCALES = ("cd_scale", "added_mass_scale", "mooring_stiffness_scale")
 
@@ -101,20 +111,52 @@ class Sweep:
     variants: tuple[Variant, ...] = (Variant(DEFAULT_PLATFORM),)
     run: RunConfig = field(default_factory=RunConfig)
     transient_s: float = 0.0
+    system: str = ""  # a named system: the coupled turbine in the loop (variants of its platform)
+    wind_speeds_m_s: tuple[float, ...] = ()  # the coupled sweep's hub-height wind speeds (steady wind)
 
     def __post_init__(self) -> None:
         check_sweep(self)
 
+    @property
+    def coupled(self) -> bool:
+        """Whether the turbine and its controller are in the loop (a named system)."""
+        return bool(self.system)
+
+    @property
+    def key(self) -> tuple[str, ...]:
+        """The columns naming a run."""
+        return COUPLED_KEY if self.coupled else KEY
+
     def runs(self) -> list[dict]:
-        """Every run's key (load_case, seed, drag_model, variant), in table order."""
-        return [dict(zip(KEY, k)) for k in product(self.load_cases, self.seeds, self.drag_models,
-                                                   [v.name for v in self.variants])]
+        """Every run's key (load_case, [wind_speed_m_s,] seed, drag_model, variant), in table order."""
+        names = [v.name for v in self.variants]
+        if self.coupled:
+            return [dict(zip(COUPLED_KEY, k)) for k in product(self.load_cases, self.wind_speeds_m_s, self.seeds,
+                                                                self.drag_models, names)]
+        return [dict(zip(KEY, k)) for k in product(self.load_cases, self.seeds, self.drag_models, names)]
+
+    def run_settings(self) -> RunConfig:
+        """The run settings of every run: a system's mooring model when the run names none."""
+        if self.coupled and not self.run.mooring:
+            from fowt_hydro_sim.turbine.system import load_system
+            return replace(self.run, mooring=load_system(self.system).mooring)
+        return self.run
 
     def settings_document(self) -> dict:
         """What a resumed sweep must share with the rows on disk."""
-        run = {k: v for k, v in asdict(self.run).items() if k not in ("platform", "drag_model")}
-        return {"run": {**run, "initial_state": list(self.run.initial_state)}, "transient_s": self.transient_s,
-                "variants": {v.name: v.document() for v in self.variants}}
+        run = {k: v for k, v in asdict(self.run_settings()).items() if k not in ("platform", "drag_model")}
+        document = {"run": {**run, "initial_state": list(self.run.initial_state)}, "transient_s": self.transient_s,
+                    "variants": {v.name: v.document() for v in self.variants}}
+        return {**document, "system": self.system} if self.coupled else document
+
+
+def system_variants(system: str, cd_scales: Iterable[float] = (1.0,)) -> tuple[Variant, ...]:
+    """The named system's platform with every Cd scale, named ``SYSTEM`` (scale 1) or
+    ``SYSTEM_cdSCALE``; ConfigError for an unknown system."""
+    from fowt_hydro_sim.turbine.system import load_system
+    chosen = load_system(system)
+    return tuple(Variant(chosen.name + ("" if s == 1.0 else f"_cd{s:g}"), chosen.platform, cd_scale=s)
+                 for s in cd_scales)
 
 
 def check_sweep(sweep: Sweep) -> None:
@@ -143,6 +185,21 @@ def check_sweep(sweep: Sweep) -> None:
                 raise ConfigError(f"sweep: variant {v.name!r}: {scale} must be a positive number")
     if not (math.isfinite(sweep.transient_s) and 0 <= sweep.transient_s < sweep.run.duration_s):
         raise ConfigError(f"sweep: transient_s must be in [0, duration_s), got {sweep.transient_s:g}")
+    if sweep.wind_speeds_m_s and not sweep.system:
+        raise ConfigError("sweep: wind speeds need a turbine: give a named system (--system)")
+    if sweep.system:
+        from fowt_hydro_sim.turbine.system import load_system
+        chosen = load_system(sweep.system)
+        if not sweep.wind_speeds_m_s:
+            raise ConfigError("sweep: a system's sweep needs wind speeds")
+        if len(set(sweep.wind_speeds_m_s)) != len(sweep.wind_speeds_m_s):
+            raise ConfigError("sweep: wind_speeds has duplicates")
+        if any(not (isinstance(w, float) and math.isfinite(w) and 0 < w <= 80) for w in sweep.wind_speeds_m_s):
+            raise ConfigError(f"sweep: wind speeds must be numbers in (0, 80] m/s, got {list(sweep.wind_speeds_m_s)}")
+        other = [v.name for v in sweep.variants if v.platform != chosen.platform]
+        if other:
+            raise ConfigError(f"sweep: variant {other[0]!r}: with system {chosen.name!r} a variant edits its "
+                              f"platform {chosen.platform!r}")
 
 
 def _variant(data: Any, where: str) -> Variant:
@@ -175,10 +232,18 @@ def sweep_from_dict(data: Any, source: str = "sweep") -> Sweep:
              coefficients: {column*.submerged.cd.constant: 0.9}}
         run: {duration_s: 3600, dt_s: 0.05, output_interval_s: 0.25}
         transient_s: 600
+
+    or, the coupled turbine (variants: of the system's platform, by default as it is)::
+
+        system: iea15_volturnus_s
+        wind_speeds: [8, 12, 18]
+        load_cases: [lc5.3]
+        seeds: 3
     """
     if not isinstance(data, dict):
         raise ConfigError(f"{source}: expected a mapping")
-    unknown = set(data) - {"load_cases", "seeds", "drag_models", "variants", "run", "transient_s"}
+    unknown = set(data) - {"load_cases", "seeds", "drag_models", "variants", "run", "transient_s", "system",
+                           "wind_speeds"}
     if unknown:
         raise ConfigError(f"{source}: unknown field(s) {', '.join(sorted(unknown))}")
 
@@ -190,15 +255,25 @@ def sweep_from_dict(data: Any, source: str = "sweep") -> Sweep:
 
     seeds = data.get("seeds", 1)
     seeds = tuple(range(1, seeds + 1)) if isinstance(seeds, int) and not isinstance(seeds, bool) else names("seeds")
-    variants = tuple(_variant(v, f"{source}: variants[{i}]")
-                     for i, v in enumerate(names("variants", [{"name": "base"}])))
+    system = str(data.get("system") or "")
+    if system and "variants" in data:
+        system_platform = system_variants(system)[0].platform
+        variants = tuple(_variant({"platform": system_platform, **v} if isinstance(v, dict) else v,
+                                  f"{source}: variants[{i}]") for i, v in enumerate(names("variants")))
+    elif system:
+        variants = system_variants(system)
+    else:
+        variants = tuple(_variant(v, f"{source}: variants[{i}]")
+                         for i, v in enumerate(names("variants", [{"name": "base"}])))
     try:
         transient_s = float(data.get("transient_s", 0.0))
+        winds = tuple(float(w) for w in names("wind_speeds", [])) if "wind_speeds" in data else (
+            (DEFAULT_WIND_M_S,) if system else ())
     except (TypeError, ValueError):
-        raise ConfigError(f"{source}: transient_s: must be a number") from None
+        raise ConfigError(f"{source}: transient_s and wind_speeds: must be numbers") from None
     return Sweep(tuple(str(c) for c in names("load_cases")), seeds,
                  tuple(str(d) for d in names("drag_models", ["constant"])),
-                 variants, run_from_dict(data.get("run") or {}, f"{source}: run"), transient_s)
+                 variants, run_from_dict(data.get("run") or {}, f"{source}: run"), transient_s, system, winds)
 
 
 def load_sweep_file(path: str | Path) -> Sweep:
@@ -212,13 +287,26 @@ def load_sweep_file(path: str | Path) -> Sweep:
 
 
 # ---------------------------------------------------------------------- one run (a cluster task)
-def metric_names() -> list[str]:
-    """The statistics columns of a row, units in the names."""
+def metric_names(coupled: bool = False) -> list[str]:
+    """The statistics columns of a row, units in the names (``coupled``: and the turbine's)."""
     out = []
     for j, name in enumerate(DOF_NAMES):
         unit = "deg" if j >= 3 else "m"
         out += [f"{name}_{s}_{unit}" for s in _STATS] + [f"{name}_std_{b}_{unit}" for b in BANDS_HZ]
-    return out + ["wave_hs_4std_m", *TENSION_METRICS]
+    out += ["wave_hs_4std_m", *TENSION_METRICS]
+    if coupled:
+        out += [f"{short}_{s}_{unit}" for _, short, unit in TURBINE_METRICS for s in _STATS]
+        out += list(TOWER_METRICS)
+    return out
+
+
+# a coupled row's turbine columns: (channel of turbine.coupled.CHANNELS, name, unit), each its mean, STD, min, max
+TURBINE_METRICS = (("rotor_speed_rad_s", "rotor_speed", "rad_s"), ("blade_pitch_rad", "blade_pitch", "rad"),
+                   ("generator_torque_nm", "generator_torque", "nm"), ("generator_power_w", "generator_power", "w"),
+                   ("thrust_n", "thrust", "n"))
+# and the tower-base fore-aft bending moment's (studies.turbine_loads)
+TOWER_METRICS = ("tower_base_moment_mean_nm", "tower_base_moment_std_nm", "tower_base_moment_max_nm",
+                 "tower_base_moment_del_nm")
 
 
 # the mooring's fairlead tensions in a row: each statistic of the line where it is largest
@@ -237,8 +325,10 @@ def tension_metrics(time_s: np.ndarray, tensions: np.ndarray, transient_s: float
     return {name: max((r[key] for r in rows), default=float("nan")) for name, key in zip(TENSION_METRICS, keys)}
 
 
-def columns() -> list[str]:
-    return [*KEY, "hs_m", "tp_s", "gamma", *metric_names(), "wall_time_s", "real_time_factor"]
+def columns(coupled: bool = False) -> list[str]:
+    """A runs table's columns (``coupled``: a system's sweep)."""
+    return [*(COUPLED_KEY if coupled else KEY), "hs_m", "tp_s", "gamma", *metric_names(coupled), "wall_time_s",
+            "real_time_factor"]
 
 
 def row_of(key: dict, sea: SeaState, stats: dict, performance: dict, tensions: dict[str, float]) -> dict:
@@ -260,8 +350,41 @@ def sea_of(key: dict) -> SeaState:
 
 
 def run_name(key: dict) -> str:
-    """A run's folder name: ``lc5.3_seed1_constant_base``."""
-    return f"{key['load_case']}_seed{key['seed']}_{key['drag_model']}_{key['variant']}"
+    """A run's folder name: ``lc5.3_seed1_constant_base`` (a coupled run's: ``lc5.3_wind12_seed1_...``)."""
+    wind = f"_wind{key[WIND]:g}" if WIND in key else ""
+    return f"{key['load_case']}{wind}_seed{key['seed']}_{key['drag_model']}_{key['variant']}"
+
+
+def run_coupled_one(key: dict, platform: Platform, run: RunConfig, transient_s: float, system: str,
+                    bag_folder: str | None) -> dict:
+    """One run of a system's sweep (what ``fowt-sim simulate --system SYSTEM --wind-speed W``
+    does with these settings), as a row; with ``bag_folder``, its time series also go to a
+    folder there named after the run, as ``simulate`` writes them (``timeseries.csv``, and a
+    ``summary.json`` of its settings: ``fowt-sim analyze`` reads it)."""
+    from fowt_hydro_sim.studies.coupled_run import channel_statistics, run_coupled_case
+    from fowt_hydro_sim.studies.turbine_loads import tower_base_metrics
+    from fowt_hydro_sim.turbine.settings import TurbineSettings
+    from fowt_hydro_sim.turbine.system import load_system
+    sea = sea_of(key)
+    waves, info = sea_state_waves(sea, run.duration_s, key["load_case"])
+    settings = replace(run, drag_model=key["drag_model"])
+    turbine = TurbineSettings(turbine=load_system(system).turbine, wind_speed_m_s=float(key[WIND]))
+    folder = Path(bag_folder) / run_name(key) if bag_folder is not None else None
+    if folder is not None:
+        folder.mkdir(parents=True, exist_ok=True)
+    done = run_coupled_case(platform, settings, turbine, waves, timeseries=folder and folder / "timeseries.csv")
+    record = done.rows.motion
+    if folder is not None:
+        (folder / "summary.json").write_text(json.dumps(
+            {"sweep_run": key, "system": system, "platform": platform.name, "drag_model": settings.drag_model,
+             "waves": info, "run": asdict(settings), "turbine": done.turbine}, indent=2, default=list) + "\n")
+    row = row_of(key, sea, statistics(record, transient_s), done.performance,
+                 tension_metrics(record.time_s, record.tensions, transient_s))
+    turbine_stats = channel_statistics(record.time_s, done.rows.channels, transient_s)
+    for channel, short, unit in TURBINE_METRICS:
+        row.update({f"{short}_{s}_{unit}": turbine_stats[channel][s] for s in _STATS})
+    row.update(tower_base_metrics(record.time_s, done.rows, platform, done.turbine["thrust_height_m"], transient_s))
+    return row
 
 
 def run_one(key: dict, platform: Platform, run: RunConfig, transient_s: float, bag_folder: str | None) -> dict:
@@ -312,7 +435,7 @@ def write_bag(path: Path, result: RunResult, config: dict, tensions: np.ndarray 
 # ---------------------------------------------------------------------- the table on disk
 def _line(row: dict) -> str:
     buffer = io.StringIO()
-    csv.writer(buffer, lineterminator="\n").writerow([row[c] for c in columns()])
+    csv.writer(buffer, lineterminator="\n").writerow([row[c] for c in columns(WIND in row)])
     return buffer.getvalue()
 
 
@@ -322,9 +445,10 @@ def _value(column: str, text: str) -> Any:
     return int(text) if column == "seed" else float(text)
 
 
-def read_rows(path: Path) -> list[dict]:
-    """The finished rows of a runs table (a last line cut short by an interruption is left
-    out, and cut off the file so that appending goes on cleanly)."""
+def read_rows(path: Path, coupled: bool = False) -> list[dict]:
+    """The finished rows of a runs table (``coupled``: a system's sweep's; a last line cut
+    short by an interruption is left out, and cut off the file so that appending goes on
+    cleanly)."""
     if not path.exists():
         return []
     text = path.read_text()
@@ -334,16 +458,16 @@ def read_rows(path: Path) -> list[dict]:
     lines = text.splitlines()
     if not lines:
         return []
-    if lines[0].split(",") != columns():
+    if lines[0].split(",") != columns(coupled):
         raise ConfigError(f"{path}: its columns are not this version's sweep table's (use another output folder)")
-    return [{c: _value(c, v) for c, v in zip(columns(), values)} for values in csv.reader(lines[1:])]
+    return [{c: _value(c, v) for c, v in zip(columns(coupled), values)} for values in csv.reader(lines[1:])]
 
 
 def append_row(path: Path, row: dict) -> None:
     """Append one row in one write, flushed to disk (a kill leaves at most a cut last line)."""
     new = not path.exists() or path.stat().st_size == 0
     with open(path, "a") as f:
-        f.write((",".join(columns()) + "\n" if new else "") + _line(row))
+        f.write((",".join(columns(WIND in row)) + "\n" if new else "") + _line(row))
         f.flush()
         os.fsync(f.fileno())
 
@@ -359,6 +483,9 @@ def prepare_output(folder: Path, sweep: Sweep, overwrite: bool) -> list[dict]:
     document = sweep.settings_document()
     if settings_path.exists():
         old = json.loads(settings_path.read_text())
+        if old.get("system", "") != document.get("system", ""):
+            raise ConfigError(f"{folder}: holds a sweep of system {old.get('system') or '(none: the platform alone)'}"
+                              f"; pass --overwrite to start again or use another folder")
         if old["run"] != document["run"] or old["transient_s"] != document["transient_s"]:
             raise ConfigError(f"{folder}: holds a sweep with other run settings ({old['run']}, transient "
                               f"{old['transient_s']:g} s); pass --overwrite to start again or use another folder")
@@ -369,7 +496,7 @@ def prepare_output(folder: Path, sweep: Sweep, overwrite: bool) -> list[dict]:
     elif (folder / RUNS_FILE).exists():
         raise ConfigError(f"{folder}: has {RUNS_FILE} without {SETTINGS_FILE}; pass --overwrite")
     settings_path.write_text(json.dumps(document, indent=2) + "\n")
-    return read_rows(folder / RUNS_FILE)
+    return read_rows(folder / RUNS_FILE, sweep.coupled)
 
 
 # ---------------------------------------------------------------------- means over seeds
@@ -413,18 +540,21 @@ def confidence_interval(values: np.ndarray, level: float, positive: bool = False
 
 
 def summarise(rows: list[dict], level: float = 0.95) -> list[dict]:
-    """Per load case, drag model and variant (in the rows' order), every statistic's mean
-    over the seeds with its confidence interval (``confidence_interval``: log-normal for
-    STDs, Student-t for the others, named in the row's ``interval``): one row per statistic."""
+    """Per load case, drag model and variant (and wind speed in a system's sweep; in the
+    rows' order), every statistic's mean over the seeds with its confidence interval
+    (``confidence_interval``: log-normal for STDs, Student-t for the others, named in the
+    row's ``interval``): one row per statistic."""
+    coupled = bool(rows) and WIND in rows[0]
+    by = COUPLED_GROUP if coupled else GROUP
     groups: dict[tuple, list[dict]] = {}
     for row in rows:
-        groups.setdefault(tuple(row[g] for g in GROUP), []).append(row)
+        groups.setdefault(tuple(row[g] for g in by), []).append(row)
     out = []
     for group, members in groups.items():
-        for metric in metric_names():
+        for metric in metric_names(coupled):
             positive = is_positive(metric)
             mean, std, low, high = confidence_interval(np.array([r[metric] for r in members]), level, positive)
-            out.append({**dict(zip(GROUP, group)), "statistic": metric, "n_seeds": len(members), "mean": mean,
+            out.append({**dict(zip(by, group)), "statistic": metric, "n_seeds": len(members), "mean": mean,
                         "std_over_seeds": std, "ci_low": low, "ci_high": high, "confidence": level,
                         "interval": LOGNORMAL if positive else STUDENT_T})
     return out
@@ -453,8 +583,8 @@ def write_summary(folder: Path, rows: list[dict], level: float) -> list[Path]:
 # ---------------------------------------------------------------------- the sweep
 def order(rows: Iterable[dict], sweep: Sweep) -> list[dict]:
     """The rows of this sweep in table order."""
-    by_key = {tuple(r[k] for k in KEY): r for r in rows}
-    return [by_key[k] for k in (tuple(run[c] for c in KEY) for run in sweep.runs()) if k in by_key]
+    by_key = {tuple(r[k] for k in sweep.key): r for r in rows}
+    return [by_key[k] for k in (tuple(run[c] for c in sweep.key) for run in sweep.runs()) if k in by_key]
 
 
 def run_sweep(sweep: Sweep, folder: str | Path, scheduler: str | None = None, workers: int | None = None,
@@ -467,38 +597,54 @@ def run_sweep(sweep: Sweep, folder: str | Path, scheduler: str | None = None, wo
     folder = Path(folder)
     platforms = {v.name: v.build() for v in sweep.variants}  # bad variants fail before any cluster starts
     done = prepare_output(folder, sweep, overwrite)
-    finished = {tuple(r[k] for k in KEY) for r in done}
-    todo = [key for key in sweep.runs() if tuple(key[k] for k in KEY) not in finished]
+    finished = {tuple(r[k] for k in sweep.key) for r in done}
+    todo = [key for key in sweep.runs() if tuple(key[k] for k in sweep.key) not in finished]
     log.info("%d runs, %d already finished in %s", len(sweep.runs()), len(sweep.runs()) - len(todo), folder)
     start = time.perf_counter()
     if todo:
         bag_folder = str(folder / "bags") if bags else None
         tasks = [(key, platforms[key["variant"]]) for key in todo]
+        if sweep.coupled:  # ROSCO's banner written at once, inside the window where it is logged, not at the
+            # worker's exit on the command's output (gfortran buffers a standard output that is no terminal)
+            os.environ.setdefault("GFORTRAN_UNBUFFERED_PRECONNECTED", "y")
         with dask_client(scheduler, workers) as client:
             for row in results_as_completed(client, _task, tasks, "sweep", done=len(sweep.runs()) - len(todo),
-                                            run=sweep.run, transient_s=sweep.transient_s, bag_folder=bag_folder):
+                                            run=sweep.run_settings(), transient_s=sweep.transient_s,
+                                            system=sweep.system, bag_folder=bag_folder):
                 append_row(folder / RUNS_FILE, row)
-    rows = order(read_rows(folder / RUNS_FILE), sweep)
+    rows = order(read_rows(folder / RUNS_FILE, sweep.coupled), sweep)
     files = write_summary(folder, rows, level)
     return {"runs": len(rows), "new": len(todo), "wall_s": time.perf_counter() - start,
             "files": [str(f) for f in files], "summary": summarise(rows, level)}
 
 
-def _task(task: tuple[dict, Platform], run: RunConfig, transient_s: float, bag_folder: str | None) -> dict:
+def _task(task: tuple[dict, Platform], run: RunConfig, transient_s: float, system: str,
+          bag_folder: str | None) -> dict:
     key, platform = task
+    if system:
+        return run_coupled_one(key, platform, run, transient_s, system, bag_folder)
     return run_one(key, platform, run, transient_s, bag_folder)
 
 
-def summary_text(outcome: dict, statistics_shown: tuple[str, ...] = ("surge_std_low_frequency_m",
-                                                                      "heave_std_wave_m", "pitch_std_wave_deg")) -> str:
-    """A few statistics' means and intervals per load case, as the command prints them."""
+SHOWN = ("surge_std_low_frequency_m", "heave_std_wave_m", "pitch_std_wave_deg")
+SHOWN_COUPLED = ("surge_mean_m", "pitch_std_wave_deg", "rotor_speed_std_rad_s", "generator_power_mean_w",
+                 "tower_base_moment_del_nm")
+
+
+def summary_text(outcome: dict, statistics_shown: tuple[str, ...] | None = None) -> str:
+    """A few statistics' means and intervals per load case (and wind speed), as the command
+    prints them."""
+    coupled = bool(outcome["summary"]) and WIND in outcome["summary"][0]
+    statistics_shown = statistics_shown or (SHOWN_COUPLED if coupled else SHOWN)
     shown = [r for r in outcome["summary"] if r["statistic"] in statistics_shown]
     level = shown[0]["confidence"] if shown else 0.95
     lines = [f"{outcome['runs']} runs ({outcome['new']} new) in {outcome['wall_s']:.1f} s; mean over seeds "
              f"[{100 * level:g} % confidence interval: Student-t, log-normal for STDs]"]
+    width = max([14, *(len(r["variant"]) + 2 for r in shown)])
     for r in shown:
         interval = f"[{r['ci_low']:.4g}, {r['ci_high']:.4g}]" if r["n_seeds"] > 1 else "(one seed)"
-        lines.append(f"{r['load_case']:8s}{r['drag_model']:10s}{r['variant']:14s}{r['statistic']:28s}"
+        wind = f"{r[WIND]:5g} m/s  " if coupled else ""
+        lines.append(f"{r['load_case']:8s}{wind}{r['drag_model']:10s}{r['variant']:{width}s}{r['statistic']:28s}"
                      f"{r['mean']:10.4g} {interval}  n={r['n_seeds']}")
     lines.append("wrote " + ", ".join(outcome["files"]))
     return "\n".join(lines)

@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from dataclasses import replace
+from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
@@ -112,16 +113,69 @@ class HeldControls:
         return []
 
 
+class ControllerLimits(NamedTuple):
+    """What of ROSCO's tuning bounds its steady operating point: the minimum rotor speed
+    [rad/s] (``VS_MinOMSpd`` / ``WE_GearboxRatio``) and peak shaving's minimum blade pitch
+    [rad] by wind speed [m/s] (``PS_WindSpeeds``, ``PS_BldPitchMin``; empty with ``PS_Mode`` 0)."""
+
+    min_rotor_speed_rad_s: float
+    shaving_wind_m_s: tuple[float, ...]
+    shaving_pitch_rad: tuple[float, ...]
+
+    def min_pitch_rad(self, wind_m_s: float) -> float:
+        """Peak shaving's minimum pitch in ``wind_m_s`` (ROSCO interpolates its table, held at its ends)."""
+        if not self.shaving_wind_m_s:
+            return -math.inf
+        return float(np.interp(wind_m_s, self.shaving_wind_m_s, self.shaving_pitch_rad))
+
+
+def controller_limits(discon: Path) -> ControllerLimits:
+    """The ``ControllerLimits`` of a ROSCO DISCON.IN (lines ``VALUES ! NAME - comment``);
+    ConfigError naming a missing entry."""
+    values: dict[str, list[float]] = {}
+    for line in discon.read_text().splitlines():
+        numbers, _, comment = line.partition("!")
+        name = comment.split()[0] if comment.split() else ""
+        if name in ("VS_MinOMSpd", "WE_GearboxRatio", "PS_Mode", "PS_WindSpeeds", "PS_BldPitchMin"):
+            try:
+                values[name] = [float(v) for v in numbers.split()]
+            except ValueError:
+                raise ConfigError(f"{discon}: {name}: expected numbers, got {numbers.strip()!r}") from None
+    missing = [n for n in ("VS_MinOMSpd", "WE_GearboxRatio", "PS_Mode") if not values.get(n)]
+    if missing:
+        raise ConfigError(f"{discon}: no {missing[0]}")
+    shaving = values["PS_Mode"][0] != 0
+    return ControllerLimits(values["VS_MinOMSpd"][0] / values["WE_GearboxRatio"][0],
+                            tuple(values.get("PS_WindSpeeds", ())) if shaving else (),
+                            tuple(values.get("PS_BldPitchMin", ())) if shaving else ())
+
+
+def controlled_operating_point(turbine: TurbineDescription, coefficients: RotorCoefficients,
+                               wind_m_s: float) -> tuple[float, float, float]:
+    """Rotor speed, blade pitch and generator torque where the turbine with its ROSCO runs
+    steadily in ``wind_m_s``: ``rotor.steady_operating_point`` within the controller's
+    ``ControllerLimits`` (at least the minimum rotor speed, at least peak shaving's pitch),
+    the generator torque balancing the rotor's torque there."""
+    speed, pitch, torque = steady_operating_point(turbine, coefficients, wind_m_s)
+    limits = controller_limits(turbine.discon_path)
+    bounded_speed, bounded_pitch = max(speed, limits.min_rotor_speed_rad_s), max(pitch, limits.min_pitch_rad(wind_m_s))
+    if (bounded_speed, bounded_pitch) == (speed, pitch):
+        return speed, pitch, torque
+    aero = aero_loads(turbine, coefficients, wind_m_s, bounded_speed, bounded_pitch)[1]
+    return bounded_speed, bounded_pitch, aero * turbine.gearbox_efficiency / turbine.gearbox_ratio
+
+
 def turbine_on_platform(turbine: str, platform: Platform, wind: Wind, hub_height_m: float = 0.0,
                         rotor_start: tuple[float, float, float] | None = None, fixed: bool = False,
                         rosco_logging: int = 0, held: bool = False) -> TurbineOnPlatform:
     """The packaged turbine ``turbine`` (or a turbine YAML) with its ROSCO on ``platform``,
-    starting at its steady operating point in the initial wind (or at ``rotor_start``: rotor
+    starting at its steady operating point in the initial wind within its controller's
+    limits (``controlled_operating_point``; or at ``rotor_start``: rotor
     speed [rad/s], blade pitch [rad], generator torque [N m]); ``held``: no controller, the
     generator torque and blade pitch held where they start (``HeldControls``)."""
     description = load_turbine(turbine)
     coefficients = RotorCoefficients(read_table(description.performance_path))
-    start = rotor_start or steady_operating_point(description, coefficients, wind.at(0.0))
+    start = rotor_start or controlled_operating_point(description, coefficients, wind.at(0.0))
     controller = (HeldControls(start[2], start[1]) if held else
                   Rosco(description.discon_path, description.controller_dt_s, description.generator_efficiency,
                         rosco_logging, pitch_rad=start[1]))
@@ -132,9 +186,10 @@ def turbine_on_platform(turbine: str, platform: Platform, wind: Wind, hub_height
 
 def steady_thrust_wrench(turbine: TurbineDescription, coefficients: RotorCoefficients, wind_m_s: float,
                          thrust_point_m: np.ndarray) -> np.ndarray:
-    """The rotor's steady thrust at its steady operating point in ``wind_m_s``, acting at
-    ``thrust_point_m``: its wrench in world axes about the reference point (platform at rest)."""
-    speed, pitch, _ = steady_operating_point(turbine, coefficients, wind_m_s)
+    """The rotor's steady thrust at its steady operating point in ``wind_m_s`` (within its
+    controller's limits, ``controlled_operating_point``), acting at ``thrust_point_m``: its
+    wrench in world axes about the reference point (platform at rest)."""
+    speed, pitch, _ = controlled_operating_point(turbine, coefficients, wind_m_s)
     thrust, _ = aero_loads(turbine, coefficients, wind_m_s, speed, pitch)
     force = np.array([thrust, 0.0, 0.0])
     return np.concatenate([force, np.cross(thrust_point_m, force)])
