@@ -131,17 +131,17 @@ def test_the_del_of_a_pure_sine_is_its_closed_form():
 
 
 def test_the_volturnus_s_structure_above_the_tower_base_is_its_elastodyn_parts():
-    """The tower, yaw bearing, nacelle, hub and blades of the ElastoDyn deck: the published
-    IEA 15 MW masses (NREL/TP-5000-75698 Table 1: RNA 1017 t, tower 1263 t; the deck's tower
-    file and blades give 2414 t together here) within 6 %, centre of mass up the tower."""
+    """The tower, yaw bearing, nacelle, hub and blades of the ElastoDyn deck (2414 t together)
+    against the published IEA 15 MW masses (NREL/TP-5000-75698 Table 1: RNA 1017 t, tower
+    1263 t): a gross-error bound of 10 % (a part missed or counted twice), not a validation:
+    the floating system's tower is a redesign of the published one."""
     from fowt_hydro_sim.physics.config import load_platform
     from fowt_hydro_sim.studies.turbine_loads import above_tower_base
     above = above_tower_base(load_platform("volturnus_s"))
     assert above.base_height_m == 15.0
-    assert above.mass_kg == pytest.approx(1017e3 + 1263e3, rel=0.06)
+    assert above.mass_kg == pytest.approx(1017e3 + 1263e3, rel=0.10)
     assert 60.0 < above.cog_z_m < 120.0 and -8.0 < above.cog_x_m < 0.0
     assert above_tower_base(load_platform("windmoor12")) is None
-
 
 
 def discon_values(names: tuple[str, ...]) -> dict[str, list[float]]:
