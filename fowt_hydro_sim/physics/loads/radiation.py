@@ -38,15 +38,29 @@ from fowt_hydro_sim.physics.jit import step_loop
 
 ON, DT, N, N_PAIRS, CACHED, LAST, PAST, A_INF, STATES, BASE, PRE_STEP, DATA = 0, 1, 2, 3, 4, 5, 6, 12, 48, 49, 50, 51
 # the state-space form's blocks after the header, in this order: Phi (ns x ns), each row's first and
-# end column of Phi's block (ns each), G0 and G1 (ns x 6 each), C (6 x ns), the states at the base
-# step and the trial states (ns each), Phi x + G0 v of the base step (ns), the velocities at the
-# base step and at the last evaluation (6 each), a scratch column (ns)
-SS_BLOCKS = ("phi", "lo", "hi", "g0", "g1", "c", "x_base", "x_trial", "pre", "u_base", "u_last", "scratch")
+# end column of Phi's block (ns each), G0 and G1 (ns x 6 each), the first and end velocity each
+# state's row of G0 and G1 reads (ns each), C (6 x ns), the first and end load row each state's
+# column of C feeds (ns each), the states at the base step and the trial states (ns each),
+# Phi x + G0 v of the base step (ns), the velocities at the base step and at the last evaluation
+# (6 each), a scratch column (ns). (SS_Fitting's states each read one velocity and feed one load:
+# the ranges keep the products to the nonzero terms.)
+SS_BLOCKS = ("phi", "lo", "hi", "g0", "g1", "in_lo", "in_hi", "c", "out_lo", "out_hi", "x_base", "x_trial", "pre",
+             "u_base", "u_last", "scratch")
+
+
+def _nonzero_range(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each row of ``rows``, the first and end index of its nonzero entries (0, 0 if none)."""
+    lo, hi = np.zeros(len(rows)), np.zeros(len(rows))
+    for r, row in enumerate(rows):
+        nonzero = np.flatnonzero(row)
+        if nonzero.size:
+            lo[r], hi[r] = nonzero[0], nonzero[-1] + 1
+    return lo, hi
 
 
 def state_space_offsets(ns: int) -> dict[str, int]:
     """Where each of ``SS_BLOCKS`` starts in params for ``ns`` states, and ``end``."""
-    sizes = (ns * ns, ns, ns, ns * 6, ns * 6, 6 * ns, ns, ns, ns, 6, 6, ns)
+    sizes = (ns * ns, ns, ns, ns * 6, ns * 6, ns, ns, 6 * ns, ns, ns, ns, ns, ns, 6, 6, ns)
     out, start = {}, DATA
     for name, size in zip(SS_BLOCKS, sizes):
         out[name] = start
@@ -94,12 +108,18 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
         ns = ss.a.shape[0]
         phi, g0, g1 = first_order_hold(ss.a, ss.b, inputs.dt_s)
         lo, hi = np.zeros(ns), np.zeros(ns)
-        for start, end in diagonal_blocks(ss.a):
+        inputs_read = np.zeros((ns, 6), bool)
+        for start, end in diagonal_blocks(ss.a):  # a block's states read the velocities its B rows read
             lo[start:end], hi[start:end] = start, end
+            inputs_read[start:end] = (ss.b[start:end] != 0.0).any(axis=0)
+        g0[~inputs_read], g1[~inputs_read] = 0.0, 0.0  # zero in exact arithmetic
+        in_lo, in_hi = _nonzero_range(inputs_read)
+        out_lo, out_hi = _nonzero_range(ss.c.T)
         at = state_space_offsets(ns)
         params = np.concatenate([params, np.zeros(at["end"] - DATA)])
         params[DT], params[STATES] = inputs.dt_s, ns
-        for name, block in (("phi", phi), ("lo", lo), ("hi", hi), ("g0", g0), ("g1", g1), ("c", ss.c)):
+        for name, block in (("phi", phi), ("lo", lo), ("hi", hi), ("g0", g0), ("g1", g1), ("in_lo", in_lo),
+                            ("in_hi", in_hi), ("c", ss.c), ("out_lo", out_lo), ("out_hi", out_hi)):
             params[at[name]:at[name] + block.size] = np.ravel(block)
         return params, np.zeros((1, 1))
     weights, pairs = convolution_weights(flow, data, inputs.dt_s)
@@ -188,8 +208,12 @@ def _state_space(t: float, y: np.ndarray, params: np.ndarray, out: np.ndarray) -
     at_hi = at_lo + ns
     at_g0 = at_hi + ns
     at_g1 = at_g0 + ns * 6
-    at_c = at_g1 + ns * 6
-    at_x_base = at_c + 6 * ns
+    at_in_lo = at_g1 + ns * 6
+    at_in_hi = at_in_lo + ns
+    at_c = at_in_hi + ns
+    at_out_lo = at_c + 6 * ns
+    at_out_hi = at_out_lo + ns
+    at_x_base = at_out_hi + ns
     at_x_trial = at_x_base + ns
     at_pre = at_x_trial + ns
     at_u_base = at_pre + ns
@@ -225,13 +249,13 @@ def _state_space(t: float, y: np.ndarray, params: np.ndarray, out: np.ndarray) -
                 acc = 0.0
                 for j in range(int(params[at_lo + r]), int(params[at_hi + r])):
                     acc += params[at_phi + ns * r + j] * params[at_x_base + j]
-                for c in range(6):
+                for c in range(int(params[at_in_lo + r]), int(params[at_in_hi + r])):
                     acc += params[at_g0 + 6 * r + c] * params[at_u_base + c]
                 params[at_pre + r] = acc
             params[PRE_STEP] = base
         for r in range(ns):
             acc = params[at_pre + r]
-            for c in range(6):
+            for c in range(int(params[at_in_lo + r]), int(params[at_in_hi + r])):
                 acc += params[at_g1 + 6 * r + c] * y[6 + c]
             params[at_x_trial + r] = acc
     else:  # step times skipped (a prescribed motion sampled coarser than dt): velocities linear between
@@ -251,8 +275,7 @@ def _state_space(t: float, y: np.ndarray, params: np.ndarray, out: np.ndarray) -
                 params[at_scratch + r] = acc
             for r in range(ns):
                 params[at_x_trial + r] = params[at_scratch + r]
-    for i in range(6):
-        acc = 0.0
-        for r in range(ns):
-            acc += params[at_c + ns * i + r] * params[at_x_trial + r]
-        out[i] += acc
+    for r in range(ns):
+        state = params[at_x_trial + r]
+        for i in range(int(params[at_out_lo + r]), int(params[at_out_hi + r])):
+            out[i] += params[at_c + ns * i + r] * state
