@@ -6,9 +6,10 @@ both speeds are taken at the same machine load (their ratio is the figure).
 
 Printed per case: seconds for the record, real-time factor, surge std (a sanity check that
 the run moved), and the ratios. The cases: windmoor12 (the reference), volturnus_s with the
-convolution radiation (its default), without the memory, with its AddBQuad split into two
-first-order bands at 0.05 Hz (the filtered drag model), and oc4_semi (the columns' potential flow
-with 25 Morison members: the pontoons and braces, the columns' drag). With ``--memory-hours H1 H2 ...``, also
+convolution radiation (its default), with the .ss file's state-space radiation, without the
+memory, with its AddBQuad split into two first-order bands at 0.05 Hz (the filtered drag
+model), and oc4_semi (the columns' potential flow with 25 Morison members: the pontoons and
+braces, the columns' drag). With ``--memory-hours H1 H2 ...``, also
 ``fowt-sim simulate --platform volturnus_s`` of that many hours, each in a new process, with
 the process's peak resident memory (flat memory: the same figure for every record length).
 The time loop is ``PlatformModel.run`` with the kinematics
@@ -120,6 +121,8 @@ def main() -> None:
     waves = synthesize(sea, repeat_period(sea, args.duration))
     cases = {"windmoor12 (Morison, constant drag)": time_loop_model("windmoor12", waves, args.dt),
              "volturnus_s (potential flow, convolution)": time_loop_model("volturnus_s", waves, args.dt),
+             "volturnus_s (potential flow, state space)": time_loop_model("volturnus_s", waves, args.dt,
+                                                                          "state_space"),
              "volturnus_s (potential flow, no memory)": time_loop_model("volturnus_s", waves, args.dt, "none"),
              "volturnus_s (AddBQuad in two bands)": time_loop_model("volturnus_s", waves, args.dt, split=True),
              "oc4_semi (potential flow + Morison members)": time_loop_model("oc4_semi", waves, args.dt)}
@@ -153,6 +156,11 @@ def main() -> None:
     for name, seconds in best.items():
         print(f"  {name:45s}{seconds:8.2f} s{args.duration / seconds:9.0f}x real time  "
               f"time / windmoor12's {seconds / reference:5.2f}  surge std {surge[name]:.3f} m")
+    convolution = best["volturnus_s (potential flow, convolution)"]
+    state_space = best["volturnus_s (potential flow, state space)"]
+    no_memory = best["volturnus_s (potential flow, no memory)"]
+    print(f"  volturnus_s: convolution time / state space's {convolution / state_space:.2f}; the memory's time "
+          f"over no memory: convolution {convolution - no_memory:.2f} s, state space {state_space - no_memory:.2f} s")
     if baseline is not None:
         print(f"  {'windmoor12 on ' + args.baseline:45s}{baseline_best:8.2f} s{args.duration / baseline_best:9.0f}x "
               f"real time  this checkout's windmoor12 time / baseline's {reference / baseline_best:5.2f}")

@@ -224,10 +224,10 @@ def _deck_copy(folder: Path, **fields: str) -> Path:
 @pytest.mark.slow
 def test_platform_import_refuses_the_full_qtf_in_one_line(tmp_path, capsys):
     """The OpenFAST deck itself asks for the full difference-frequency QTF (DiffQTF 12), which
-    the model does not have: refused, naming the field; so are RdtnMod 2 and ExctnMod 2 (state
-    spaces)."""
+    the model does not have: refused, naming the field; so are RdtnMod 3 (no such model) and
+    ExctnMod 2 (the excitation's state space)."""
     from fowt_hydro_sim.cli import main
-    for fields, message in (({}, "DiffQTF 12"), ({"DiffQTF": "0", "RdtnMod": "2"}, "RdtnMod 2"),
+    for fields, message in (({}, "DiffQTF 12"), ({"DiffQTF": "0", "RdtnMod": "3"}, "RdtnMod 3"),
                             ({"DiffQTF": "0", "ExctnMod": "2"}, "ExctnMod 2")):
         folder = tmp_path / str(len(message)) / message.split()[0]
         folder.mkdir(parents=True)

@@ -42,12 +42,13 @@ it read, and the integer switches the import uses must read as integers.
 
 A potential-flow deck (PotMod 1) is imported as HydroDyn runs it for one WAMIT body at the
 reference point: PotFile (resolved relative to the deck, as HydroDyn resolves it), WAMITULEN,
-PtfmVol0, PtfmCOBxt/yt, RdtnMod 1 (convolution) or 0 (no memory), RdtnTMax (the kernel's step is
-the model's: HydroDyn's RdtnDT DEFAULT), AddF0, AddCLin, AddBLin, AddBQuad, and NewmanApp from a
-``.12d`` file as the drift table (the surge QTF's diagonal, negative values set to 0). Refused,
-each in one line naming the field: PotMod 2 (FIT), NBody > 1, NAddDOF > 0, a reference point or
-rotation other than 0, ExctnMod other than 1, ExctnDisp other than 0, PtfmYMod 1, RdtnMod 2
-(state space), MnDrift, DiffQTF and SumQTF (full QTFs), NewmanApp from another file than ``.12d``
+PtfmVol0, PtfmCOBxt/yt, RdtnMod 1 (convolution), 2 (state space from PotFile's ``.ss`` file) or 0
+(no memory), RdtnTMax (the kernel's step is the model's: HydroDyn's RdtnDT DEFAULT), AddF0,
+AddCLin, AddBLin, AddBQuad, and NewmanApp from a ``.12d`` file as the drift table (the surge
+QTF's diagonal, negative values set to 0). Refused, each in one line naming the field: PotMod 2
+(FIT), NBody > 1, NAddDOF > 0, a reference point or rotation other than 0, ExctnMod other than
+1, ExctnDisp other than 0, PtfmYMod 1, MnDrift, DiffQTF and SumQTF (full QTFs), NewmanApp from
+another file than ``.12d``
 Members with PropPot are imported drag only (``drag_only``: no
 inertia, added mass or buoyancy of their own), as HydroDyn treats them.
 
@@ -307,10 +308,9 @@ def _potential_flow(hd: dict, source: str, water_density_kg_m3: float,
         value = _first(hd.get(field, allowed))
         if value != allowed:
             raise refuse(field, value, why)
-    radiation = {0: "none", 1: "convolution"}.get(int(hd["RdtnMod"]))
+    radiation = {0: "none", 1: "convolution", 2: "state_space"}.get(int(hd["RdtnMod"]))
     if radiation is None:
-        raise refuse("RdtnMod", hd["RdtnMod"], "convolution (1) or none (0) only; the state-space form is not "
-                                               "supported")
+        raise refuse("RdtnMod", hd["RdtnMod"], "convolution (1), state space (2) or none (0) only")
     root = Path(_first(hd["PotFile"]))
     flow = {"wamit_root": str(root), "wamit_length_m": float(_first(hd["WAMITULEN"])),
             "displaced_volume_m3": float(_first(hd["PtfmVol0"])),

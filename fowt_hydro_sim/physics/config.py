@@ -34,7 +34,7 @@ HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
 STRETCHING = ("none", "vertical", "extrapolation", "wheeler")
 SLOW_DRIFTS = ("newman", "none")
-RADIATION_MODELS = ("convolution", "none")
+RADIATION_MODELS = ("convolution", "state_space", "none")
 
 
 class SampleError(InputError):
@@ -210,7 +210,9 @@ class PotentialFlow:
     wamit_length_m: float  # WAMITULEN: the length WAMIT's dimensionless output is scaled with [m]
     displaced_volume_m3: float  # PtfmVol0: the volume displaced at rest [m^3]
     centre_of_buoyancy_xy_m: tuple[float, float]  # PtfmCOBxt, PtfmCOByt [m]
-    radiation: str = "convolution"  # the memory effect: convolution of the retardation kernel, or none
+    # the memory effect: convolution of the retardation kernel (RdtnMod 1), the .ss file's state-space
+    # form (RdtnMod 2), or none
+    radiation: str = "convolution"
     radiation_tmax_s: float = 60.0  # RdtnTMax: the kernel's length [s]
     added_force_n: tuple[float, ...] = (0.0,) * 6  # AddF0 [N, N m]
     added_stiffness: tuple[tuple[float, ...], ...] = ((0.0,) * 6,) * 6  # AddCLin [N/m, N/rad, N m/m, N m/rad]
@@ -704,10 +706,13 @@ def _potential_flow(f: _Fields, folder: Path | None, bands: tuple[str, ...] = ()
         if not root.with_name(root.name + extension).is_file():
             raise ConfigError(f"{p.at('wamit_root')}: no WAMIT file {root.name + extension} in {root.parent}")
     cob = p.vector("centre_of_buoyancy_xy_m", 2, (0.0, 0.0))
+    radiation = p.text("radiation", "convolution", choices=RADIATION_MODELS)
+    if radiation == "state_space" and not root.with_name(root.name + ".ss").is_file():
+        raise ConfigError(f"{p.at('radiation')}: state_space needs the WAMIT file {root.name}.ss in {root.parent}")
     flow = PotentialFlow(
         wamit_root=str(root.resolve()), wamit_length_m=p.number("wamit_length_m", 1.0, positive=True),
         displaced_volume_m3=p.number("displaced_volume_m3", positive=True), centre_of_buoyancy_xy_m=cob,
-        radiation=p.text("radiation", "convolution", choices=RADIATION_MODELS),
+        radiation=radiation,
         radiation_tmax_s=p.number("radiation_tmax_s", 60.0, positive=True),
         added_force_n=p.vector("added_force_n", 6, (0.0,) * 6),
         added_stiffness=_matrix6(p, "added_stiffness"), added_linear_damping=_matrix6(p, "added_linear_damping"),

@@ -24,6 +24,10 @@ the trapezoidal rule (a type-I discrete cosine transform, FFTPACK's COST, normal
 ``1/(NStepRdtn - 1)``). HydroDyn refuses a table whose highest frequency exceeds ``pi / RdtnDT``;
 so does this function.
 
+The state-space form (HydroDyn's RdtnMod 2, the ``.ss`` file) has its impulse response and
+frequency response here, and its exact step for a velocity linear between step times (the
+kernel integrates it so: :func:`first_order_hold`).
+
 Arrays carry the frequency or time axis first and any trailing shape (a 6x6 matrix, say).
 """
 from __future__ import annotations
@@ -31,6 +35,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import expm
 
 # the first nine primes: HydroDyn's PSF(N, 9)
 _SMALL_PRIMES = (2, 3, 5, 7, 11, 13, 17, 19, 23)
@@ -152,3 +157,74 @@ def added_mass_from_kernel(time_s: np.ndarray, kernel_si: np.ndarray, added_mass
     with np.errstate(invalid="ignore", divide="ignore"):
         sinc_t = np.where(omega[:, None] == 0, t[None, :], np.sin(np.outer(omega, t)) / omega[:, None])
     return np.asarray(added_mass_inf_si) - np.tensordot(sinc_t, weighted, axes=(1, 0))
+
+
+# --------------------------------------------------------------------------- state-space form
+# HydroDyn's RdtnMod 2: the memory load F = C x with dx/dt = A x + B v (the .ss file of WAMIT's
+# SS_Fitting; ``physics.hydro.wamit.read_ss``). C exp(A t) B stands for -K(t).
+
+def state_space_impulse_response(a: np.ndarray, b: np.ndarray, c: np.ndarray, time_s: np.ndarray) -> np.ndarray:
+    """``-C exp(A t) B`` at each of ``time_s`` (uniformly spaced from its first value): the
+    retardation kernel the state-space form stands for, (len(time_s), 6, 6), in the sign of
+    :func:`retardation_kernel`."""
+    t = np.asarray(time_s, float)
+    out = np.zeros((t.size, c.shape[0], b.shape[1]))
+    if t.size == 0:
+        return out
+    state = expm(a * t[0]) @ b
+    step = expm(a * (t[1] - t[0])) if t.size > 1 else np.eye(a.shape[0])
+    for k in range(t.size):
+        out[k] = -c @ state
+        state = step @ state
+    return out
+
+
+def state_space_coefficients(a: np.ndarray, b: np.ndarray, c: np.ndarray,
+                             omega_rad_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The damping B(w) and the added mass less its infinite-frequency limit, A(w) - A_inf,
+    that the state-space form gives at each of ``omega_rad_s`` (> 0): with
+    ``H(w) = C (i w I - A)^-1 B`` the memory load of v e^{i w t} is H v e^{i w t}
+    = -(B(w) + i w (A(w) - A_inf)) v e^{i w t}. Returns ((n, 6, 6), (n, 6, 6))."""
+    omega = np.asarray(omega_rad_s, float)
+    identity = np.eye(a.shape[0])
+    response = np.array([c @ np.linalg.solve(1j * w * identity - a, b) for w in omega])
+    return -response.real, -response.imag / omega[:, None, None]
+
+
+def diagonal_blocks(a: np.ndarray) -> list[tuple[int, int]]:
+    """The smallest contiguous diagonal blocks [start, end) of ``a`` outside which it is zero
+    (SS_Fitting's A is block-diagonal, one block per DOF; a full matrix is one block)."""
+    n = a.shape[0]
+    nonzero = a != 0.0
+    blocks, start = [], 0
+    while start < n:
+        end = start + 1
+        while end < n and (nonzero[start:end, end:].any() or nonzero[end:, start:end].any()):
+            end += 1
+        blocks.append((start, end))
+        start = end
+    return blocks
+
+
+def first_order_hold(a: np.ndarray, b: np.ndarray, dt_s: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The exact step of ``dx/dt = A x + B u`` over ``dt_s`` for an input linear between the
+    step times (a first-order hold): ``x_{k+1} = Phi x_k + G0 u_k + G1 u_{k+1}``. Computed
+    block by block (:func:`diagonal_blocks`; the blocks do not couple), each from one matrix
+    exponential of ``[[A dt, B dt, 0], [0, 0, I], [0, 0, 0]]``, whose first block row is
+    ``[Phi, P1, P2]`` with ``P1 = int_0^dt e^{A (dt - s)} B ds``, ``P2 = int_0^dt e^{A (dt - s)} B s/dt ds``;
+    ``G0 = P1 - P2``, ``G1 = P2``. Returns (Phi (n, n), G0 (n, m), G1 (n, m))."""
+    if not dt_s > 0:
+        raise ValueError(f"the step must be positive, not {dt_s!r}")
+    n, m = b.shape
+    phi, g0, g1 = np.zeros((n, n)), np.zeros((n, m)), np.zeros((n, m))
+    for start, end in diagonal_blocks(a):
+        size = end - start
+        augmented = np.zeros((size + 2 * m, size + 2 * m))
+        augmented[:size, :size] = a[start:end, start:end] * dt_s
+        augmented[:size, size:size + m] = b[start:end] * dt_s
+        augmented[size:size + m, size + m:] = np.eye(m)
+        e = expm(augmented)
+        phi[start:end, start:end] = e[:size, :size]
+        p1, p2 = e[:size, size:size + m], e[:size, size + m:]
+        g0[start:end], g1[start:end] = p1 - p2, p2
+    return phi, g0, g1

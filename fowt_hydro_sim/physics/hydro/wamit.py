@@ -16,6 +16,13 @@ readers here follow HydroDyn's ``WAMIT.f90`` (``WAMIT_Init``) and ``WAMIT2.f90``
 - ``.12d`` rows are ``PER1 PER2 BETA1 BETA2 I |Fbar| phase(deg) Re(Fbar) Im(Fbar)``. WAMIT may
   write one triangle of the frequency pairs only; the other is filled from the difference-frequency
   QTF's symmetry ``F(w2, w1) = conj F(w1, w2)``.
+- ``.ss`` (HydroDyn's ``SS_Radiation``, RdtnMod 2; written by WAMIT's SS_Fitting) is a state-space
+  form of the radiation memory: a title line; the enabled-DOF flags (six 0/1 numbers); the number
+  of states n; the states per DOF (six numbers summing to n); then A (n rows of n numbers), B
+  (n rows of 6) and C (6 rows of n), dimensional (SI: no WAMITULEN, rho or g scaling, as HydroDyn
+  reads them). Text after the numbers on the flag and count lines is a comment. The memory load
+  is ``F = C x`` with ``dx/dt = A x + B v`` (v the body velocity), so ``C exp(A t) B`` stands for
+  minus the retardation kernel.
 
 Redimensionalisation (``L`` = HydroDyn's ``WAMITULEN``, ``rho`` = water density, ``g`` = gravity;
 for 6N x 6N matrices the factor of element (i, j) is that of the 6 x 6 block position
@@ -108,6 +115,21 @@ class DifferenceQtf:
         ``F(w, w)`` of each heading pair."""
         diagonal = np.diagonal(self.qtf_per_amplitude_squared_si, axis1=1, axis2=2)  # (p, 6N, n)
         return np.moveaxis(diagonal, -1, 1).real
+
+
+@dataclass(frozen=True)
+class StateSpaceRadiation:
+    """The radiation memory in state-space form from a ``.ss`` file (one body, six DOFs):
+    ``dx/dt = a x + b v``, ``F = c x``.
+
+    ``a``: (n, n) in 1/s; ``b``: (n, 6); ``c``: (6, n), such that ``c exp(a t) b`` is in N/m,
+    N/rad, N m/m, N m/rad per second (minus the retardation kernel); ``states_per_dof``: (6,)
+    the file's count of states for each DOF."""
+
+    a: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
+    states_per_dof: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -314,6 +336,64 @@ def read_12d(path: Path | str, rho_kg_m3: float, g_m_s2: float, length_m: float 
     scale = _vector_scale(n_dof, rho_kg_m3 * g_m_s2, length_m, 1)
     return DifferenceQtf(omega_rad_s=2 * np.pi / np.array(periods), heading_pairs_deg=np.array(pairs),
                          qtf_per_amplitude_squared_si=qtf * scale)
+
+
+def _leading_integers(path: Path, number: int, line: str, count: int, what: str) -> list[int]:
+    """The first ``count`` fields of ``line`` as integers (the rest is a comment)."""
+    fields = line.split()[:count]
+    try:
+        values = [float(f.replace("D", "E").replace("d", "e")) for f in fields]
+    except ValueError:
+        values = []
+    if len(values) != count or any(v != int(v) or v < 0 for v in values):
+        raise WamitFormatError(f"{path}:{number}: expected {what} ({count} non-negative integers)")
+    return [int(v) for v in values]
+
+
+def read_ss(path: Path | str) -> StateSpaceRadiation:
+    """The state-space radiation matrices of a ``.ss`` file (module docstring), checked as
+    HydroDyn's ``SS_Rad_Init`` checks them: the states per DOF sum to the number of states and
+    the matrices have that many rows. The model moves all six DOFs, so each must be enabled in
+    the file (HydroDyn refuses a file lacking a DOF its run enables)."""
+    path = Path(path)
+    try:
+        lines = path.read_text().splitlines()
+    except OSError as exc:
+        raise WamitFormatError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    numbered = [(k, line) for k, line in enumerate(lines, start=1)]
+    body = [(k, line) for k, line in numbered[1:] if line.split()]
+    if len(body) < 3:
+        raise WamitFormatError(f"{path}: expected a title, the DOF flags, the number of states and the states "
+                               "per DOF before the matrices")
+    (k_flags, flags_line), (k_n, n_line), (k_per, per_line) = body[:3]
+    flags = _leading_integers(path, k_flags, flags_line, 6, "the enabled-DOF flags")
+    if flags != [1] * 6:
+        raise WamitFormatError(f"{path}:{k_flags}: DOF flags {flags}: the model moves all six DOFs, the file must "
+                               "enable them all (1 1 1 1 1 1)")
+    (n,) = _leading_integers(path, k_n, n_line, 1, "the number of states")
+    per_dof = _leading_integers(path, k_per, per_line, 6, "the states per DOF")
+    if n < 1 or sum(per_dof) != n:
+        raise WamitFormatError(f"{path}:{k_per}: the states per DOF {per_dof} do not sum to the number of states {n}")
+    rows = body[3:]
+    if len(rows) != 2 * n + 6:
+        raise WamitFormatError(f"{path}: {len(rows)} matrix rows; {n} states need {2 * n + 6} (A {n}, B {n}, C 6)")
+    matrices = []
+    for start, count, width, name in ((0, n, n, "A"), (n, n, 6, "B"), (2 * n, 6, n, "C")):
+        block = np.zeros((count, width))
+        for r, (number, line) in enumerate(rows[start:start + count]):
+            fields = line.split()
+            if len(fields) != width:
+                raise WamitFormatError(f"{path}:{number}: a row of {name} holds {width} numbers, found {len(fields)}")
+            try:
+                block[r] = [float(f.replace("D", "E").replace("d", "e")) for f in fields]
+            except ValueError:
+                bad = next(f for f in fields if not _is_number(f))
+                raise WamitFormatError(f"{path}:{number}: {bad!r} is not a number") from None
+            if not np.all(np.isfinite(block[r])):
+                raise WamitFormatError(f"{path}:{number}: a value is not finite")
+        matrices.append(block)
+    a, b, c = matrices
+    return StateSpaceRadiation(a=a, b=b, c=c, states_per_dof=np.array(per_dof))
 
 
 def read_potential_flow(root: Path | str, rho_kg_m3: float, g_m_s2: float,

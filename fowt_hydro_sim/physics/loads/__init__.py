@@ -72,7 +72,8 @@ COMPONENTS = (
                                            "buoyancy minus the WAMIT .hst restoring C q", True, True,
                   "potential_hydrostatic", restoring=True),
     LoadComponent("radiation", "a potential-flow hull's radiation: A_inf on the mass side (-A_inf a) and the "
-                               "memory convolution of the retardation kernel from B(w)", True, True, "radiation"),
+                               "memory, the convolution of the retardation kernel from B(w) or the WAMIT .ss "
+                               "state space", True, True, "radiation"),
     LoadComponent("excitation", "a potential-flow hull's first-order wave excitation from the WAMIT .3 file",
                   True, True, "excitation"),
     LoadComponent("added_matrices", "HydroDyn's additional preload, stiffness and damping of a potential-flow hull "
