@@ -15,12 +15,19 @@ from fowt_hydro_sim.cli import main
 from fowt_hydro_sim.physics.config import ConfigError, HydroOptions
 from fowt_hydro_sim.physics.waves.components import WaveComponents, wavenumber
 from fowt_hydro_sim.physics.waves.grid import SeaStateGrid
-from fowt_hydro_sim.physics.waves.kinematics import moving_point_kinematics
+from fowt_hydro_sim.physics.waves.kinematics import complex_amplitudes
 
 MCF_SEASTATE = Path(__file__).parent / "data" / "openfast_rtest" / "hd_MCF_WaveStMod1" / "MCF_SeaState.dat"
 DEPTH, G, RHO = 200.0, 9.80665, 1025.0
 GRID = SeaStateGrid(x_half_width_m=30.0, y_half_width_m=20.0, z_depth_m=40.0, nx=4, ny=3, nz=6, dt_s=0.25)
 RNG = np.random.default_rng(7)
+
+
+def moving_point_kinematics(waves, points, t, depth_m, gravity_m_s2, density_kg_m3):
+    """Exact Airy kinematics (n, 7) at points each at its own time (numpy, no compiled kernel)."""
+    amplitudes = complex_amplitudes(waves, points, depth_m, gravity_m_s2, density_kg_m3)  # (n, 7, f)
+    phasor = np.exp(1j * np.outer(t, 2 * np.pi * waves.frequency_hz))  # (n, f)
+    return np.einsum("ncf,nf->nc", amplitudes, phasor).real
 
 
 def _linear_field(grid: SeaStateGrid, depth_m: float):

@@ -93,8 +93,17 @@ class SeaStateGrid:
         def gridded(waves: WaveComponents, points_m: np.ndarray, t_s: np.ndarray, depth_m: float,
                     gravity_m_s2: float, density_kg_m3: float) -> np.ndarray:
             nodes, times, weights = self._corners(np.atleast_2d(points_m), np.asarray(t_s, dtype=float), depth_m)
-            values = evaluate(waves, nodes.reshape(-1, 3), times.ravel(), depth_m, gravity_m_s2, density_kg_m3)
-            return np.einsum("nc,ncj->nj", weights, values.reshape(*weights.shape, -1))
+            # each distinct node and time with a weight evaluated once (a point on a node or a
+            # time on WaveDT needs fewer than 16; neighbouring points share theirs)
+            used = weights.ravel() != 0.0
+            keys = np.column_stack([nodes.reshape(-1, 3), times.ravel()])[used]
+            unique, inverse = np.unique(keys, axis=0, return_inverse=True)
+            values = evaluate(waves, unique[:, 0:3], unique[:, 3], depth_m, gravity_m_s2, density_kg_m3)
+            n_points = weights.shape[0]
+            owner = np.repeat(np.arange(n_points), weights.shape[1])[used]
+            out = np.zeros((n_points, values.shape[1]))
+            np.add.at(out, owner, weights.ravel()[used, None] * values[inverse.ravel()])
+            return out
 
         return gridded
 
