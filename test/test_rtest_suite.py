@@ -38,6 +38,7 @@ def test_manifest_cases_have_their_files_and_a_known_expectation():
     """Every file the manifest names is in the repository; every expectation is one of the three."""
     assert len({c.name for c in CASES}) == len(CASES) >= 4
     for case in CASES:
-        for path in (case.deck, case.driver, case.baseline, *([case.waves] if case.waves else [])):
+        for path in (case.deck, case.driver, case.baseline, *([case.waves] if case.waves else []),
+                     *([case.seastate_grid] if case.seastate_grid else [])):
             assert path.is_file(), path
         assert case.expect == "pass" or case.expect.split(":")[0] in ("refused", "gap"), case.expect

@@ -15,11 +15,12 @@ from fowt_hydro_sim.physics.config import (
     RunConfig,
     load_platform,
 )
+from fowt_hydro_sim.physics.waves.grid import SeaStateGrid
 from fowt_hydro_sim.studies import prescribed_motion as study
 from fowt_hydro_sim.studies.simulate import comp_file_waves, sea_state_waves
 
-# kinematics, stretching and surface_grid_m: prescribed motion only
-OPTION_NAMES = (*HYDRO_OPTION_NAMES, "kinematics", "stretching", "surface_grid_m")
+# kinematics, stretching, surface_grid_m and wave_kinematics: prescribed motion only
+OPTION_NAMES = (*HYDRO_OPTION_NAMES, "kinematics", "stretching", "surface_grid_m", "wave_kinematics")
 
 
 def loads(args: argparse.Namespace) -> int:
@@ -38,8 +39,12 @@ def loads(args: argparse.Namespace) -> int:
     else:
         sea, case = options.sea_state(args)
         waves, _ = sea_state_waves(sea, float(motion.time_s[-1]), case)
+    if (hydro.wave_kinematics == "grid") != (args.seastate_grid is not None):
+        raise ConfigError("--wave-kinematics grid and --seastate-grid go together: the grid is the SeaState file's")
+    grid = None if args.seastate_grid is None else SeaStateGrid.from_seastate_file(args.seastate_grid)
     mooring = options.values(args, RunConfig, ("mooring",))["mooring"]
-    result, tensions = study.prescribed_run(platform, waves, motion, hydro, args.wave_table_dt, mooring)
+    result, tensions = study.prescribed_run(platform, waves, motion, hydro, args.wave_table_dt, mooring,
+                                            wave_grid=grid)
     study.write_loads_csv(out, motion.time_s, result, tensions)
     sys.stdout.write(f"wrote {out}: {len(motion.time_s)} rows, {hydro}\n")
     return 0
@@ -66,5 +71,8 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                    help="HydroDyn's choices: undisplaced wetted length, fixed directions, nonlinear hydrostatics")
     options.add(p, HydroOptions, OPTION_NAMES, defaults={name: None for name in OPTION_NAMES},
                 notes={name: " (default: the model's, or HydroDyn's with --hydrodyn)" for name in OPTION_NAMES})
+    p.add_argument("--seastate-grid", type=Path, default=None, metavar="SEASTATE_FILE",
+                   help="SeaState input file whose grid (X/Y_HalfWidth, NX/NY, Z_Depth, NZ, WaveDT) "
+                        "--wave-kinematics grid samples the waves on")
     options.add(p, RunConfig, ("mooring",), notes={"mooring": " (moordyn needs the time loop: not here)"})
     p.set_defaults(func=loads)

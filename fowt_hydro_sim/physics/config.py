@@ -33,6 +33,7 @@ LOAD_DIRECTIONS = ("rotating", "fixed")
 HYDROSTATICS = ("linear", "nonlinear", "free_surface")
 KINEMATICS = ("undisplaced", "displaced")
 STRETCHING = ("none", "vertical", "extrapolation", "wheeler")
+WAVE_KINEMATICS = ("exact", "grid")
 SLOW_DRIFTS = ("newman", "none")
 RADIATION_MODELS = ("convolution", "state_space", "none")
 
@@ -342,9 +343,17 @@ class HydroOptions:
         None, "free_surface hydrostatics only: the elevation interpolated bilinearly between the nodes of a "
               "horizontal grid with this spacing through the origin, as HydroDyn reads it from SeaState's grid "
               "(dX = X_HalfWidth / (NX - 1), taken equal in y) [m]; default the exact elevation", gt=0.0)
+    wave_kinematics: str = setting(
+        "exact", "the wave kinematics and elevation: exact at each point and time, or grid, sampled at the nodes "
+                 "of a SeaState input file's grid (X/Y_HalfWidth, NX/NY, Z_Depth, NZ, WaveDT) and interpolated "
+                 "between them as HydroDyn does (physics/waves/grid.py); prescribed motion only: fowt-sim loads",
+        choices=WAVE_KINEMATICS)
 
     def __post_init__(self) -> None:
         _validate(self, "hydro options")
+        if self.surface_grid_m is not None and self.wave_kinematics == "grid":
+            raise ConfigError("hydro options: surface_grid_m and wave_kinematics 'grid' both set the elevation's "
+                              "grid: give one (the SeaState grid interpolates the elevation too)")
         if self.surface_grid_m is not None and self.hydrostatics != "free_surface":
             raise ConfigError(f"hydro options: surface_grid_m applies to hydrostatics 'free_surface' only, not "
                               f"{self.hydrostatics!r}")

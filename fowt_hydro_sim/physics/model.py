@@ -73,6 +73,7 @@ from fowt_hydro_sim.physics.rigid_body import rotation_matrix
 from fowt_hydro_sim.physics.strips import Discretisation, discretise
 from fowt_hydro_sim.physics.tables import interpolate_into, interpolate_table
 from fowt_hydro_sim.physics.waves.components import WaveComponents
+from fowt_hydro_sim.physics.waves.grid import SeaStateGrid
 from fowt_hydro_sim.physics.waves.kinematics import (
     BlocksAhead,
     BlockSynthesis,
@@ -145,14 +146,17 @@ class PlatformModel:
     slower); without it the compiled loop runs alone, unchanged. ``mooring_model``: the
     platform's mooring model (``spring``, ``moorpy``, ``moordyn``; "" = the platform's own
     choice). ``moordyn`` steps MoorDyn in Python between the compiled evaluations, as a user
-    force does (``physics.mooring.moordyn_lines``).
+    force does (``physics.mooring.moordyn_lines``). ``wave_grid``: SeaState's grid, with
+    ``options.wave_kinematics`` "grid" (prescribed motion only): the kinematics and elevation
+    sampled at its nodes and interpolated as HydroDyn does (``physics.waves.grid``).
     """
 
     def __init__(self, platform: Platform, waves: WaveComponents | None = None, *, dt_s: float = 0.05,
                  drag_model: str = "constant", wave_table_dt_s: float | None = None,
                  extension: Extension | None = None, kinematics: KinematicsTable | None = None,
                  options: HydroOptions | None = None, wave_block_s: float = WAVE_BLOCK_S,
-                 blocks_ahead: bool = True, user_force: UserForce | None = None, mooring_model: str = ""):
+                 blocks_ahead: bool = True, user_force: UserForce | None = None, mooring_model: str = "",
+                 wave_grid: SeaStateGrid | None = None):
         if drag_model not in DRAG_MODELS:
             raise ConfigError(f"drag model {drag_model!r}: must be one of {', '.join(DRAG_MODELS)}")
         if drag_model == "filtered" and not platform.drag_bands and platform.members:  # (no members: no drag)
@@ -174,6 +178,10 @@ class PlatformModel:
         self.dt_s = float(dt_s)
         self.drag_model = drag_model
         self.options = options or HydroOptions()
+        if (self.options.wave_kinematics == "grid") != (wave_grid is not None):
+            raise ConfigError("wave kinematics 'grid' needs a SeaState grid (wave_grid), and a SeaState grid needs "
+                              "wave kinematics 'grid'")
+        self.wave_grid = wave_grid
         # Wheeler and extrapolation stretching take each point above z = 0 at its own height
         self.geometry: Discretisation = discretise(
             platform, points_above_water=self.options.stretching in ("wheeler", "extrapolation"))
@@ -521,6 +529,9 @@ class PlatformModel:
         if self.options.stretching != "none":
             raise ConfigError(f"stretching {self.options.stretching!r}: implemented for a prescribed motion only "
                               "(fowt-sim loads, PlatformModel.prescribed_motion_loads), not for time stepping")
+        if self.wave_grid is not None:
+            raise ConfigError("wave kinematics 'grid': implemented for a prescribed motion only (fowt-sim loads, "
+                              "PlatformModel.prescribed_motion_loads), not for time stepping")
         if self.mooring_lines is not None:  # MoorDyn's tensions: this advance's steps only
             self.mooring_lines.forget_before(self.time_s)
         n_out = n_steps // every
@@ -576,6 +587,7 @@ class PlatformModel:
         out = np.zeros((n, N_LOADS, 6))
         params_of("user", self._data.component_params)[:] = 0.0  # its row: below
         per_time = (self.options.kinematics == "displaced" or self.options.stretching in ("wheeler", "extrapolation")
+                    or self.wave_grid is not None
                     or (self.waves is not None and not self.waves.periodic))  # summed directly at each time
         if per_time and self.waves is not None and self.waves.frequency_hz.size:
             data = self._data._replace(waves=self._moving_table(time_s, motion))
@@ -588,7 +600,9 @@ class PlatformModel:
         if self.options.hydrostatics == "free_surface":
             env = self.platform.environment
             eta = free_surface.wave_elevation(self.waves, env.water_depth_m, env.gravity_m_s2)
-            if self.options.surface_grid_m is not None:
+            if self.wave_grid is not None:
+                eta = self.wave_grid.elevation_function(self.waves, env.water_depth_m, env.gravity_m_s2)
+            elif self.options.surface_grid_m is not None:
                 eta = free_surface.on_grid(eta, self.options.surface_grid_m, self.options.surface_grid_m)
             out[:, ROW["hydrostatic"]] = free_surface.prescribed_motion_wrenches(
                 free_surface.platform_members(self.platform), eta, time_s, motion,
@@ -636,13 +650,19 @@ class PlatformModel:
         surfaces = np.zeros((time_s.size, len(centres)))
         if self.options.stretching == "none" or self.waves is None or not self.waves.frequency_hz.size:
             return surfaces
-        env = self.platform.environment
         for i, t in enumerate(time_s):
             xy = centres[:, 0:2]
             if self.options.wetted_length == "displaced":
                 xy = motion[i, 0:2] + centres @ rotation_matrices(*motion[i, 3:6])[0:2].T
-            surfaces[i] = self.waves.elevation_at(xy, t, env.water_depth_m, env.gravity_m_s2)
+            surfaces[i] = self._elevation_at(xy, t)
         return surfaces
+
+    def _elevation_at(self, xy: np.ndarray, t: float) -> np.ndarray:
+        """The elevation at points (p, 2) at time t: exact, or interpolated on the SeaState grid."""
+        env = self.platform.environment
+        if self.wave_grid is not None:
+            return self.wave_grid.elevation(self.waves, xy, np.full(len(xy), t), env.water_depth_m, env.gravity_m_s2)
+        return self.waves.elevation_at(xy, t, env.water_depth_m, env.gravity_m_s2)
 
     def _moving_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:
         """A kinematics table whose row i holds, at time t_i = i dt, the kinematics at the
@@ -654,8 +674,8 @@ class PlatformModel:
         step = float(time_s[1] - time_s[0]) if time_s.size > 1 else 1.0
         rows = np.round(time_s / step).astype(np.int64)
         if time_s.size < 2 or step <= 0 or np.max(np.abs(rows * step - time_s)) > 1e-6 * step or rows[0] < 0:
-            raise ConfigError("prescribed motion with displaced kinematics or Wheeler stretching: the times must be "
-                              "multiples of one constant step from t >= 0")
+            raise ConfigError("prescribed motion with displaced or gridded kinematics or Wheeler or extrapolation "
+                              "stretching: the times must be multiples of one constant step from t >= 0")
         points = self.geometry.points_m
         if self.options.kinematics == "displaced":
             rotation = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
@@ -666,8 +686,7 @@ class PlatformModel:
         kinematics = moving_point_kinematics
         if self.options.stretching in ("wheeler", "extrapolation"):
             depth = env.water_depth_m
-            eta = np.stack([self.waves.elevation_at(world[i, :, 0:2], t, depth, env.gravity_m_s2)
-                            for i, t in enumerate(time_s)])
+            eta = np.stack([self._elevation_at(world[i, :, 0:2], t) for i, t in enumerate(time_s)])
             if self.options.stretching == "wheeler":
                 world[:, :, 2] = depth * (np.minimum(world[:, :, 2], eta) - eta) / (depth + eta)
             else:  # extrapolated above z = 0, up to eta at most
@@ -675,6 +694,8 @@ class PlatformModel:
                 kinematics = extrapolated_kinematics
         else:
             world[:, :, 2] = np.minimum(world[:, :, 2], 0.0)  # no kinematics above the water line
+        if self.wave_grid is not None:
+            kinematics = self.wave_grid.interpolate_kinematics(kinematics)
         values = kinematics(self.waves, world.reshape(-1, 3), np.repeat(time_s, len(points)),
                             env.water_depth_m, env.gravity_m_s2, env.water_density_kg_m3)
         table = np.zeros((rows[-1] + 3, len(points), 7))

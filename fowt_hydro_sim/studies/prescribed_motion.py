@@ -21,6 +21,7 @@ from fowt_hydro_sim.physics.config import ConfigError, HydroOptions, Platform
 from fowt_hydro_sim.physics.loads import NAMES, ROW
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.waves.components import WaveComponents
+from fowt_hydro_sim.physics.waves.grid import SeaStateGrid
 
 log = logging.getLogger(__name__)
 
@@ -61,20 +62,22 @@ def read_prp_motion(path: str | Path) -> PrescribedMotion:
 
 
 def prescribed_loads(platform: Platform, waves: WaveComponents | None, motion: PrescribedMotion,
-                     options: HydroOptions, wave_table_dt_s: float | None = None) -> np.ndarray:
+                     options: HydroOptions, wave_table_dt_s: float | None = None,
+                     wave_grid: SeaStateGrid | None = None) -> np.ndarray:
     """Every load component (n, N_LOADS, 6; global axes, about the displaced reference point)
-    along the motion, with the constant drag model."""
-    return prescribed_run(platform, waves, motion, options, wave_table_dt_s)[0]
+    along the motion, with the constant drag model (``wave_grid``: SeaState's grid, for
+    ``options.wave_kinematics`` "grid")."""
+    return prescribed_run(platform, waves, motion, options, wave_table_dt_s, wave_grid=wave_grid)[0]
 
 
 def prescribed_run(platform: Platform, waves: WaveComponents | None, motion: PrescribedMotion,
                    options: HydroOptions, wave_table_dt_s: float | None = None,
-                   mooring_model: str = "") -> tuple[np.ndarray, np.ndarray]:
+                   mooring_model: str = "", wave_grid: SeaStateGrid | None = None) -> tuple[np.ndarray, np.ndarray]:
     """``prescribed_loads`` with the mooring model ``mooring_model`` ("" = the platform's; not
     moordyn, which needs the time loop), and each mooring line's fairlead and anchor tension
     along the motion (n, lines, 2) [N]."""
     model = PlatformModel(platform, waves, options=options, wave_table_dt_s=wave_table_dt_s,
-                          mooring_model=mooring_model)
+                          mooring_model=mooring_model, wave_grid=wave_grid)
     loads = model.prescribed_motion_loads(motion.time_s, motion.motion, motion.velocity, motion.acceleration)
     return loads, model.mooring_tensions(motion.time_s, motion.motion)
 

@@ -48,6 +48,14 @@ class Case:
     tolerance: float
     expect: str  # "pass", "refused: FIELD" or "gap: WHY"
     environment: dict[str, str] = field(default_factory=dict)  # driver values the driver file lacks
+    seastate_grid: Path | None = None  # a SeaState input file: the waves sampled on its grid (--wave-kinematics grid)
+
+    @property
+    def loads_options(self) -> tuple[str, ...]:
+        """The ``fowt-sim loads`` options: the manifest's, and the SeaState grid's if it names one."""
+        if self.seastate_grid is None:
+            return self.options
+        return (*self.options, "--wave-kinematics", "grid", "--seastate-grid", str(self.seastate_grid))
 
     @property
     def expected_refusal(self) -> str | None:
@@ -86,10 +94,12 @@ def load_manifest(path: Path = MANIFEST) -> list[Case]:
     for entry in yaml.safe_load(path.read_text())["cases"]:
         folder = path.parent / entry["name"]
         waves = None if entry["waves"] == "still" else folder / entry["waves"]
+        grid = entry.get("seastate_grid")
         cases.append(Case(entry["name"], folder / entry["deck"], folder / entry["driver"], waves,
                           tuple(str(o) for o in entry["options"]), folder / entry["baseline"],
                           float(entry["tolerance"]), str(entry["expect"]),
-                          {k: str(v) for k, v in entry.get("environment", {}).items()}))
+                          {k: str(v) for k, v in entry.get("environment", {}).items()},
+                          None if grid is None else folder / grid))
     return cases
 
 
@@ -167,7 +177,7 @@ def run_case(case: Case, folder: Path) -> Result:
         if code:
             return Result(case, refusal=message)
     waves = ["--still-water"] if comp is None else ["--waves-comp", str(comp)]
-    code, message = _cli(["loads", "--platform", str(platform), "--motion", str(motion), *waves, *case.options,
+    code, message = _cli(["loads", "--platform", str(platform), "--motion", str(motion), *waves, *case.loads_options,
                           "-o", str(out), "--overwrite"])
     if code:
         return Result(case, refusal=message)
