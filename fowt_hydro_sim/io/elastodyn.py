@@ -25,7 +25,7 @@ from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import MassProperties
 
 
-def _values(path: Path) -> tuple[dict[str, str], list[str]]:
+def deck_fields(path: Path) -> tuple[dict[str, str], list[str]]:
     """The ``value NAME - comment`` fields of an OpenFAST input file and its lines."""
     try:
         lines = path.read_text().splitlines()
@@ -39,7 +39,8 @@ def _values(path: Path) -> tuple[dict[str, str], list[str]]:
     return fields, lines
 
 
-def _number(fields: dict[str, str], name: str, path: Path) -> float:
+def deck_number(fields: dict[str, str], name: str, path: Path) -> float:
+    """The number in field ``name`` of ``deck_fields``; one line naming the file and field if absent or not a number."""
     try:
         return float(fields[name])
     except KeyError:
@@ -84,8 +85,8 @@ def hub_point(elastodyn_path: Path | str) -> tuple[float, float, float]:
     """The rotor apex (m, from the platform reference point): ``OverHang`` along the shaft,
     tilted by ``ShftTilt``, from ``Twr2Shft`` above the tower top."""
     path = Path(elastodyn_path)
-    ed, _ = _values(path)
-    num = lambda name: _number(ed, name, path)  # noqa: E731
+    ed, _ = deck_fields(path)
+    num = lambda name: deck_number(ed, name, path)  # noqa: E731
     tilt = math.radians(num("ShftTilt"))
     apex = np.array([num("OverHang") * math.cos(tilt), 0.0,
                      num("TowerHt") - num("PtfmRefzt") + num("Twr2Shft") + num("OverHang") * math.sin(tilt)])
@@ -96,19 +97,19 @@ def system_mass_properties(elastodyn_path: Path | str, blade_path: Path | str | 
     """The rigid system's mass, centre of mass and inertia about it (see the module docstring);
     ``blade_path`` overrides the deck's ``BldFile1`` (resolved relative to the deck)."""
     path = Path(elastodyn_path)
-    ed, _ = _values(path)
-    num = lambda name: _number(ed, name, path)  # noqa: E731
+    ed, _ = deck_fields(path)
+    num = lambda name: deck_number(ed, name, path)  # noqa: E731
     ref = np.array([num("PtfmRefxt"), num("PtfmRefyt"), num("PtfmRefzt")])
     parts = []
     platform_cm = np.array([num("PtfmCMxt"), num("PtfmCMyt"), num("PtfmCMzt")]) - ref
     parts.append((num("PtfmMass"), platform_cm, np.array([[num("PtfmRIner"), 0, 0], [0, num("PtfmPIner"), 0],
                                                          [0, 0, num("PtfmYIner")]], float)))
     tower_path = path.parent / ed["TwrFile"]
-    tw, tw_lines = _values(tower_path)
-    tower = _table(tw_lines, "HtFract", int(_number(tw, "NTwInpSt", tower_path)), tower_path)
+    tw, tw_lines = deck_fields(tower_path)
+    tower = _table(tw_lines, "HtFract", int(deck_number(tw, "NTwInpSt", tower_path)), tower_path)
     base = np.array([0.0, 0.0, num("TowerBsHt")]) - ref
     top = np.array([0.0, 0.0, num("TowerHt")]) - ref
-    tower_density = np.stack([tower[:, 0], tower[:, 1] * _number(tw, "AdjTwMa", tower_path)], axis=1)
+    tower_density = np.stack([tower[:, 0], tower[:, 1] * deck_number(tw, "AdjTwMa", tower_path)], axis=1)
     parts.append(_line_mass(tower_density, base, np.array([0.0, 0.0, 1.0]), float(top[2] - base[2])))
     parts.append(_point(num("YawBrMass"), top))
     nacelle = top + np.array([num("NacCMxn"), num("NacCMyn"), num("NacCMzn")])
@@ -121,9 +122,9 @@ def system_mass_properties(elastodyn_path: Path | str, blade_path: Path | str | 
     spin = num("HubIner") + num("GenIner") * num("GBRatio") ** 2
     parts.append((num("HubMass"), apex + num("HubCM") * shaft, spin * np.outer(shaft, shaft)))
     blade_path = Path(blade_path) if blade_path is not None else path.parent / ed["BldFile1"]
-    bl, bl_lines = _values(blade_path)
-    blade = _table(bl_lines, "BlFract", int(_number(bl, "NBlInpSt", blade_path)), blade_path)
-    density = np.stack([blade[:, 0], blade[:, 2] * _number(bl, "AdjBlMs", blade_path)], axis=1)
+    bl, bl_lines = deck_fields(blade_path)
+    blade = _table(bl_lines, "BlFract", int(deck_number(bl, "NBlInpSt", blade_path)), blade_path)
+    density = np.stack([blade[:, 0], blade[:, 2] * deck_number(bl, "AdjBlMs", blade_path)], axis=1)
     span = num("TipRad") - num("HubRad")
     for k in range(int(num("NumBl"))):
         cone = math.radians(num(f"PreCone({k + 1})"))

@@ -55,6 +55,7 @@ from fowt_hydro_sim.physics.platform_edits import (
 )
 from fowt_hydro_sim.studies.psd import BANDS_HZ
 from fowt_hydro_sim.studies.simulate import model_for, performance_of, sea_state_waves, statistics
+from fowt_hydro_sim.studies.turbine_loads import TOWER_METRICS, tower_base_metrics
 from fowt_hydro_sim.turbine.wind import DEFAULT_WIND_M_S
 
 log = logging.getLogger(__name__)
@@ -304,9 +305,6 @@ def metric_names(coupled: bool = False) -> list[str]:
 TURBINE_METRICS = (("rotor_speed_rad_s", "rotor_speed", "rad_s"), ("blade_pitch_rad", "blade_pitch", "rad"),
                    ("generator_torque_nm", "generator_torque", "nm"), ("generator_power_w", "generator_power", "w"),
                    ("thrust_n", "thrust", "n"))
-# and the tower-base fore-aft bending moment's (studies.turbine_loads)
-TOWER_METRICS = ("tower_base_moment_mean_nm", "tower_base_moment_std_nm", "tower_base_moment_max_nm",
-                 "tower_base_moment_del_nm")
 
 
 # the mooring's fairlead tensions in a row: each statistic of the line where it is largest
@@ -362,7 +360,6 @@ def run_coupled_one(key: dict, platform: Platform, run: RunConfig, transient_s: 
     folder there named after the run, as ``simulate`` writes them (``timeseries.csv``, and a
     ``summary.json`` of its settings: ``fowt-sim analyze`` reads it)."""
     from fowt_hydro_sim.studies.coupled_run import channel_statistics, run_coupled_case
-    from fowt_hydro_sim.studies.turbine_loads import tower_base_metrics
     from fowt_hydro_sim.turbine.settings import TurbineSettings
     from fowt_hydro_sim.turbine.system import load_system
     sea = sea_of(key)

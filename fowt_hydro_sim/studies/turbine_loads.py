@@ -65,12 +65,12 @@ def above_tower_base(platform: Platform) -> AboveTowerBase | None:
     """The structure above the tower base from the platform's ElastoDyn deck
     (``io.elastodyn.system_mass_properties`` less the platform's own mass); None without a
     deck."""
-    from fowt_hydro_sim.io.elastodyn import _number, _values, system_mass_properties
+    from fowt_hydro_sim.io.elastodyn import deck_fields, deck_number, system_mass_properties
     deck = elastodyn_deck(platform)
     if deck is None:
         return None
-    fields, _ = _values(deck)
-    num = lambda name: _number(fields, name, deck)  # noqa: E731
+    fields, _ = deck_fields(deck)
+    num = lambda name: deck_number(fields, name, deck)  # noqa: E731
     ref = np.array([num("PtfmRefxt"), num("PtfmRefyt"), num("PtfmRefzt")])
     blade = deck.parent / Path(fields["BldFile1"]).name  # the blade file kept beside the deck (its PROVENANCE)
     whole = system_mass_properties(deck, blade if blade.is_file() else None)
@@ -107,11 +107,15 @@ def channel_row(name: str, x: np.ndarray, duration_s: float, slope: float = TOWE
             "del_frequency_hz": DEL_FREQUENCY_HZ, "analysed_s": duration_s}
 
 
+# a sweep row's tower-base moment columns
+TOWER_METRICS = ("tower_base_moment_mean_nm", "tower_base_moment_std_nm", "tower_base_moment_max_nm",
+                 "tower_base_moment_del_nm")
+
+
 def tower_base_metrics(time_s: np.ndarray, rows: CoupledRecord, platform: Platform, thrust_height_m: float,
                        transient_s: float) -> dict[str, float]:
-    """A sweep row's tower-base moment columns (``studies.sweep.TOWER_METRICS``): mean, STD,
+    """A sweep row's tower-base moment columns (``TOWER_METRICS``): mean, STD,
     maximum and DEL after ``transient_s``; NaN for a platform without an ElastoDyn deck."""
-    from fowt_hydro_sim.studies.sweep import TOWER_METRICS
     from fowt_hydro_sim.turbine.coupled import CHANNELS
     above = above_tower_base(platform)
     if above is None:
