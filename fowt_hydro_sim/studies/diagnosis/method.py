@@ -23,6 +23,12 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
+   With a baseline mismatch left, an effect is named "additionally" only if it explains a
+   flagged cell outside the mismatch's (``additional_cells``), and a mismatch that a scale
+   of one of the model's own terms explains is read as that term's error
+   (``term_reading``: "the model's slow drift is 10 times too strong").
+   A fit worse than the plain model is restarted from other points, and reported as failed
+   if it stays so; lag-type parameters are fitted on a grid (``fit_effect``).
 
 This module is the method alone: it reads no files and starts no cluster. Model runs go
 through ``evaluate(jobs, description) -> results``, which the caller gives (runner.py: in
