@@ -354,8 +354,9 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
     records): (values, gaps at them, model runs).
 
     Bounded least squares from the parameters' ``start``; a fit that ends with a larger
-    sum of squares than the plain model's (``before``) did not find its minimum, and is
-    restarted from other points (``restarts``) until one ends below it. A lag-type effect
+    sum of squares than the plain model's (``before``), or a negative closure against it,
+    did not find its minimum, and is restarted from other points (``restarts``) until one
+    ends better than the plain model. A lag-type effect
     (``grid_fitted``), whose gaps a forward difference sees as flat, is fitted instead by a
     grid over its plausible range (``grid``), refined around the best point."""
     params = effect.parameters
@@ -394,11 +395,15 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
         best = min(cache, key=cost)
         gaps_at([(point - off) / scale for point in refinement(effect, off + np.frombuffer(best) * scale)])
     else:
-        plain = float(np.sum(residuals(before, mask, before) ** 2)) if before is not None else math.inf
+        def failed(key: bytes) -> bool:
+            """Worse than the plain model (if given): a larger sum of squares, or a negative closure."""
+            return before is not None and (cost(key) >= float(np.sum(residuals(before, mask, before) ** 2))
+                                           or window_closure(before, before, cache[key], mask) < 0.0)
+
         for start in [u0, *restarts(u0, bounds)]:
             scipy.optimize.least_squares(residual, start, jac=jacobian, bounds=bounds, method="trf",
                                          max_nfev=max_evaluations, xtol=1e-3, ftol=1e-3)
-            if min(cost(key) for key in cache) < plain:
+            if not failed(min(cache, key=cost)):
                 break
     # the best point evaluated (the solver's, or a step of its last Jacobian)
     best = min(cache, key=cost)
