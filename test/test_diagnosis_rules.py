@@ -64,6 +64,7 @@ def test_a_mismatch_a_model_term_closes_is_read_as_that_terms_error():
     assert "the model's slow drift is 10 times too strong" in d.reason, d.reason
     assert "drift_scale = 0.1 lies outside its plausible 0.5 to 2" in d.reason, d.reason
     assert "not explained by any catalogue effect" not in d.reason, d.reason
+    assert d.mismatches[0].term_by == "model_slow_drift" and d.mismatches[0].term_values == {"drift_scale": 0.1}
 
 
 def test_a_named_model_term_is_worded_by_its_module():

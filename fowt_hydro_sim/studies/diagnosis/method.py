@@ -425,6 +425,8 @@ class Mismatch:
     tp_s: list[float]
     explained_by: str | None = None  # the named effect, if it explains the cell (``explains``)
     term: str = ""  # the model's own term that a candidate's scale closes it with (``term_reading``), in words
+    term_by: str | None = None  # that candidate (the named effect's, or a first fit's)
+    term_values: dict[str, float] = field(default_factory=dict)  # its fitted values
 
     @property
     def sign(self) -> int:
@@ -769,10 +771,10 @@ def rank(c: CandidateFit) -> tuple:
 
 
 def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effect], before: list[Gap],
-                 window_before: list[Gap]) -> tuple[str, str] | None:
+                 window_before: list[Gap]) -> tuple[CandidateFit, str] | None:
     """Of the candidates that scale a term the model has (``Effect.term``) and whose fit did
     not fail, the one that closes most of cell ``i``'s gap, if it explains it (``explains``,
-    whatever its plausibility): (its name, the cell read as that term's error, e.g. "the
+    whatever its plausibility): (that candidate, the cell read as that term's error, e.g. "the
     model's slow drift is 10 times too strong (model_slow_drift closes 92 % of it;
     drift_scale = 0.1 lies outside its plausible 0.5 to 2 (...))"). None if none does."""
     best: tuple[float, CandidateFit] | None = None
@@ -787,7 +789,7 @@ def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effe
         return None
     share, c = best
     implausible = range_concerns(effects[c.effect], c.values)
-    return c.effect, (f"{effects[c.effect].term(c.values)} ({c.effect} closes {share:.0%} of it"
+    return c, (f"{effects[c.effect].term(c.values)} ({c.effect} closes {share:.0%} of it"
                       + "".join(f"; {concern}" for concern in implausible) + ")")
 
 
@@ -821,12 +823,14 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
         if chosen is not None and explains(before, chosen.gaps, i):
             m.explained_by = chosen.effect
             if effects[chosen.effect].term is not None:
-                m.term = effects[chosen.effect].term(chosen.values)
+                m.term, m.term_by = effects[chosen.effect].term(chosen.values), chosen.effect
+                m.term_values = chosen.values
     left = [m for m in diagnosis.mismatches if m.explained_by is None]
     for m in left:
         reading = term_reading(cells.index((m.dof, m.metric)), diagnosis.first_round or diagnosis.candidates,
                                effects, before, diagnosis.window_before)
-        m.term = reading[1] if reading else ""
+        if reading:
+            m.term, m.term_by, m.term_values = reading[1], reading[0].effect, reading[0].values
     if left and chosen is not None:
         mismatch = np.array([cell in {(m.dof, m.metric) for m in left} for cell in cells])
         if not additional_cells(before, chosen.gaps, mismatch).any():
