@@ -307,11 +307,13 @@ def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects
 
 def grid(effect: Effect) -> list[np.ndarray]:
     """A grid-fitted effect's first points (every parameter a ``Parameter.grid_step``): each
-    parameter's plausible range at its step, the off value among them."""
-    axes = [np.unique(np.append(p.off + p.grid_step * np.arange(math.ceil((p.plausible_range[0] - p.off) / p.grid_step),
-                                                               math.floor((p.plausible_range[1] - p.off) / p.grid_step)
-                                                               + 1), p.off))
-            for p in effect.parameters]
+    parameter's plausible range at its step, counted from its off value (the off value among
+    them)."""
+    axes = []
+    for p in effect.parameters:
+        low, high = p.plausible_range
+        steps = np.arange(math.ceil((low - p.off) / p.grid_step), math.floor((high - p.off) / p.grid_step) + 1)
+        axes.append(np.union1d(p.off + p.grid_step * steps, [p.off]))
     return [np.array(point) for point in np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))]
 
 
