@@ -348,8 +348,8 @@ def restarts(u0: np.ndarray, bounds: tuple[np.ndarray, np.ndarray]) -> list[np.n
 
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
                description: str = "", mask: np.ndarray | None = None,
-               window_s: float | None = None,
-               before: list[Gap] | None = None) -> tuple[dict[str, float], list[Gap], int]:
+               window_s: float | None = None, before: list[Gap] | None = None,
+               restarted: Callable[[], None] | None = None) -> tuple[dict[str, float], list[Gap], int]:
     """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all; the
     cells outside it charge the effect for moving them from the plain model's gaps
     ``before``, see ``residuals``), on the runs' first ``window_s`` (default: whole
@@ -358,7 +358,7 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
     Bounded least squares from the parameters' ``start``; a fit that ends with a larger
     sum of squares than the plain model's (``before``), or a negative closure against it,
     did not find its minimum, and is restarted from other points (``restarts``) until one
-    ends better than the plain model. A lag-type effect
+    ends better than the plain model (``restarted`` is called before each restart). A lag-type effect
     (``grid_fitted``), whose gaps a forward difference sees as flat, is fitted instead by a
     grid over its plausible range (``grid``), refined around the best point."""
     params = effect.parameters
@@ -402,7 +402,9 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
             return before is not None and (cost(key) >= float(np.sum(residuals(before, mask, before) ** 2))
                                            or window_closure(before, before, cache[key], mask) < 0.0)
 
-        for start in [u0, *restarts(u0, bounds)]:
+        for k, start in enumerate([u0, *restarts(u0, bounds)]):
+            if k and restarted is not None:
+                restarted()
             scipy.optimize.least_squares(residual, start, jac=jacobian, bounds=bounds, method="trf",
                                          max_nfev=max_evaluations, xtol=1e-3, ftol=1e-3)
             if not failed(min(cache, key=cost)):
@@ -679,9 +681,17 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         def fit(effect: Effect) -> CandidateFit:
             budget = fit_budget(effect, max_evaluations)
+            restarts_expected = []
+
+            def restarted() -> None:  # a restart may take a fit's budget again
+                restarts_expected.append(budget)
+                progress.expect(budget * n_tuning, budget * sum(fit_run_s))
+
             values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
-                                             mask, window, window_before if window else diagnosis.tuning_before)
-            progress.expect(count - budget * n_tuning, (count / n_tuning - budget) * sum(fit_run_s))
+                                             mask, window, window_before if window else diagnosis.tuning_before,
+                                             restarted)
+            expected = budget + sum(restarts_expected)
+            progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
             p = len(effect.parameters)
             if window:
                 in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
