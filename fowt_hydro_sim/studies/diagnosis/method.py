@@ -398,8 +398,9 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
         gaps_at([(point - off) / scale for point in refinement(effect, off + np.frombuffer(best) * scale)])
     else:
         def failed(key: bytes) -> bool:
-            """Worse than the plain model (if given): a larger sum of squares, or a negative closure."""
-            return before is not None and (cost(key) >= float(np.sum(residuals(before, mask, before) ** 2))
+            """Worse than the plain model (if given): a larger sum of squares, or a negative closure
+            (a fit back at the off value, the plain model itself, is not)."""
+            return before is not None and (cost(key) > float(np.sum(residuals(before, mask, before) ** 2))
                                            or window_closure(before, before, cache[key], mask) < 0.0)
 
         for k, start in enumerate([u0, *restarts(u0, bounds)]):
