@@ -336,10 +336,11 @@ def grid_fitted(effect: Effect) -> bool:
 
 def restarts(u0: np.ndarray, bounds: tuple[np.ndarray, np.ndarray]) -> list[np.ndarray]:
     """Other starting points of a fit (in units of each parameter's scale from its off value)
-    for one that left the gap larger than the plain model: a quarter of the first start,
-    the first start mirrored about the off value, and twice it, within the bounds."""
+    for one that left the gap larger than the plain model: the first start mirrored about
+    the off value (the off value itself where that is a bound: a term that is not there),
+    a quarter of the first start, and twice it, within the bounds."""
     out: list[np.ndarray] = []
-    for point in (0.25 * u0, -u0, 2.0 * u0):
+    for point in (-u0, 0.25 * u0, 2.0 * u0):
         point = np.clip(point, *bounds)
         if not any(np.array_equal(point, q) for q in [u0, *out]):
             out.append(point)
