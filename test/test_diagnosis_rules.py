@@ -130,6 +130,9 @@ def test_a_fit_that_still_fails_is_reported_failed_and_never_named():
     assert failed.failed and not failed.fits
     assert failed.concerns[0].startswith("fit failed"), failed.concerns
     assert method.rank(failed) > method.rank(candidate("slow_drift", {}, before, closure=0.1))
+    at_plain = candidate("linear_damping", {"surge_damping_ratio": 2e-12, "heave_damping_ratio": 0.0,
+                                            "pitch_damping_ratio": 0.0}, before, closure=-1e-9)
+    assert not at_plain.failed  # a fit back at the plain model, within round-off, has not failed
 
 
 # ---------------------------------------------------------------------- lag-type parameters

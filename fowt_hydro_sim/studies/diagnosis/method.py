@@ -69,6 +69,7 @@ EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) 
 BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
 FIT_WINDOW_S = 1800.0  # longer tuning records are fitted on their first FIT_WINDOW_S, then replayed whole
 SCREEN_CLOSURE = 0.25  # closing less than this in the fit window: not replayed at full length
+FAILED_CLOSURE = -0.01  # a fit closing less than this is worse than the plain model beyond round-off: failed
 
 Job = tuple  # (effect name or None, parameter values, run index, with spectra[, duration [s]: a part of the record])
 
@@ -148,9 +149,9 @@ class CandidateFit:
 
     @property
     def failed(self) -> bool:
-        """Whether the fit leaves the gap larger than the plain model (a negative closure) from
-        every start (``fit_effect``): a fit that found no minimum, never an answer."""
-        return self.closure < 0.0
+        """Whether the fit leaves the gap larger than the plain model (a closure below
+        FAILED_CLOSURE, -1 %) from every start (``fit_effect``): a fit that found no minimum, never an answer."""
+        return self.closure < FAILED_CLOSURE
 
     @property
     def screened(self) -> str:
@@ -401,8 +402,11 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
         def failed(key: bytes) -> bool:
             """Worse than the plain model (if given): a larger sum of squares, or a negative closure
             (a fit back at the off value, the plain model itself, is not)."""
-            return before is not None and (cost(key) > float(np.sum(residuals(before, mask, before) ** 2))
-                                           or window_closure(before, before, cache[key], mask) < 0.0)
+            if before is None:
+                return False
+            plain = float(np.sum(residuals(before, mask, before) ** 2))
+            return (cost(key) > (1.0 - FAILED_CLOSURE) * plain
+                    or window_closure(before, before, cache[key], mask) < FAILED_CLOSURE)
 
         for k, start in enumerate([u0, *restarts(u0, bounds)]):
             if k and restarted is not None:
