@@ -23,6 +23,12 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
+   With a baseline mismatch left, an effect is named "additionally" only if it explains a
+   flagged cell outside the mismatch's (``additional_cells``), and a mismatch that a scale
+   of one of the model's own terms explains is read as that term's error
+   (``term_reading``: "the model's slow drift is 10 times too strong").
+   A fit worse than the plain model is restarted from other points, and reported as failed
+   if it stays so; lag-type parameters are fitted on a grid (``fit_effect``).
 
 This module is the method alone: it reads no files and starts no cluster. Model runs go
 through ``evaluate(jobs, description) -> results``, which the caller gives (runner.py: in
@@ -63,6 +69,7 @@ EDGE = 0.01  # a fitted value this close to a bound (share of the bounds' span) 
 BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disqualifies the effect
 FIT_WINDOW_S = 1800.0  # longer tuning records are fitted on their first FIT_WINDOW_S, then replayed whole
 SCREEN_CLOSURE = 0.25  # closing less than this in the fit window: not replayed at full length
+FAILED_CLOSURE = -0.01  # a fit closing less than this is worse than the plain model beyond round-off: failed
 
 Job = tuple  # (effect name or None, parameter values, run index, with spectra[, duration [s]: a part of the record])
 
@@ -141,6 +148,12 @@ class CandidateFit:
     window_s: float | None = None  # screened out: gaps, score and closure on the fit window only
 
     @property
+    def failed(self) -> bool:
+        """Whether the fit leaves the gap larger than the plain model (a closure below
+        FAILED_CLOSURE, -1 %) from every start (``fit_effect``): a fit that found no minimum, never an answer."""
+        return self.closure < FAILED_CLOSURE
+
+    @property
     def screened(self) -> str:
         """Why the candidate was not replayed at full length ('' if it was)."""
         return "" if self.window_s is None else (
@@ -149,7 +162,7 @@ class CandidateFit:
 
     def as_dict(self, settings: GapSettings) -> dict:
         return {"effect": self.effect, "values": self.values, "score": self.score, "closure": self.closure,
-                "fits": self.fits, "concerns": self.concerns, "model_runs": self.model_runs,
+                "fits": self.fits, "failed": self.failed, "concerns": self.concerns, "model_runs": self.model_runs,
                 "window_s": self.window_s, "screened": self.screened,
                 "gaps": [g.as_dict(settings) for g in self.gaps]}
 
@@ -293,14 +306,63 @@ def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects
                      for i in range(flagged.size)])
 
 
+def grid(effect: Effect) -> list[np.ndarray]:
+    """A grid-fitted effect's first points (every parameter a ``Parameter.grid_step``): each
+    parameter's plausible range at its step, counted from its off value (the off value among
+    them)."""
+    axes = []
+    for p in effect.parameters:
+        low, high = p.plausible_range
+        steps = np.arange(math.ceil((low - p.off) / p.grid_step), math.floor((high - p.off) / p.grid_step) + 1)
+        axes.append(np.union1d(p.off + p.grid_step * steps, [p.off]))
+    return [np.array(point) for point in np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))]
+
+
+def refinement(effect: Effect, best: np.ndarray) -> list[np.ndarray]:
+    """The points that refine a grid fit around its best point: each parameter a quarter and
+    a half of its step either side (within its bounds)."""
+    out = []
+    for k, p in enumerate(effect.parameters):
+        for shift in (-0.5, -0.25, 0.25, 0.5):
+            point = best.copy()
+            point[k] = float(np.clip(best[k] + shift * p.grid_step, p.low, p.high))
+            out.append(point)
+    return out
+
+
+def grid_fitted(effect: Effect) -> bool:
+    """Whether the effect is fitted by a grid (every parameter lag-type, ``Parameter.grid_step``)."""
+    return all(p.grid_step for p in effect.parameters)
+
+
+def restarts(u0: np.ndarray, bounds: tuple[np.ndarray, np.ndarray]) -> list[np.ndarray]:
+    """Other starting points of a fit (in units of each parameter's scale from its off value)
+    for one that left the gap larger than the plain model: the first start mirrored about
+    the off value (the off value itself where that is a bound: a term that is not there),
+    a quarter of the first start, and twice it, within the bounds."""
+    out: list[np.ndarray] = []
+    for point in (-u0, 0.25 * u0, 2.0 * u0):
+        point = np.clip(point, *bounds)
+        if not any(np.array_equal(point, q) for q in [u0, *out]):
+            out.append(point)
+    return out
+
+
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
                description: str = "", mask: np.ndarray | None = None,
-               window_s: float | None = None,
-               before: list[Gap] | None = None) -> tuple[dict[str, float], list[Gap], int]:
+               window_s: float | None = None, before: list[Gap] | None = None,
+               restarted: Callable[[], None] | None = None) -> tuple[dict[str, float], list[Gap], int]:
     """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all; the
     cells outside it charge the effect for moving them from the plain model's gaps
     ``before``, see ``residuals``), on the runs' first ``window_s`` (default: whole
-    records): (values, gaps at them, model runs)."""
+    records): (values, gaps at them, model runs).
+
+    Bounded least squares from the parameters' ``start``; a fit that ends with a larger
+    sum of squares than the plain model's (``before``), or a negative closure against it,
+    did not find its minimum, and is restarted from other points (``restarts``) until one
+    ends better than the plain model (``restarted`` is called before each restart). A lag-type effect
+    (``grid_fitted``), whose gaps a forward difference sees as flat, is fitted instead by a
+    grid over its plausible range (``grid``), refined around the best point."""
     params = effect.parameters
     off = np.array([p.off for p in params])
     scale = np.array([p.scale for p in params])
@@ -329,10 +391,32 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
         r0 = residuals(base, mask, before)
         return np.column_stack([(residuals(gs, mask, before) - r0) / (s - u).sum() for gs, s in zip(shifted, steps)])
 
-    scipy.optimize.least_squares(residual, u0, jac=jacobian, bounds=bounds, method="trf",
-                                 max_nfev=max_evaluations, xtol=1e-3, ftol=1e-3)
+    def cost(key: bytes) -> float:
+        return float(np.sum(residuals(cache[key], mask, before) ** 2))
+
+    if grid_fitted(effect):
+        gaps_at([(point - off) / scale for point in grid(effect)])
+        best = min(cache, key=cost)
+        gaps_at([(point - off) / scale for point in refinement(effect, off + np.frombuffer(best) * scale)])
+    else:
+        def failed(key: bytes) -> bool:
+            """Worse than the plain model (if given): a larger sum of squares, or a negative closure
+            (a fit back at the off value, the plain model itself, is not)."""
+            if before is None:
+                return False
+            plain = float(np.sum(residuals(before, mask, before) ** 2))
+            return (cost(key) > (1.0 - FAILED_CLOSURE) * plain
+                    or window_closure(before, before, cache[key], mask) < FAILED_CLOSURE)
+
+        for k, start in enumerate([u0, *restarts(u0, bounds)]):
+            if k and restarted is not None:
+                restarted()
+            scipy.optimize.least_squares(residual, start, jac=jacobian, bounds=bounds, method="trf",
+                                         max_nfev=max_evaluations, xtol=1e-3, ftol=1e-3)
+            if not failed(min(cache, key=cost)):
+                break
     # the best point evaluated (the solver's, or a step of its last Jacobian)
-    best = min(cache, key=lambda k: float(np.sum(residuals(cache[k], mask, before) ** 2)))
+    best = min(cache, key=cost)
     return values(np.frombuffer(best)), cache[best], len(cache) * len(tuning)
 
 
@@ -350,6 +434,9 @@ class Mismatch:
     hs_m: list[float]
     tp_s: list[float]
     explained_by: str | None = None  # the named effect, if it explains the cell (``explains``)
+    term: str = ""  # the model's own term that a candidate's scale closes it with (``term_reading``), in words
+    term_by: str | None = None  # that candidate (the named effect's, or a first fit's)
+    term_values: dict[str, float] = field(default_factory=dict)  # its fitted values
 
     @property
     def sign(self) -> int:
@@ -365,7 +452,8 @@ class Mismatch:
         return (f"{self.dof} {self.metric}: model {'above' if self.sign > 0 else 'below'} the measurement in every "
                 f"run ({size}; change per m of Hs {self.slope(self.hs_m):+.3g}, "
                 f"per s of Tp {self.slope(self.tp_s):+.3g})"
-                + (f", explained by {self.explained_by}" if self.explained_by
+                + (f", explained by {self.explained_by}" + (f": {self.term}" if self.term else "")
+                   if self.explained_by else f": {self.term}" if self.term
                    else ", not explained by any catalogue effect"))
 
 
@@ -537,7 +625,11 @@ def check_window(fit_window_s: float | None, settings: GapSettings) -> None:
 
 
 def fit_budget(effect: Effect, max_evaluations: int) -> int:
-    """The most points a fit evaluates: each least-squares evaluation and its Jacobian's steps."""
+    """The points a fit evaluates at most from its first start: each least-squares evaluation
+    and its Jacobian's steps; a grid fit's grid and refinement. (A restarted fit evaluates
+    more; its count corrects the expected work.)"""
+    if grid_fitted(effect):
+        return len(grid(effect)) + 4 * len(effect.parameters)
     return max_evaluations * (1 + len(effect.parameters))
 
 
@@ -595,9 +687,17 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         def fit(effect: Effect) -> CandidateFit:
             budget = fit_budget(effect, max_evaluations)
+            restarts_expected = []
+
+            def restarted() -> None:  # a restart may take a fit's budget again
+                restarts_expected.append(budget)
+                progress.expect(budget * n_tuning, budget * sum(fit_run_s))
+
             values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
-                                             mask, window, window_before if window else diagnosis.tuning_before)
-            progress.expect(count - budget * n_tuning, (count / n_tuning - budget) * sum(fit_run_s))
+                                             mask, window, window_before if window else diagnosis.tuning_before,
+                                             restarted)
+            expected = budget + sum(restarts_expected)
+            progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
             p = len(effect.parameters)
             if window:
                 in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
@@ -615,9 +715,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             fitted = list(pool.map(fit, effects.values()))
         base = score(diagnosis.tuning_before, 0, mask, diagnosis.tuning_before)
         for c in fitted:
-            c.concerns = concerns(effects[c.effect], c.values, diagnosis.tuning_before, settings, mask)
-            c.fits = (c.score < base - MIN_EVIDENCE and c.closure >= MIN_CLOSURE and not c.concerns
-                      and c.window_s is None)
+            judge(c, effects[c.effect], base, diagnosis.tuning_before, settings, mask)
         diagnosis.model_runs += sum(c.model_runs for c in fitted)
         return sorted(fitted, key=rank)  # plausible fits rank first, screened ones last
 
@@ -650,7 +748,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             if first_choice:
                 progress.expect(-len(runs), -sum(whole_s))
             progress.done(0, 0.0, final=True)
-            return _with_mismatches(diagnosis, None)
+            return with_mismatches(diagnosis, None, effects)
         chosen, reason = _choose(fitting, effects, deficit, settings)
         diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
         jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
@@ -664,12 +762,24 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             diagnosis.spectra[r.name]["model + effect"] = s
         if not blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
             progress.done(0, 0.0, final=True)
-            return _with_mismatches(diagnosis, chosen)
+            return with_mismatches(diagnosis, chosen, effects)
         chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} of its "
                                f"tuning closure, {chosen.closure:.0%}")
         chosen.fits = False
         diagnosis.blind_after = []
         candidates.sort(key=rank)
+
+
+def judge(candidate: CandidateFit, effect: Effect, base_score: float, before: list[Gap], settings: GapSettings,
+          mask: np.ndarray | None = None) -> None:
+    """Set a fitted candidate's concerns (``concerns``; a failed fit, ``CandidateFit.failed``,
+    says so first) and whether it fits: it beats the plain model's score ``base_score`` by
+    MIN_EVIDENCE, closes MIN_CLOSURE of the gap, raises no concern and was replayed whole."""
+    c = candidate
+    c.concerns = ([f"fit failed: it leaves the gap larger than the plain model (closure {c.closure:.0%}) from "
+                   "every start"] if c.failed else []) + concerns(effect, c.values, before, settings, mask)
+    c.fits = (c.score < base_score - MIN_EVIDENCE and c.closure >= MIN_CLOSURE and not c.concerns
+              and c.window_s is None)
 
 
 def rank(c: CandidateFit) -> tuple:
@@ -678,26 +788,82 @@ def rank(c: CandidateFit) -> tuple:
     return bool(c.concerns), c.window_s is not None, c.score
 
 
-def _with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None) -> Diagnosis:
-    """Mark the baseline mismatches the named effect explains (``explains``); any left make
-    the verdict 'baseline mismatch', the effect (if any) coming 'additionally'. Differences
-    set aside that are not consistent (``Diagnosis.differences``) are said; when nothing is
-    named and they are all that is flagged, they too are the baseline's. A set-aside cell
-    whose measured response the waves do not drive (``undriven_cells``) makes the verdict
-    'unexplained' when nothing is named."""
+def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effect], before: list[Gap],
+                 window_before: list[Gap]) -> tuple[CandidateFit, str] | None:
+    """Of the candidates that scale a term the model has (``Effect.term``) and whose fit did
+    not fail, the one that closes most of cell ``i``'s gap, if it explains it (``explains``,
+    whatever its plausibility): (that candidate, the cell read as that term's error, e.g. "the
+    model's slow drift is 10 times too strong (model_slow_drift closes 92 % of it;
+    drift_scale = 0.1 lies outside its plausible 0.5 to 2 (...))"). None if none does."""
+    best: tuple[float, CandidateFit] | None = None
+    for c in candidates:
+        effect = effects.get(c.effect)
+        if effect is None or effect.term is None or c.failed:
+            continue
+        plain = plain_gaps(c, before, window_before)
+        if explains(plain, c.gaps, i) and (best is None or cell_closure(plain, c.gaps, i) > best[0]):
+            best = cell_closure(plain, c.gaps, i), c
+    if best is None:
+        return None
+    share, c = best
+    implausible = range_concerns(effects[c.effect], c.values)
+    return c, (f"{effects[c.effect].term(c.values)} ({c.effect} closes {share:.0%} of it"
+                      + "".join(f"; {concern}" for concern in implausible) + ")")
+
+
+def additional_cells(before: list[Gap], after: list[Gap], mismatch: np.ndarray) -> np.ndarray:
+    """The cells an effect explains (``explains``) that are flagged in a tuning run and lie
+    outside the baseline mismatch's cells ``mismatch``: what an effect named "additionally"
+    to a baseline mismatch must have."""
+    flagged = np.any([g.flagged for g in before], axis=0)
+    return np.array([bool(flagged[i]) and not mismatch[i] and explains(before, after, i)
+                     for i in range(flagged.size)])
+
+
+def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: dict[str, Effect]) -> Diagnosis:
+    """The verdict with the baseline mismatches. Mark those the named effect explains
+    (``explains``); any left make the verdict 'baseline mismatch', the effect (if any)
+    coming 'additionally', and only if it explains a flagged cell outside the left
+    mismatches' (``additional_cells``): one that closes only the mismatch's cells is not
+    named. A left mismatch that a scale of one of the model's own terms explains (first
+    fits, ``term_reading``) is read as that term's error ("the model's slow drift is 10
+    times too strong") rather than as not explained. Differences set aside that are not
+    consistent (``Diagnosis.differences``) are said; when nothing is named and they are all
+    that is flagged, they too are the baseline's. A set-aside cell whose measured response
+    the waves do not drive (``undriven_cells``) makes the verdict 'unexplained' when nothing
+    is named."""
     cells = diagnosis.settings.cells()
+    before = diagnosis.tuning_before
+    if chosen is not None and effects[chosen.effect].term is not None:
+        diagnosis.reason += f"; {effects[chosen.effect].term(chosen.values)}"
     for m in diagnosis.mismatches:
         i = cells.index((m.dof, m.metric))
-        if chosen is not None and explains(diagnosis.tuning_before, chosen.gaps, i):
+        if chosen is not None and explains(before, chosen.gaps, i):
             m.explained_by = chosen.effect
+            if effects[chosen.effect].term is not None:
+                m.term, m.term_by = effects[chosen.effect].term(chosen.values), chosen.effect
+                m.term_values = chosen.values
     left = [m for m in diagnosis.mismatches if m.explained_by is None]
+    for m in left:
+        reading = term_reading(cells.index((m.dof, m.metric)), diagnosis.first_round or diagnosis.candidates,
+                               effects, before, diagnosis.window_before)
+        if reading:
+            m.term, m.term_by, m.term_values = reading[1], reading[0].effect, reading[0].values
+    if left and chosen is not None:
+        mismatch = np.array([cell in {(m.dof, m.metric) for m in left} for cell in cells])
+        if not additional_cells(before, chosen.gaps, mismatch).any():
+            diagnosis.reason = (f"{chosen.effect} closes {chosen.closure:.0%} of the tuning gap but explains no "
+                                "flagged cell beyond the baseline mismatch's: not named")
+            diagnosis.chosen, diagnosis.blind_after, chosen = None, [], None
+            for spectra in diagnosis.spectra.values():
+                spectra.pop("model + effect", None)
     if left:
         effect = (f"; additionally {chosen.effect} explains part of the gap ({diagnosis.reason})" if chosen
                   else f"; no effect explains the rest ({diagnosis.reason})")
         diagnosis.verdict = "baseline mismatch"
         diagnosis.reason = "baseline: " + "; ".join(m.text() for m in left) + effect
     elif chosen is None and diagnosis.differences and not any(g.flagged[diagnosis.fit_cells].any()
-                                                              for g in diagnosis.tuning_before):
+                                                              for g in before):
         diagnosis.verdict = "baseline mismatch"  # every flagged cell is a difference no effect moves
     if diagnosis.differences:
         diagnosis.reason += ("; set aside as the baseline's, flagged in some runs only or of changing sign, no "

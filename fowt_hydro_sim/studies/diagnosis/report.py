@@ -145,6 +145,7 @@ def summary_lines(diagnosis: Diagnosis) -> list[str]:
         lines.append(f"{'candidate':<26}{'score':>9}{'closure':>9}  parameters")
         lines += [f"{c.effect:<26}{c.score:>9.1f}{100 * c.closure:>8.0f}%  "
                   + ", ".join(f"{k} {v:.4g}" for k, v in c.values.items())
+                  + ("  (fit failed)" if c.failed else "")
                   + (f"  (screened: {c.screened})" if c.screened else "") for c in diagnosis.candidates]
     lines.append(f"verdict: {diagnosis.verdict}" + (f": {diagnosis.chosen}" if diagnosis.chosen else "")
                  + f" ({diagnosis.reason})")
@@ -206,13 +207,14 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
                   "half the gap, its values are plausible (within the range a real platform's lie in, not at the "
                   "edge of the fit's bounds), its signature can close the flagged gap's sign, and on blind runs it "
                   "closes at least half of what it closes on the tuning runs; a candidate with a concern ranks "
-                  "after every one without.", "",
+                  "after every one without. A fit that leaves the gap larger than the plain model from every "
+                  "start is a failed fit (\"fit failed\"), never named.", "",
                   "| effect | fitted parameters | score | closure (tuning) | fits | concerns |",
                   "|---|---|---|---|---|---|"]
         for c in d.candidates:
             values = ", ".join(f"{k} = {v:.4g}" for k, v in c.values.items())
             lines.append(f"| {c.effect} | {values} | {c.score:.1f} | {100 * c.closure:.0f} % | "
-                         f"{'yes' if c.fits else 'no'} | "
+                         f"{'yes' if c.fits else 'fit failed' if c.failed else 'no'} | "
                          f"{'; '.join(c.concerns + [c.screened] * bool(c.screened)) or '-'} |")
         lines.append("")
     if d.chosen:

@@ -19,7 +19,11 @@ class Parameter:
     """One parameter: the fit starts at ``start`` within [low, high]; at ``off`` the
     effect is switched off. ``plausible`` (default: [low, high]) is the range a real
     platform's value lies in, ``why`` says where that range comes from; a fit outside it, or
-    at the edge of [low, high], is a sign that the parameter absorbs something else."""
+    at the edge of [low, high], is a sign that the parameter absorbs something else.
+    ``grid_step``: a lag-type parameter, which the gaps follow in steps (a lag read from a
+    cross-correlation peak is piecewise constant in a delay, so a forward difference sees
+    no slope); it is fitted by a grid over its plausible range at this step, refined
+    around the best point (``method.fit_effect``)."""
 
     name: str
     unit: str
@@ -29,6 +33,7 @@ class Parameter:
     off: float = 0.0
     plausible: tuple[float, float] | None = None
     why: str = ""
+    grid_step: float | None = None
 
     @property
     def plausible_range(self) -> tuple[float, float]:
@@ -50,7 +55,10 @@ class Effect:
     ``signature``: the direction in which switching the effect on (within its plausible
     range) moves the model's value of a gap metric ("std.low_frequency": -1, damping lowers
     the resonant response); it can close only gaps of the other sign. Metrics it can move
-    either way are left out."""
+    either way are left out.
+    ``term``: for an effect that scales (or adds to) a term the model already has, how a
+    fit reads as that term's error, from the fitted values: "the model's slow drift is 2
+    times too strong" (``scaled_term``); None for an effect the model lacks."""
 
     name: str
     summary: str
@@ -58,6 +66,7 @@ class Effect:
     apply: Callable[[Variant, MeasuredRun, dict[str, float]], Variant]
     wave_coherent: bool = True
     signature: dict[str, int] = field(default_factory=dict)
+    term: Callable[[dict[str, float]], str] | None = None
 
     def values(self, which: str = "start") -> dict[str, float]:
         """Every parameter's ``start``, ``low``, ``high`` or ``off`` value, by name."""
@@ -95,3 +104,26 @@ def critical_damping(mass: np.ndarray, stiffness: np.ndarray, ratios: dict[int, 
 def per_dof(values: dict[str, float], names: tuple[str, ...]) -> dict[int, float]:
     """The fitted values of per-DOF parameters, keyed by the analysed DOFs they belong to."""
     return {dof: values[name] for dof, name in zip(ANALYSED, names)}
+
+
+def scaled_term(term: str, scale: float, strong: str = "too strong", weak: str = "too weak") -> str:
+    """A fitted scale of one of the model's terms in words: the model's term is 1 / scale
+    times ``strong`` (scale below 1) or scale times ``weak`` (above 1): 'the model's slow
+    drift is 2 times too strong' for a scale of 0.5."""
+    if scale <= 0.0:
+        return f"the model's {term} is {strong} (the fit removes it)"
+    if abs(scale - 1.0) < 0.005:
+        return f"the model's {term} is right"
+    factor, words = (1.0 / scale, strong) if scale < 1.0 else (scale, weak)
+    return f"the model's {term} is {factor:.3g} times {words}"
+
+
+def added_term(term: str, amounts: dict[str, float], unit: str) -> str:
+    """Extra amounts of a term the model has, per DOF, in words: 'the model's damping is too
+    weak by 0.04 of critical in surge, 0.03 in pitch' ('right' where every amount is 0)."""
+    added = [(dof, value) for dof, value in amounts.items() if value != 0.0]
+    if not added:
+        return f"the model's {term} is right"
+    first, *rest = added
+    return (f"the model's {term} is too weak by {first[1]:.3g} {unit} in {first[0]}"
+            + "".join(f", {value:.3g} in {dof}" for dof, value in rest))

@@ -12,6 +12,7 @@ from fowt_hydro_sim.studies.diagnosis.effects.base import (
     Effect,
     IndependentInjection,
     Parameter,
+    added_term,
     critical_damping,
     linear_modes,
     per_dof,
@@ -38,7 +39,9 @@ EFFECT = Effect(
     "additional linear damping per DOF (e.g. radiation or viscous damping the strips miss)",
     tuple(Parameter(name, "of critical", start=0.02, low=0.0, high=0.5, plausible=(0.0, 0.1),
                     why=WHY) for name in NAMES),
-    apply, signature=DAMPED)
+    apply, signature=DAMPED,
+    term=lambda values: added_term("linear damping", {name.split("_")[0]: values[name] for name in NAMES},
+                                   "of critical"))
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"surge_damping_ratio": 0.04, "heave_damping_ratio": 0.0, "pitch_damping_ratio": 0.03},

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_drag
-from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, scaled_term
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 
@@ -23,6 +23,13 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
     return replace(variant, platform=band_split(platform, low / wave), drag_model="filtered")
 
 
+def term(values: dict[str, float]) -> str:
+    """The fitted scales in words: each band's drag too strong or too weak."""
+    wave = scaled_term("wave-band drag", values["wave_cd_scale"])
+    low = scaled_term("low-frequency drag", values["low_frequency_cd_scale"])
+    return wave + ", " + low.replace("the model's ", "its ", 1)
+
+
 EFFECT = Effect(
     "model_drag",
     "the model's own drag coefficients too strong or too weak, in the wave and the low-frequency band",
@@ -32,7 +39,7 @@ EFFECT = Effect(
      Parameter("low_frequency_cd_scale", "-", start=1.0, low=0.05, high=4.0, off=1.0, plausible=(0.3, 2.0),
                why="the seed paper's tuned low-frequency Cds are 0.3 to 1.5 times the wave-band ones, and up to "
                    "about twice in small seas")),
-    apply)
+    apply, term=term)
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"wave_cd_scale": 1.5, "low_frequency_cd_scale": 1.5},

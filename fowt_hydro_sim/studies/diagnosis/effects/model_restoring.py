@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, linear_modes
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, linear_modes, scaled_term
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 HEAVE, PITCH = 2, 4
@@ -26,6 +26,13 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
     return replace(variant, extension=variant.extension.plus(Extension(stiffness=stiffness)))
 
 
+def term(values: dict[str, float]) -> str:
+    """The fitted scales in words: each restoring too stiff or too soft."""
+    heave, pitch = (scaled_term(f"{dof} restoring", values[f"{dof}_restoring_scale"], "too stiff", "too soft")
+                    for dof in ("heave", "pitch"))
+    return heave + ", " + pitch.replace("the model's ", "its ", 1)
+
+
 EFFECT = Effect(
     "model_restoring",
     "the model's own heave and pitch restoring (hydrostatics and mooring) too stiff or too soft",
@@ -34,7 +41,7 @@ EFFECT = Effect(
      Parameter("pitch_restoring_scale", "-", start=1.05, low=0.5, high=1.5, off=1.0, plausible=(0.85, 1.15),
                why="the pitch restoring rho g (I_wp + V z_B) - m g z_G moves by about 4 % per 0.5 m of the "
                    "centre of gravity's height (windmoor12), rarely known better than 1 m in a basin model")),
-    apply)
+    apply, term=term)
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"heave_restoring_scale": 1.0, "pitch_restoring_scale": 0.88},

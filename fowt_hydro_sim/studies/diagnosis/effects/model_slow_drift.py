@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, scaled_term
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 
@@ -23,7 +23,7 @@ EFFECT = Effect(
     (Parameter("drift_scale", "-", start=0.7, low=0.0, high=4.0, off=1.0, plausible=(0.5, 2.0),
                why="Newman's approximation of a BEM mean-drift table: the full difference-frequency QTF, the "
                    "mesh and viscous drift move a semisubmersible's slow drift by up to about a factor of two"),),
-    apply, wave_coherent=False)
+    apply, wave_coherent=False, term=lambda values: scaled_term("slow drift", values["drift_scale"]))
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"drift_scale": 0.5}, {"drift_scale": 1.8})

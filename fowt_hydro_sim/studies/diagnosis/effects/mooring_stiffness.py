@@ -13,7 +13,7 @@ import numpy as np
 
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.platform_edits import scaled_mooring_stiffness
-from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, linear_modes
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, linear_modes, scaled_term
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 REFERENCE_OFFSET_M = 5.0
@@ -36,6 +36,13 @@ def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Varia
         Extension(quadratic_stiffness=quadratic, cubic_stiffness=cubic)))
 
 
+def term(values: dict[str, float]) -> str:
+    """The fitted line stiffness in words, with the nonlinear terms the model's lines lack."""
+    text = scaled_term("mooring line stiffness", values["line_stiffness_scale"], "too stiff", "too soft")
+    extra = [f"{name} {values[name]:+.2g}" for name in ("hardening", "asymmetry") if abs(values[name]) >= 0.005]
+    return text + (f", and its surge restoring lacks a {' and '.join(extra)} term" if extra else "")
+
+
 EFFECT = Effect(
     "mooring_stiffness",
     "mooring line stiffness error, an asymmetric (quadratic) and a hardening (cubic) surge restoring",
@@ -47,7 +54,7 @@ EFFECT = Effect(
                why="a three-line catenary is stiffer moving away from its single line's anchor than from the "
                    "pair's: 0.09 to 0.17 for chain lines 0.4x to 3.7x the spring lines' stiffness in 200 m of "
                    "water (fitted over +-10 m), the sign the layout's")),
-    apply)
+    apply, term=term)
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"line_stiffness_scale": 1.4, "hardening": 0.0, "asymmetry": 0.0},

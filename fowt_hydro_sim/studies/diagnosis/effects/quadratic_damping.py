@@ -12,6 +12,7 @@ from fowt_hydro_sim.studies.diagnosis.effects.base import (
     DAMPED,
     Effect,
     Parameter,
+    added_term,
     critical_damping,
     linear_modes,
     per_dof,
@@ -41,7 +42,9 @@ EFFECT = Effect(
     "additional quadratic (viscous) damping per DOF",
     tuple(Parameter(name, "of critical", start=0.05, low=0.0, high=2.0, plausible=(0.0, 0.5),
                     why=WHY) for name in NAMES),
-    apply, signature=DAMPED)
+    apply, signature=DAMPED,
+    term=lambda values: added_term("quadratic damping", {name.split("_")[0]: values[name] for name in NAMES},
+                                   "of critical at 1 m (1 deg)"))
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"surge_ratio_at_1m": 0.1, "heave_ratio_at_1m": 0.0, "pitch_ratio_at_1deg": 0.1},

@@ -17,7 +17,7 @@ EFFECT = Effect(
     "wave_measurement_delay",
     "the wave elevation's time stamps are late or early (probe clock, filtering)",
     (Parameter("delay_s", "s", start=0.5, low=-10.0, high=10.0, plausible=(-3.0, 3.0),
-               why="a wave probe's and a motion tracker's clocks agree to a few seconds"),),
+               why="a wave probe's and a motion tracker's clocks agree to a few seconds", grid_step=1.0),),
     apply)
 
 # the benchmark's twin injects it at these values (one scenario each)

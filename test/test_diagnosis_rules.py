@@ -1,0 +1,171 @@
+"""The diagnosis's rules on small synthetic cell tables, without model runs: a baseline
+mismatch that a scale of one of the model's own terms closes is read as that term's error;
+a fit that leaves the gap larger than the plain model is restarted, and a fit that still
+does is reported as failed; a lag-type parameter (a wave-probe delay) is found by a grid;
+an effect named "additionally" to a baseline mismatch must explain cells outside it."""
+from __future__ import annotations
+
+import numpy as np
+
+from fowt_hydro_sim.studies.diagnosis import method
+from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
+from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings
+from fowt_hydro_sim.studies.diagnosis.method import CandidateFit, Diagnosis, Mismatch
+
+SETTINGS = GapSettings(dofs=("surge",))
+CELLS = SETTINGS.cells()  # surge: std.low_frequency, std.wave, frequency x 2, offset, lag
+TOLERANCE = np.array([SETTINGS.tolerance(metric) for _, metric in CELLS])
+RUNS = ("lc5.1", "lc5.2", "lc5.3")
+
+
+def cell(metric: str) -> int:
+    return CELLS.index(("surge", metric))
+
+
+def gap(run: str, values: dict[str, float]) -> Gap:
+    """A run's gap: the given cells' values (others 0), each significant (a narrow interval)."""
+    value = np.zeros(len(CELLS))
+    for metric, v in values.items():
+        value[cell(metric)] = v
+    half = 0.1 * TOLERANCE
+    return Gap(run, value, value - half, value + half, TOLERANCE.copy())
+
+
+def gaps(values: dict[str, float]) -> list[Gap]:
+    return [gap(run, values) for run in RUNS]
+
+
+def diagnosis(before: list[Gap], candidates: list[CandidateFit], chosen: CandidateFit | None) -> Diagnosis:
+    """A diagnosis as ``method.diagnose`` leaves it before its verdict is settled, with the
+    consistent cells of ``before`` as its baseline mismatches."""
+    out = Diagnosis(SETTINGS, list(RUNS), [], before, candidates, "explained" if chosen else "unexplained",
+                    chosen.effect if chosen else None, "best score" if chosen else "no candidate fits")
+    out.mismatches = [Mismatch(*CELLS[i], [float(g.value[i]) for g in before], [4.0, 6.0, 8.0], [9.0, 10.0, 11.0])
+                      for i in np.flatnonzero(method.consistent(before))]
+    return out
+
+
+def candidate(name: str, values: dict[str, float], after: list[Gap], closure: float = 0.8) -> CandidateFit:
+    return CandidateFit(name, values, after, score=-50.0, closure=closure, model_runs=3)
+
+
+# ---------------------------------------------------------------------- the model's own terms
+def test_a_mismatch_a_model_term_closes_is_read_as_that_terms_error():
+    """The model's surge low-frequency STD 10x the measured in every run; only the model's own
+    drift scaled by 0.1 closes it (outside its plausible range, so nothing is named): the
+    verdict reads 'the model's slow drift is 10 times too strong' with its concern, not 'not
+    explained by any catalogue effect'."""
+    before = gaps({"std.low_frequency": 9.0})
+    drift = candidate("model_slow_drift", {"drift_scale": 0.1}, gaps({"std.low_frequency": 0.3}))
+    damping = candidate("linear_damping", {"surge_damping_ratio": 0.0, "heave_damping_ratio": 0.0,
+                                           "pitch_damping_ratio": 0.0}, gaps({"std.low_frequency": 8.0}), 0.2)
+    d = method.with_mismatches(diagnosis(before, [drift, damping], None), None, CATALOGUE)
+    assert d.verdict == "baseline mismatch" and d.chosen is None, d.reason
+    assert "the model's slow drift is 10 times too strong" in d.reason, d.reason
+    assert "drift_scale = 0.1 lies outside its plausible 0.5 to 2" in d.reason, d.reason
+    assert "not explained by any catalogue effect" not in d.reason, d.reason
+    assert d.mismatches[0].term_by == "model_slow_drift" and d.mismatches[0].term_values == {"drift_scale": 0.1}
+
+
+def test_a_named_model_term_is_worded_by_its_module():
+    """Each model-term effect words its own fit (one place per effect): the named effect's
+    reading is part of the verdict."""
+    assert CATALOGUE["model_slow_drift"].term({"drift_scale": 0.5}) == "the model's slow drift is 2 times too strong"
+    assert CATALOGUE["model_restoring"].term({"heave_restoring_scale": 1.0, "pitch_restoring_scale": 0.8}) == (
+        "the model's heave restoring is right, its pitch restoring is 1.25 times too stiff")
+    assert (CATALOGUE["added_mass_error"].term({"added_mass_scale": 1.3})
+            == "the model's added mass is 1.3 times too small")
+    assert CATALOGUE["slow_drift"].term is None  # a term the model lacks
+    before = gaps({"std.low_frequency": 1.0})
+    drift = candidate("model_slow_drift", {"drift_scale": 0.5}, gaps({"std.low_frequency": 0.02}), 0.99)
+    d = method.with_mismatches(diagnosis(before, [drift], drift), drift, CATALOGUE)
+    assert d.verdict == "explained" and d.chosen == "model_slow_drift", d.reason
+    assert "the model's slow drift is 2 times too strong" in d.reason, d.reason
+
+
+# ---------------------------------------------------------------------- failed fits
+def bumpy_effect() -> Effect:
+    return Effect("bumpy", "a parameter whose gap has a local minimum worse than the plain model",
+                  (Parameter("x", "-", start=1.0, low=-2.0, high=2.0, off=0.0),), lambda variant, run, values: variant)
+
+
+def bumpy_residual(x: float) -> float:
+    """The gap in tolerance units: 2 at the plain model (x = 0), 0 at x = -1, a plateau of 3
+    from x = 0.5 to 1.5 around the fit's start (x = 1), where a forward difference sees no
+    slope."""
+    if x >= 0.5:
+        return 3.0 + 4.0 * max(0.0, x - 1.5) ** 2
+    return 2.0 * abs(x + 1.0) + 2.0 * max(0.0, x)
+
+
+def synthetic_evaluate(lag_of: callable) -> callable:
+    """``evaluate`` of a synthetic model: each job's surge low-frequency STD cell (in
+    tolerance units) or lag cell [s] from its parameter's value."""
+    def evaluate(jobs: list, description: str = "") -> list:
+        out = []
+        for _, values, index, *_ in jobs:
+            x = next(iter(values.values()))
+            metric, value = lag_of(x)
+            out.append((gap(RUNS[index], {metric: value}), None))
+        return out
+    return evaluate
+
+
+def test_a_fit_worse_than_the_plain_model_is_restarted():
+    """From its start the fit stays on a plateau worse than the plain model; restarted from
+    other points it finds the minimum at x = -1."""
+    evaluate = synthetic_evaluate(lambda x: ("std.low_frequency", 0.05 * bumpy_residual(x)))
+    plain = [gap(run, {"std.low_frequency": 0.05 * bumpy_residual(0.0)}) for run in RUNS]
+    values, fitted, _ = method.fit_effect(bumpy_effect(), evaluate, [0, 1, 2], max_evaluations=4, before=plain)
+    assert abs(values["x"] + 1.0) < 0.2, values
+    assert method.closure(plain, fitted) > 0.9
+
+
+def test_a_fit_that_still_fails_is_reported_failed_and_never_named():
+    """A fit whose closure stays negative is 'fit failed', ranks after the others and is not
+    named, whatever its score."""
+    before = gaps({"std.low_frequency": 0.5})
+    failed = candidate("model_slow_drift", {"drift_scale": 1.2}, gaps({"std.low_frequency": 1.2}), closure=-1.5)
+    method.judge(failed, CATALOGUE["model_slow_drift"], base_score=0.0, before=before, settings=SETTINGS)
+    assert failed.failed and not failed.fits
+    assert failed.concerns[0].startswith("fit failed"), failed.concerns
+    assert method.rank(failed) > method.rank(candidate("slow_drift", {}, before, closure=0.1))
+    at_plain = candidate("linear_damping", {"surge_damping_ratio": 2e-12, "heave_damping_ratio": 0.0,
+                                            "pitch_damping_ratio": 0.0}, before, closure=-1e-9)
+    assert not at_plain.failed  # a fit back at the plain model, within round-off, has not failed
+
+
+# ---------------------------------------------------------------------- lag-type parameters
+def test_a_wave_probe_delay_is_found_by_its_grid():
+    """A 1.0 s probe delay: the lag cell, read from a cross-correlation peak on a 0.25 s grid,
+    is piecewise constant in the fitted delay (no slope for a forward difference at the
+    start, 0.5 s); the grid finds it."""
+    def lag(delay_s: float) -> tuple[str, float]:
+        return "lag", 0.25 * round((1.0 - delay_s) / 0.25)
+    evaluate = synthetic_evaluate(lag)
+    plain = [gap(run, {"lag": 1.0}) for run in RUNS]
+    values, fitted, runs = method.fit_effect(CATALOGUE["wave_measurement_delay"], evaluate, [0, 1, 2],
+                                             max_evaluations=4, before=plain)
+    assert abs(values["delay_s"] - 1.0) <= 0.125, values
+    assert all(abs(g.value[cell("lag")]) < 0.125 for g in fitted)
+    assert runs <= 3 * method.fit_budget(CATALOGUE["wave_measurement_delay"], 4)
+
+
+# ---------------------------------------------------------------------- "additionally"
+def test_an_effect_closing_only_the_mismatchs_cells_is_not_named_additionally():
+    """A consistent surge low-frequency STD mismatch that no effect explains: a damping that
+    closes 40 % of it and no other cell is not named "additionally"; one that also explains
+    a flagged cell outside the mismatch (the wave-band STD in one run) is."""
+    before = gaps({"std.low_frequency": 0.5})
+    damping = candidate("linear_damping", {"surge_damping_ratio": 0.02, "heave_damping_ratio": 0.0,
+                                           "pitch_damping_ratio": 0.0}, gaps({"std.low_frequency": 0.39}), 0.4)
+    d = method.with_mismatches(diagnosis(before, [damping], damping), damping, CATALOGUE)
+    assert d.chosen is None and d.verdict == "baseline mismatch", d.reason
+    assert "additionally" not in d.reason and "not named" in d.reason, d.reason
+
+    before = [gap(run, {"std.low_frequency": 0.5, "std.wave": 0.3 if run == "lc5.1" else 0.0}) for run in RUNS]
+    d = method.with_mismatches(diagnosis(before, [damping], damping), damping, CATALOGUE)
+    assert d.chosen == "linear_damping" and d.verdict == "baseline mismatch", d.reason
+    assert "additionally linear_damping" in d.reason, d.reason
+    assert np.flatnonzero(method.additional_cells(before, damping.gaps, method.consistent(before))).tolist() == [
+        cell("std.wave")]
