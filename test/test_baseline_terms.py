@@ -142,3 +142,13 @@ def test_a_wrong_baseline_term_in_a_split_file_is_one_line(tmp_path: Path, basel
     with pytest.raises(InputError, match=message) as error:
         benchmark.split_scenarios("development", path=path)
     assert len(str(error.value).splitlines()) == 1
+
+
+def test_every_candidates_fit_starts_off_its_off_value_within_its_bounds():
+    """The fit steps in units of start - off: a start at the off value gave a zero unit, a NaN
+    first guess and a crashed diagnosis (model_drag's low-frequency scale, whose baseline-drag
+    scenarios fit it)."""
+    from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
+    for effect in CATALOGUE.values():
+        for p in effect.parameters:
+            assert p.scale > 0 and p.low <= p.start <= p.high, (effect.name, p.name)
