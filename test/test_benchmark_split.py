@@ -1,6 +1,7 @@
 """The independent benchmark's development and held-out scenarios: the split file's sets,
 fixed (the held-out set's content is pinned by its digest), disjoint in seeds and
-strengths, and ``diagnose-benchmark --set`` running either and saying which it ran."""
+strengths, each with baseline-term scenarios and agreement nulls, and ``diagnose-benchmark
+--set`` running either and saying which it ran."""
 from __future__ import annotations
 
 import hashlib
@@ -13,8 +14,10 @@ import yaml
 from fowt_hydro_sim.cli import main
 from fowt_hydro_sim.studies.diagnosis import benchmark
 
-# sha256 of the held-out entries as canonical JSON: a change to the held-out set is deliberate
-HELD_OUT_DIGEST = "8c81f541dbea0de176082551ef703d50b718f5cc79a56a9a82bbfc5fd1a136b0"
+# sha256 of the held-out entries as canonical JSON: a change to the held-out set is deliberate.
+# Changed once, before the set was ever run: its baseline-term scenarios (drift x0.7, x1.6;
+# drag x0.7, x1.4) and two agreement nulls added.
+HELD_OUT_DIGEST = "dce3804cb93bb5993b6b39647f38d5e8a865bf747d4e75b489485cd18499d0e0"
 
 
 def _digest(entries: list[dict]) -> str:
@@ -25,8 +28,15 @@ def test_the_development_set_is_every_scenario_the_rules_were_looked_at_on():
     development = benchmark.split_scenarios("development")
     generated = (benchmark.independent_scenarios(None, 2, 10, 2, 2000)
                  + benchmark.independent_scenarios(None, 0, 7, 0, 3000))
-    key = lambda s: (s.kind, s.effect, s.values, s.seed, s.accepted, s.tuning_cases, s.blind_cases)  # noqa: E731
-    assert [key(s) for s in development] == [key(s) for s in generated]
+    key = lambda s: (s.kind, s.effect, s.values, s.seed, s.accepted, s.tuning_cases, s.blind_cases,  # noqa: E731
+                     s.baseline)
+    assert [key(s) for s in development[:len(generated)]] == [key(s) for s in generated]
+    # then the baseline terms and the agreement nulls
+    assert [(s.kind, s.baseline, s.accepted) for s in development[len(generated):]] == [
+        ("baseline_term", {"drift_scale": 0.55}, ("model_slow_drift",)),
+        ("baseline_term", {"drift_scale": 1.8}, ("model_slow_drift",)),
+        ("baseline_term", {"cd_factor": 1.5}, ("model_drag",)),
+        ("null", {"spread": False}, ()), ("null", {"spread": False}, ())]
 
 
 def test_the_held_out_set_is_fixed_and_apart_from_the_development_set():
@@ -35,11 +45,15 @@ def test_the_held_out_set_is_fixed_and_apart_from_the_development_set():
     development, held_out = benchmark.split_scenarios("development"), benchmark.split_scenarios("held-out")
     assert not {s.seed for s in development} & {s.seed for s in held_out}
     assert not {s.name for s in development} & {s.name for s in held_out}
-    strengths = lambda scenarios: {(s.effect, json.dumps(s.values, sort_keys=True))  # noqa: E731
-                                   for s in scenarios if s.kind != "null"}
+    strengths = lambda scenarios: {(s.effect, json.dumps(s.values, sort_keys=True),  # noqa: E731
+                                    json.dumps(s.baseline, sort_keys=True)) for s in scenarios if s.kind != "null"}
     assert not strengths(development) & strengths(held_out)
+    for scenarios in (development, held_out):
+        assert {s.accepted for s in scenarios if s.kind == "baseline_term"} == {
+            (term.candidate,) for term in benchmark.BASELINE_TERMS.values()}
+        assert sum(s.baseline == {"spread": False} for s in scenarios if s.kind == "null") >= 2
     kinds = [s.kind for s in held_out]
-    assert kinds.count("null") >= 10 and kinds.count("out_of_catalogue") >= 2
+    assert kinds.count("null") >= 12 and kinds.count("baseline_term") == 4 and kinds.count("out_of_catalogue") >= 2
     assert {s.effect for s in held_out if s.kind == "injected"} == set(benchmark.INDEPENDENT_INJECTIONS)
     assert all(s.accepted == benchmark.INDEPENDENT_INJECTIONS[s.effect].accepted
                for s in held_out if s.kind == "injected")
@@ -66,7 +80,7 @@ def test_a_set_is_run_with_each_scenarios_own_load_cases_and_the_benchmark_says_
         ("null#h2", c, True) for c in ("lc5.2", "lc5.3", "lc5.4", "lc6.1", "lc6.4")] + [
         ("null#h3", c, True) for c in ("lc5.1", "lc5.2", "lc5.3", "lc6.1", "lc6.4")]
     chosen, line = benchmark.chosen_scenarios("independent", ["mixed_damping"], scenario_set="held-out")
-    assert line == "scenario set: held-out (15 scenarios of split.yaml)"
+    assert line == "scenario set: held-out (17 scenarios of split.yaml)"
     assert {s.effect for s in chosen if s.kind == "injected"} == {"mixed_damping"}
     injected = [s for s in chosen if s.kind == "injected"][1]
     assert [c for s, c, w in benchmark.truth_jobs([injected]) if not w] == ["lc5.2", "lc5.3", "lc5.4"]

@@ -12,7 +12,9 @@ with the plain model (``MODEL_OPTIONS`` of the source) and scored:
 - null scenarios (nothing injected): the false-alarm rate;
 - out-of-catalogue scenarios (a rotor's 1P pitch moment, wind thrust): reported as
   unexplained or not;
-- blind closure: the gap on held-out sea states once the named effect is added, not refitted.
+- blind closure: the gap on held-out sea states once the named effect is added, not refitted;
+- baseline-term scenarios (independent source: the basin's drift or drag off from the
+  model's by a set factor): the term's model-term candidate named at the right scale.
 """
 from __future__ import annotations
 
@@ -23,6 +25,7 @@ import statistics
 import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import yaml
@@ -36,7 +39,8 @@ from fowt_hydro_sim.physics.waves.components import synthesize
 from fowt_hydro_sim.studies.cluster import dask_client, map_with_progress
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, EFFECT_MODULES, Effect, IndependentInjection, Parameter
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, gap
-from fowt_hydro_sim.studies.diagnosis.independent.basin import basin_run
+from fowt_hydro_sim.studies.diagnosis.independent import basin
+from fowt_hydro_sim.studies.diagnosis.independent.basin import BaselineTerms, basin_run
 from fowt_hydro_sim.studies.diagnosis.method import Diagnosis, diagnose
 from fowt_hydro_sim.studies.diagnosis.report import write_report
 from fowt_hydro_sim.studies.diagnosis.runner import REPLAY_DT_S, Progress, cluster_evaluate
@@ -113,12 +117,32 @@ INDEPENDENT_OUT_OF_CATALOGUE = (("rotor_1p", {"amplitude_n_m": 6.0e7, "frequency
 # and a held-out set (the headline score), fixed in this file
 SPLIT_FILE = Path(__file__).parent / "independent" / "data" / "split.yaml"
 SPLIT_SETS = ("development", "held-out")
+KINDS = ("injected", "null", "out_of_catalogue", "baseline_term")
+SCALE_TOLERANCE = 0.25  # a baseline-term scenario: the fitted scale within 25 % of the right one
+
+
+class BaselineTerm(NamedTuple):
+    """A term of the basin's baseline that the model has too (a ``basin.BaselineTerms``
+    field), the model-term candidate that is its right answer, and the candidate's
+    parameters whose fitted values are scored against the right scale."""
+
+    term: str
+    candidate: str
+    parameters: tuple[str, ...]
+
+
+BASELINE_TERMS = {
+    "drift_scale": BaselineTerm("drift_scale", "model_slow_drift", ("drift_scale",)),
+    "cd_factor": BaselineTerm("cd_factor", "model_drag", ("wave_cd_scale", "low_frequency_cd_scale")),
+}
 
 
 @dataclass(frozen=True)
 class Scenario:
-    """One benchmark case: ``kind`` injected, null or out_of_catalogue; ``accepted``: the
-    catalogue effects that are a right answer (default the injected one)."""
+    """One benchmark case: ``kind`` injected, null, out_of_catalogue or baseline_term;
+    ``accepted``: the catalogue effects that are a right answer (default the injected one);
+    ``baseline``: the independent basin's baseline terms (``basin.BaselineTerms``' fields;
+    a baseline_term scenario changes one of drift_scale and cd_factor)."""
 
     name: str
     kind: str
@@ -128,10 +152,53 @@ class Scenario:
     accepted: tuple[str, ...] = ()
     tuning_cases: tuple[str, ...] = TUNING_CASES
     blind_cases: tuple[str, ...] = BLIND_CASES
+    baseline: dict = field(default_factory=dict)
 
     @property
     def right_answers(self) -> tuple[str, ...]:
         return self.accepted or ((self.effect,) if self.effect else ())
+
+    @property
+    def terms(self) -> BaselineTerms:
+        return BaselineTerms.from_values(self.baseline)
+
+    @property
+    def right_scale(self) -> dict[str, float]:
+        """A baseline-term scenario's right answer's parameters and their right values: the
+        basin's term over the model's. Drift: drift_scale times ``basin.MODEL_DRIFT_RATIO``
+        (the basin's baseline drift over the model's, 1.00). Drag: the basin's Cd over the
+        platform's, cd_factor times the share drawn from the seed, in both bands ({} for
+        any other kind)."""
+        if self.kind != "baseline_term":
+            return {}
+        terms = self.terms
+        if terms.drift_scale != 1.0:
+            return {"drift_scale": terms.drift_scale * basin.MODEL_DRIFT_RATIO}
+        cd = basin.baseline(self.seed, terms=terms).cd_scale
+        return {name: cd for name in BASELINE_TERMS["cd_factor"].parameters}
+
+
+def at_right_scale(fitted: dict[str, float], right: dict[str, float], tolerance: float = SCALE_TOLERANCE) -> bool:
+    """Whether every parameter of ``right`` is fitted within ``tolerance`` (a share) of its
+    right value."""
+    return all(abs(fitted[name] / value - 1.0) <= tolerance + 1e-12 for name, value in right.items())
+
+
+def baseline_term(entry: dict, path: Path) -> tuple[dict, tuple[str, ...]]:
+    """A split-file entry's baseline terms and, for a baseline_term scenario, its right answer
+    (the candidate of the one term it changes); InputError naming the entry otherwise."""
+    values = dict(entry.get("baseline") or {})
+    try:
+        changed = BaselineTerms.from_values(values).changed()
+    except ValueError as error:
+        raise InputError(f"{path}: {entry['name']}: {error}") from None
+    if entry["kind"] != "baseline_term":
+        return values, ()
+    scaled = [term for term in BASELINE_TERMS if term in changed]
+    if len(scaled) != 1:
+        raise InputError(f"{path}: {entry['name']}: a baseline_term scenario changes exactly one of "
+                         f"{', '.join(BASELINE_TERMS)}, got {values}")
+    return values, (BASELINE_TERMS[scaled[0]].candidate,)
 
 
 def scenarios(effects: list[str] | None = None, strengths: int = 2, nulls: int = 10,
@@ -166,8 +233,8 @@ def split_scenarios(which: str, inject: list[str] | None = None, names: list[str
                     path: Path = SPLIT_FILE) -> list[Scenario]:
     """The independent benchmark's ``development`` or ``held-out`` scenarios as the split file
     fixes them (names, forms, strengths, seeds, load cases); ``inject`` keeps the injected
-    scenarios of those forms (and every null and out-of-catalogue one), ``names`` only the
-    scenarios named."""
+    scenarios of those forms (and every null and out-of-catalogue one, no baseline-term one),
+    ``names`` only the scenarios named."""
     if which not in SPLIT_SETS:
         raise InputError(f"--set: must be one of {', '.join(SPLIT_SETS)}, got {which!r}")
     entries = yaml.safe_load(path.read_text())[which.replace("-", "_")]
@@ -175,15 +242,19 @@ def split_scenarios(which: str, inject: list[str] | None = None, names: list[str
     out = []
     for entry in entries:
         form = entry.get("form")
+        if entry["kind"] not in KINDS:
+            raise InputError(f"{path}: {entry['name']}: unknown kind {entry['kind']!r} (known: {', '.join(KINDS)})")
         if entry["kind"] == "injected" and form not in INDEPENDENT_INJECTIONS:
             raise InputError(f"{path}: {entry['name']}: unknown form {form!r}")
         if not set(entry["tuning"]) | set(entry["blind"]) <= known_cases:
             raise InputError(f"{path}: {entry['name']}: unknown load case in {entry['tuning'] + entry['blind']}")
-        accepted = INDEPENDENT_INJECTIONS[form].accepted if entry["kind"] == "injected" else ()
+        terms, accepted = baseline_term(entry, path)
+        if entry["kind"] == "injected":
+            accepted = INDEPENDENT_INJECTIONS[form].accepted
         out.append(Scenario(entry["name"], entry["kind"], form, dict(entry.get("values") or {}), int(entry["seed"]),
-                            accepted, tuple(entry["tuning"]), tuple(entry["blind"])))
+                            accepted, tuple(entry["tuning"]), tuple(entry["blind"]), terms))
     if inject:
-        out = [s for s in out if s.kind != "injected" or s.effect in inject]
+        out = [s for s in out if s.kind not in ("injected", "baseline_term") or s.effect in inject]
     if names:
         unknown = [n for n in names if n not in {s.name for s in out}]
         if unknown:
@@ -248,6 +319,9 @@ class Score:
     model_runs: int = 0
     wall_s: float = 0.0
     baseline_mismatches: list[str] = field(default_factory=list)  # those no named effect explains
+    baseline: dict = field(default_factory=dict)  # the independent basin's baseline terms set by the scenario
+    right_scale: dict[str, float] = field(default_factory=dict)  # baseline_term: the right answer's values
+    named_values: dict[str, float] | None = None  # the named effect's fitted values
 
 
 def footprint(with_effect: list[MeasuredRun], without: list[MeasuredRun],
@@ -266,29 +340,41 @@ def footprint(with_effect: list[MeasuredRun], without: list[MeasuredRun],
 
 
 def score_scenario(scenario: Scenario, diagnosis: Diagnosis, cells: list[tuple[str, str]], wall_s: float) -> Score:
+    """A scenario's outcome: injected, the effect (or an accepted one) named; null, nothing named
+    and nothing unexplained; out of catalogue, nothing named and "unexplained"; baseline_term,
+    the term's candidate named with each scored parameter within SCALE_TOLERANCE of its right
+    value."""
     detected = any(g.flagged.any() for g in diagnosis.tuning_before)
     flagged = {(dof, metric) for _, dof, metric in diagnosis.flagged_cells(diagnosis.tuning_before)}
+    chosen = diagnosis.candidate(diagnosis.chosen) if diagnosis.chosen else None
     if scenario.kind == "injected":
         correct = diagnosis.chosen in scenario.right_answers
+    elif scenario.kind == "baseline_term":
+        correct = (chosen is not None and chosen.effect in scenario.right_answers
+                   and at_right_scale(chosen.values, scenario.right_scale))
     elif scenario.kind == "null":  # no effect named, nothing unexplained (a baseline mismatch may be reported)
         correct = diagnosis.chosen is None and diagnosis.verdict in ("no significant gap", "baseline mismatch")
     else:  # unexplained, nothing named: a baseline mismatch alone is what a null gets
         correct = diagnosis.chosen is None and diagnosis.verdict == "unexplained"
-    chosen = diagnosis.candidate(diagnosis.chosen) if diagnosis.chosen else None
     return Score(scenario.name, scenario.kind, scenario.effect, detected, diagnosis.verdict, diagnosis.chosen,
                  correct, cells, (cells[0] in flagged) if cells else None,
                  chosen.closure if chosen else None,
                  None if not diagnosis.blind_after else diagnosis.blind_closure,
-                 diagnosis.model_runs, wall_s, [m.text() for m in diagnosis.mismatches if m.explained_by is None])
+                 diagnosis.model_runs, wall_s, [m.text() for m in diagnosis.mismatches if m.explained_by is None],
+                 dict(scenario.baseline), scenario.right_scale, dict(chosen.values) if chosen else None)
 
 
 def summary(scores: list[Score]) -> dict:
     """The benchmark's figures: top-1 accuracy (detected injected scenarios), footprint
     flagged, false alarms (null: an effect named or an unexplained gap), out-of-catalogue
     reported unexplained, median blind closure (detected injected scenarios; 0 where nothing
-    was named), scenarios with a baseline mismatch left unexplained."""
+    was named), scenarios with a baseline mismatch left unexplained; baseline-term scenarios
+    attributed to their term at the right scale (all of them, detected or not); the nulls whose
+    basin agrees with the model in every term both have (``spread`` off) and their false alarms."""
     injected = [s for s in scores if s.kind == "injected" and s.detected]
     nulls = [s for s in scores if s.kind == "null"]
+    agreeing = [s for s in nulls if s.baseline.get("spread") is False]
+    terms = [s for s in scores if s.kind == "baseline_term"]
     others = [s for s in scores if s.kind == "out_of_catalogue"]
     rate = lambda xs: sum(xs) / len(xs) if xs else None
     blind = [s.blind_closure if (s.named and s.blind_closure is not None) else 0.0 for s in injected]
@@ -299,6 +385,8 @@ def summary(scores: list[Score]) -> dict:
             "out_of_catalogue": len(others), "out_of_catalogue_unexplained": rate([s.correct for s in others]),
             "median_blind_closure": statistics.median(blind) if blind else None,
             "baseline_mismatch_reported": sum(bool(s.baseline_mismatches) for s in scores),
+            "baseline_term": len(terms), "baseline_term_right_scale": rate([s.correct for s in terms]),
+            "agreement_null": len(agreeing), "agreement_null_false_alarms": sum(not s.correct for s in agreeing),
             "model_runs": sum(s.model_runs for s in scores), "wall_s": sum(s.wall_s for s in scores)}
 
 
@@ -307,7 +395,7 @@ def _truth_task(job: tuple[Scenario, str, bool], platform: Platform, duration_s:
     scenario, case, with_effect = job
     if source == "independent":
         return basin_run(f"{scenario.name}/{case}", scenario.effect, scenario.values, scenario.seed, case, platform,
-                         duration_s, with_effect, cache=cache)
+                         duration_s, with_effect, cache=cache, terms=scenario.terms)
     return truth_run(scenario, case, platform, duration_s, with_effect)
 
 
@@ -408,6 +496,10 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
 
     def report(score: Score) -> None:
         closure = '-' if score.blind_closure is None else f'{100 * score.blind_closure:.0f} %'
+        if score.right_scale:  # a baseline-term scenario: the named effect's fit against the right scale
+            fitted = ", ".join(f"{k} {(score.named_values or {}).get(k, float('nan')):.2f} (right {v:.2f})"
+                               for k, v in score.right_scale.items())
+            closure += f"  {fitted}"
         lines.append(f"{score.scenario:<30} {score.verdict:<19} named {str(score.named):<26} "
                      f"{'right' if score.correct else 'WRONG'}  detected {score.detected}  blind closure {closure}  "
                      f"{score.wall_s:.0f} s")

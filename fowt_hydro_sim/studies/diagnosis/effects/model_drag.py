@@ -36,7 +36,7 @@ EFFECT = Effect(
     (Parameter("wave_cd_scale", "-", start=1.2, low=0.2, high=4.0, off=1.0, plausible=(0.6, 1.6),
                why="handbook Morison Cds of columns and pontoons lie within about 40 % of those fitted to a "
                    "basin's wave-band response"),
-     Parameter("low_frequency_cd_scale", "-", start=1.0, low=0.05, high=4.0, off=1.0, plausible=(0.3, 2.0),
+     Parameter("low_frequency_cd_scale", "-", start=0.8, low=0.05, high=4.0, off=1.0, plausible=(0.3, 2.0),
                why="the seed paper's tuned low-frequency Cds are 0.3 to 1.5 times the wave-band ones, and up to "
                    "about twice in small seas")),
     apply, term=term)

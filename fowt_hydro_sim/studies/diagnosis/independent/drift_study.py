@@ -5,16 +5,22 @@ choice of the hydro options' defaults (``studies.hydro_options_study`` is the mo
   the mooring's linear surge stiffness;
 - time domain: the independent Cummins simulator (quadratic drag, no second-order force of
   its own) run without and with Newman's slow drift from the BEM's drift coefficient D(w)
-  (``drift.py``'s table, freely floating hull), same durations and bands as the model study.
+  (``drift.py``'s table, freely floating hull), same durations and bands as the model study;
+- the basin's drift against the model's (``ratio``): the mean surge offset the drift adds in
+  a regular wave, in each simulator (``basin.MODEL_DRIFT_RATIO``).
 """
 from __future__ import annotations
 
 import logging
 import math
+import sys
+from dataclasses import replace
 
 import numpy as np
 
 from fowt_hydro_sim.physics.config import Platform, load_case, load_platform
+from fowt_hydro_sim.physics.model import PlatformModel
+from fowt_hydro_sim.physics.waves.components import WaveComponents
 from fowt_hydro_sim.studies.diagnosis.independent import bem, cummins, drift
 from fowt_hydro_sim.studies.psd import BANDS_HZ, band_std, psd
 
@@ -67,6 +73,30 @@ def independent_row(platform: Platform, database: bem.HydroDatabase, table: drif
     return row
 
 
+def drift_ratio_row(platform: Platform, database: bem.HydroDatabase, table: drift.DriftTable, period_s: float,
+                    amplitude_m: float = 1.5, duration_s: float = 2400.0, transient_s: float = 800.0) -> dict:
+    """The mean surge offset the slow drift adds in a regular wave (with the drift less without,
+    averaged after ``transient_s``): the basin's (this simulator with ``table``'s floating-hull
+    coefficients) and the model's (its platform's ``drift_coefficients_n_m2``), and their ratio."""
+    omega = 2.0 * math.pi / period_s
+    waves = cummins.Waves(np.array([omega]), np.array([amplitude_m]), np.array([0.0]), 0.0, period_s)
+    basin = {}
+    for on, coefficients in ((True, drift_coefficients(table)), (False, ())):
+        trajectory = cummins.integrate(platform, database, waves, duration_s,
+                                       baseline=cummins.Baseline(drift_coefficient_n_m2=coefficients))
+        basin[on] = float(trajectory.position[trajectory.time_s > transient_s, 0].mean())
+    model_waves = WaveComponents(np.array([1.0 / period_s]), np.array([amplitude_m]), np.zeros(1), np.zeros(1),
+                                 period_s)
+    model = {}
+    for on, hull in ((True, platform), (False, replace(platform, drift_coefficients_n_m2=()))):
+        result = PlatformModel(hull, model_waves, dt_s=0.1).run(duration_s, output_interval_s=0.5)
+        model[on] = float(result.motion[result.time_s > transient_s, 0].mean())
+    basin_m, model_m = basin[True] - basin[False], model[True] - model[False]
+    row = {"period_s": period_s, "basin_offset_m": basin_m, "model_offset_m": model_m, "ratio": basin_m / model_m}
+    LOG.info("%s", row)
+    return row
+
+
 def natural_period_s(platform: Platform, database: bem.HydroDatabase) -> float:
     """Surge natural period on the mooring's stiffness with the BEM's lowest-frequency added mass."""
     mass = cummins.rigid_body_mass(platform)[0, 0] + database.added_mass[0, 0, 0]
@@ -76,6 +106,10 @@ def natural_period_s(platform: Platform, database: bem.HydroDatabase) -> float:
 if __name__ == "__main__":  # python -m fowt_hydro_sim.studies.diagnosis.independent.drift_study
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     hull, bem_database, drift_table = load_platform("windmoor12"), bem.load_database(), drift.load_table()
+    if sys.argv[1:] == ["ratio"]:  # ... drift_study ratio
+        for period in (7.0, 8.0, 10.0, 12.0):
+            drift_ratio_row(hull, bem_database, drift_table, period)
+        sys.exit(0)
     LOG.info("surge stiffness %.0f N/m, natural period %.1f s", surge_stiffness_n_m(hull),
              natural_period_s(hull, bem_database))
     for name in CASES:
