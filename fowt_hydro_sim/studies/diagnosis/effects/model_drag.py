@@ -44,5 +44,6 @@ EFFECT = Effect(
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"wave_cd_scale": 1.5, "low_frequency_cd_scale": 1.5},
                    {"wave_cd_scale": 0.7, "low_frequency_cd_scale": 0.4})
-# none in the independent basin yet (its Cd differs only by its baseline spread)
+# no injection in the independent basin: its Cd factor is a scenario baseline term there
+# (split.yaml `baseline: {cd_factor: ...}`), scored by the fitted Cd scales
 INDEPENDENT_INJECTION = None

@@ -27,5 +27,6 @@ EFFECT = Effect(
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"drift_scale": 0.5}, {"drift_scale": 1.8})
-# none in the independent basin yet (its baseline drift is the same BEM table)
+# no injection in the independent basin: its drift strength is a scenario baseline term there
+# (split.yaml `baseline: {drift_scale: ...}`), scored by the fitted drift_scale
 INDEPENDENT_INJECTION = None
