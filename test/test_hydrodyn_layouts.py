@@ -18,7 +18,8 @@ TRIPOD = RTEST / "hd_OC3tripod_offshore_fixedbottom_wavesirr" / "hd_primary.inp"
 JACKET = RTEST / "hd_5MW_OC4Jckt_DLL_WTurb_WavesIrr_MGrowth" / "NRELOffshrBsline5MW_OC4Jacket_HydroDyn.dat"
 COLUMN_OLDER = RTEST / "hd_WaveStMod3" / "hydrodyn_input_e4f825bd.dat"  # one cross-section table
 OC4_SEMI = RTEST / "hd_5MW_OC4Semi_WSt_WavesWN" / "NRELOffshrBsline5MW_OC4DeepCwindSemi_HydroDyn.dat"
-OLDER = (TRIPOD, JACKET, COLUMN_OLDER, OC4_SEMI)
+COLUMN_VERTICAL = RTEST / "hd_WaveStMod1" / "hydrodyn_input.dat"  # the same layout as COLUMN_OLDER
+OLDER = (TRIPOD, JACKET, COLUMN_OLDER, COLUMN_VERTICAL, OC4_SEMI)
 COLUMN = RTEST / "hd_WaveStMod3" / "hydrodyn_input.dat"  # the same column, r-test c00e123e
 
 
