@@ -174,11 +174,13 @@ def test_wave_blocks_do_not_stall_the_paced_node():
     (duration_s sets the repeat period; a block costs about 1 s of synthesis on an idle
     core, whatever its length, and a 100 s block lasts 5 s of wall time) with 100 s blocks
     runs past 300 s: block boundaries at 100, 200 and 300 s. No pose interval at the
-    subscriber exceeds 0.6 s, and the stepping waited for wave blocks less than 0.1 s in all
+    subscriber exceeds 0.6 s, and the stepping waited for wave blocks less than 0.5 s in all
     (the node's report). With each block made in the stepping thread (as the node once did)
-    the poses stopped for the whole synthesis at every boundary: 1.46 s here.
-    The bound leaves room for the scheduling of the node and of this test's own Python
-    subscriber: a 309 ms interval away from any boundary was seen once on an idle machine."""
+    the poses stopped for the whole synthesis at every boundary: 1.46 s here. Made ahead,
+    the waits sum to 0.13-0.36 s on an idle 2-core machine: the worker shares the GIL with the
+    stepping and publishing thread, which keeps one core busy at this rate. The 0.6 s bound
+    leaves room for the scheduling of the node and of this test's own Python subscriber: a
+    309 ms interval away from any boundary was seen once on an idle machine."""
     factor, period_s, block_s, bound_s = 20.0, 0.05, 100.0, 0.6
     listener = Listener({"/platform/pose": PoseStamped})
     node = start("node", real_time_factor=factor, drag_model="constant", duration_s=43200.0,
@@ -200,7 +202,7 @@ def test_wave_blocks_do_not_stall_the_paced_node():
     assert intervals_s.max() < bound_s, (f"longest pose interval {intervals_s.max() * 1e3:.0f} ms at t = "
                                          f"{sim[keep][1 + intervals_s.argmax()]:.2f} s")
     waited = re.search(r"([\d.]+) s waiting for wave blocks", output)
-    assert waited and float(waited[1]) < 0.1, output[-2000:]
+    assert waited and float(waited[1]) < 0.5, output[-2000:]
 
 
 def _log_after(output: str, needle: str) -> bool:
