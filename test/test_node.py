@@ -173,14 +173,15 @@ def test_wave_blocks_do_not_stall_the_paced_node():
     """Oracle: the wall clock. A node at 20x real time (2.5 ms between poses) on a 12-hour sea
     (duration_s sets the repeat period; a block costs about 1 s of synthesis on an idle
     core, whatever its length, and a 100 s block lasts 5 s of wall time) with 100 s blocks
-    runs past 300 s: block boundaries at 100, 200 and 300 s. No pose interval at the
-    subscriber exceeds 0.6 s, and the stepping waited for wave blocks less than 0.5 s in all
-    (the node's report). With each block made in the stepping thread (as the node once did)
-    the poses stopped for the whole synthesis at every boundary: 1.46 s here. Made ahead,
-    the waits sum to 0.13-0.36 s on an idle 2-core machine: the worker shares the GIL with the
-    stepping and publishing thread, which keeps one core busy at this rate. The 0.6 s bound
+    runs past 300 s: block boundaries at 100, 200 and 300 s. Every block the stepping took was
+    made ahead by the worker (the node's report), and no pose interval at the subscriber
+    exceeds 0.6 s. With each block made in the stepping thread (as the node once did) the
+    poses stopped for the whole synthesis at every boundary: 1.46 s here. The 0.6 s bound
     leaves room for the scheduling of the node and of this test's own Python subscriber: a
-    309 ms interval away from any boundary was seen once on an idle machine."""
+    309 ms interval away from any boundary was seen once on an idle machine. How long the
+    stepping still waits for a block made ahead depends on the machine's load (the worker
+    shares the GIL with the stepping and publishing thread, which keeps one core busy at
+    this rate: 0.13-0.62 s in all, seen on this 2-core machine); benchmarks/node.py reports it."""
     factor, period_s, block_s, bound_s = 20.0, 0.05, 100.0, 0.6
     listener = Listener({"/platform/pose": PoseStamped})
     node = start("node", real_time_factor=factor, drag_model="constant", duration_s=43200.0,
@@ -201,8 +202,8 @@ def test_wave_blocks_do_not_stall_the_paced_node():
     np.testing.assert_allclose(np.diff(sim[keep]), period_s, atol=1e-6)  # every pose, in order
     assert intervals_s.max() < bound_s, (f"longest pose interval {intervals_s.max() * 1e3:.0f} ms at t = "
                                          f"{sim[keep][1 + intervals_s.argmax()]:.2f} s")
-    waited = re.search(r"([\d.]+) s waiting for wave blocks", output)
-    assert waited and float(waited[1]) < 0.5, output[-2000:]
+    blocks = re.search(r"s waiting for wave blocks \((\d+) of (\d+) made ahead\)", output)
+    assert blocks and int(blocks[2]) >= 3 and blocks[1] == blocks[2], output[-2000:]
 
 
 def _log_after(output: str, needle: str) -> bool:

@@ -182,6 +182,32 @@ def test_a_batch_written_as_arrays_is_the_same_bag_as_message_by_message(tmp_pat
     assert message_index(3, [5, 2**63], [17, 9]) == builder.end()
 
 
+def test_topics_read_through_the_message_indexes_are_the_mcap_librarys(tmp_path):
+    """Oracle: the mcap library's reader (every record of every chunk, merged by log time).
+    Some topics of a bag of many chunks, read through the chunks' message indexes: the same
+    (topic, log time, bytes) in the same order."""
+    rng = np.random.default_rng(2)
+    with BagWriter(tmp_path / "b", chunk_size_bytes=3_000, chunk_interval_s=1e9) as writer:
+        pose = writer.add_topic(topics.POSE, topics.POSE_STAMPED)
+        elevation = writer.add_topic(topics.ELEVATION, topics.POINT_STAMPED)
+        clock = writer.add_topic("/clock", topics.CLOCK)
+        for step in range(400):
+            t = 0.05 * step
+            ns = int(round(t * 1e9))
+            writer.write(pose, ns, cdr.pose(t, rng.normal(0, 1, 6)))
+            if step % 3 == 0:
+                writer.write(elevation, ns, cdr.point(t, 0.0, 0.0, rng.normal()))
+            writer.write(clock, ns, cdr.clock(t))
+    bag = Bag(tmp_path / "b")
+    with open(bag.files[0], "rb") as stream:
+        assert len(make_reader(stream).get_summary().chunk_indexes) > 10
+    for wanted in ([topics.POSE], [topics.ELEVATION, topics.POSE], ["/clock", topics.ELEVATION]):
+        with open(bag.files[0], "rb") as stream:
+            reference = [(c.topic, m.log_time, m.data)
+                         for _, c, m in make_reader(stream).iter_messages(topics=wanted, log_time_order=True)]
+        assert len(reference) >= 400 and list(bag.messages(wanted)) == reference
+
+
 @pytest.fixture(scope="module")
 def wave_bag(tmp_path_factory) -> Path:
     path = tmp_path_factory.mktemp("waves") / "lc53"

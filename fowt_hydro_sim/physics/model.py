@@ -277,9 +277,10 @@ class PlatformModel:
 
     def _hold_rows(self, first_row: int, last_row: int) -> None:
         """Synthesise into the ring the blocks holding table rows first..last (at most two
-        consecutive blocks; block b in half b mod 2). From half way through a block on, the
-        next block not in the ring is made ahead (a run shorter than half a block makes
-        none it does not use). No-op for a whole-period table."""
+        consecutive blocks; block b in half b mod 2). From a block's first row on, the next
+        block not in the ring is made ahead: the worker has the whole block's time for it
+        (at 20x real time, 5 s of wall time for a 100 s block). No-op for a whole-period
+        table."""
         if self._blocks is None:
             return
         m = self._blocks.block_rows
@@ -291,7 +292,7 @@ class PlatformModel:
                 self._ring_blocks[half] = None  # until written whole
                 self._blocks.take(block, self._data.waves.values[half * m:(half + 1) * m])
                 self._ring_blocks[half] = block
-        if first_row >= 0 and first_row % m >= m // 2:
+        if first_row >= 0:
             after = last_row // m + 1
             self._blocks.prepare(after + 1 if after in self._ring_blocks else after)
 
@@ -300,6 +301,11 @@ class PlatformModel:
         """Wall seconds the stepping spent on wave blocks: making them, or waiting for the
         worker making them ahead (0 for a whole-period or streamed table)."""
         return 0.0 if self._blocks is None else self._blocks.waited_s
+
+    @property
+    def wave_blocks_taken(self) -> tuple[int, int]:
+        """How many wave blocks the stepping took, and how many of them the worker made ahead."""
+        return (0, 0) if self._blocks is None else (self._blocks.taken, self._blocks.made_ahead)
 
     def _hold_times(self, first_s: float, last_s: float) -> None:
         """The rows the interpolation reads between these times (4 points around each)."""

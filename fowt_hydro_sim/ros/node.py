@@ -537,7 +537,7 @@ class SimulatorNode(Node):
 
     def _run(self) -> None:
         start_wall, start_cpu, start_sim = time.monotonic(), time.process_time(), self.model.time_s
-        start_blocks = self.model.wave_block_wait_s
+        start_blocks, start_taken = self.model.wave_block_wait_s, self.model.wave_blocks_taken
         try:
             self._step_until_done()
         except InputError as exc:  # a model that cannot go on (MoorDyn failing, a line out of its table)
@@ -546,9 +546,11 @@ class SimulatorNode(Node):
             self._stop.set()
         finally:
             wall, cpu = time.monotonic() - start_wall, time.process_time() - start_cpu
+            taken, ahead = np.subtract(self.model.wave_blocks_taken, start_taken)
             report = f"stepping ended at t = {self.model.time_s:.2f} s: {self.model.time_s - start_sim:.1f} s " \
                      f"simulated in {wall:.2f} s of wall time ({cpu:.2f} s of CPU), {self.published} messages " \
-                     f"published, {self.model.wave_block_wait_s - start_blocks:.3f} s waiting for wave blocks"
+                     f"published, {self.model.wave_block_wait_s - start_blocks:.3f} s waiting for wave blocks " \
+                     f"({ahead} of {taken} made ahead)"
             if self.lateness_s:
                 late = np.array(self.lateness_s) * 1e3
                 report += (f"; pacing lateness p50 {np.percentile(late, 50):.3f} ms, p99 "

@@ -14,8 +14,11 @@ from pathlib import Path
 
 import numpy as np
 import yaml
+from mcap.data_stream import ReadDataStream
 from mcap.exceptions import McapError
 from mcap.reader import make_reader
+from mcap.records import Chunk
+from mcap.stream_reader import get_chunk_data_stream
 from mcap.writer import MCAP0_MAGIC
 
 from fowt_hydro_sim.frames import euler_from_quaternion
@@ -55,6 +58,35 @@ COLUMNS = {  # names of a decoded series' columns, per type
 def _six_dof(doubles: np.ndarray) -> np.ndarray:
     """Position and quaternion (n, 7) to surge, sway, heave, roll, pitch, yaw."""
     return np.hstack([doubles[:, :3], euler_from_quaternion(doubles[:, 3:7])])
+
+
+def _chunks_in_time_order(chunk_indexes: list) -> bool:
+    """Whether each chunk's messages are logged no earlier than the previous chunk's."""
+    ends = [c.message_end_time for c in chunk_indexes]
+    starts = [c.message_start_time for c in chunk_indexes]
+    return all(start >= end for start, end in zip(starts[1:], ends[:-1]))
+
+
+def _indexed_messages(stream, summary, topics: list[str]) -> Iterator[tuple[str, int, bytes]]:
+    """The messages of ``topics`` in one MCAP file, chunk by chunk, in log-time order within
+    each chunk: the chunk's message indexes give the wanted records' offsets, and only those
+    are read (the mcap library's reader parses every record of every chunk)."""
+    wanted = {cid: c.topic for cid, c in summary.channels.items() if c.topic in topics}
+    for index in summary.chunk_indexes:
+        channels = [cid for cid in wanted if cid in index.message_index_offsets]
+        if not channels:
+            continue
+        stream.seek(index.chunk_start_offset + 9)  # past the record's opcode and length
+        data = get_chunk_data_stream(Chunk.read(ReadDataStream(stream)))[0].read(index.uncompressed_size)
+        entries = []
+        for cid in channels:
+            stream.seek(index.message_index_offsets[cid] + 9)
+            head = stream.read(6)  # channel id, byte length of the (log time, offset) pairs
+            pairs = np.frombuffer(stream.read(int.from_bytes(head[2:6], "little")), dtype="<u8").reshape(-1, 2)
+            entries += [(int(t), int(offset), cid) for t, offset in pairs]
+        for log_time, offset, cid in sorted(entries):
+            length = int.from_bytes(data[offset + 1:offset + 9], "little")  # channel 2, sequence 4, times 16
+            yield wanted[cid], log_time, data[offset + 31:offset + 9 + length]
 
 
 class Bag:
@@ -137,10 +169,17 @@ class Bag:
         return "\n".join(lines)
 
     def messages(self, topics: list[str] | None = None) -> Iterator[tuple[str, int, bytes]]:
-        """(topic, log time [ns], CDR bytes) in log-time order, file by file."""
+        """(topic, log time [ns], CDR bytes) in log-time order, file by file. Some topics of
+        a file whose chunks follow one another in time are read through the chunks' message
+        indexes: only those topics' records are parsed."""
         for file in self.files:
             with open(file, "rb") as stream:
-                for _, channel, message in make_reader(stream).iter_messages(topics=topics, log_time_order=True):
+                reader = make_reader(stream)
+                summary = reader.get_summary() if topics is not None else None
+                if summary is not None and _chunks_in_time_order(summary.chunk_indexes):
+                    yield from _indexed_messages(stream, summary, topics)
+                    continue
+                for _, channel, message in reader.iter_messages(topics=topics, log_time_order=True):
                     yield channel.topic, message.log_time, message.data
 
     def check_type(self, topic: str, expected: str | None = None) -> str:

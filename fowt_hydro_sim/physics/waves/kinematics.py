@@ -351,7 +351,8 @@ class BlocksAhead:
         self.block_rows = synthesis.block_rows
         self.ahead = ahead
         self.waited_s = 0.0  # wall seconds ``take`` spent: waiting for the worker or making a block
-        self.made_ahead = 0  # blocks taken from the worker
+        self.taken = 0  # blocks taken
+        self.made_ahead = 0  # of which from the worker
         self._worker: ThreadPoolExecutor | None = None
         self._spare: np.ndarray | None = None
         self._pending: tuple[int, Future] | None = None  # the block being made ahead
@@ -371,6 +372,7 @@ class BlocksAhead:
     def take(self, block: int, out: np.ndarray) -> None:
         """Block ``block``'s rows into ``out`` (block_rows, n_points, 7)."""
         start = time.perf_counter()
+        self.taken += 1
         if self._pending is not None and self._pending[0] == block:
             self._pending[1].result()  # the worker is done with the spare (one job at a time)
             self._pending = None
