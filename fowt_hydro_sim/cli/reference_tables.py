@@ -231,11 +231,14 @@ def _number(value: float) -> str:
 def effects_page() -> str:
     """The gap diagnosis's catalogue of candidate effects and their parameters."""
     from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
-    header = ("parameter", "unit", "start", "fitted within", "plausible", "off at", "why plausible")
+    header = ("parameter", "unit", "start", "fitted within", "plausible", "off at", "material departure",
+              "why plausible")
     body = ["The candidate unmodelled effects the gap diagnosis (`fowt-sim diagnose`) fits, in catalogue order "
             "(`CATALOGUE` of `fowt_hydro_sim.studies.diagnosis.effects`). Each parameter starts its fit at "
             "`start` within its fit range; at `off` the effect is switched off; a fit outside the plausible "
-            "range, or at the edge of the fit range, is a sign that the parameter absorbs something else.", ""]
+            "range, or at the edge of the fit range, is a sign that the parameter absorbs something else. "
+            "A scale of one of the model's own terms with a material departure set is no finding (never named) "
+            "while every such scale lies within it of `off`.", ""]
     body += _table(("effect", "what it is", "parameters"),
                    ((f"[`{e.name}`](#{e.name})", e.summary, len(e.parameters))
                     for e in CATALOGUE.values()))
@@ -245,7 +248,8 @@ def effects_page() -> str:
             body += ["Its loads are quadratic in the waves: their low-frequency part is not coherent with the "
                      "elevation.", ""]
         body += _table(header, ((f"`{p.name}`", p.unit, _number(p.start), f"{_number(p.low)} to {_number(p.high)}",
-                                 "{} to {}".format(*map(_number, p.plausible_range)), _number(p.off), p.why)
+                                 "{} to {}".format(*map(_number, p.plausible_range)), _number(p.off),
+                                 _number(p.material) if p.material else "-", p.why)
                                 for p in effect.parameters))
     return _page("Diagnosis effects", body)
 

@@ -15,7 +15,8 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    cells set aside (``residuals``).
 3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE``,
    closes at least ``MIN_CLOSURE`` of the gap and raises no concern (``concerns``: values
-   outside their plausible range or at the edge of the fit's bounds, a signature that moves
+   outside their plausible range or at the edge of the fit's bounds, a scale of one of the
+   model's terms too close to 1 to be worth naming, a signature that moves
    the model the wrong way, a blind closure below ``BLIND_SHARE`` of the tuning closure);
    candidates with a concern rank after the others. Otherwise the gap is the baseline's
    ("baseline mismatch"), or "unexplained" where a set-aside cell's band holds a measured
@@ -242,7 +243,10 @@ def at_edge(p: Parameter, value: float) -> bool:
 
 def range_concerns(effect: Effect, values: dict[str, float]) -> list[str]:
     """Why fitted values are implausible: a parameter outside the range a real platform's
-    lies in, or at the edge of the fit's bounds (it absorbs something else)."""
+    lies in, or at the edge of the fit's bounds (it absorbs something else); or a scale of
+    one of the model's terms whose every material parameter (``Parameter.material``) lies
+    closer to its off value than is worth naming (the term is right, as far as the
+    diagnosis can tell)."""
     out = []
     for p in effect.parameters:
         value, (low, high) = values[p.name], p.plausible_range
@@ -250,6 +254,11 @@ def range_concerns(effect: Effect, values: dict[str, float]) -> list[str]:
             out.append(f"{p.name} = {value:.4g} lies outside its plausible {low:g} to {high:g} ({p.why})")
         elif at_edge(p, value):
             out.append(f"{p.name} = {value:.4g} sits at the edge of the fitted range {p.low:g} to {p.high:g}")
+    material = [p for p in effect.parameters if p.material]
+    if material and all(abs(values[p.name] - p.off) < p.material for p in material):
+        out.append(", ".join(f"{p.name} = {values[p.name]:.4g}" for p in material)
+                   + f": within {material[0].material:g} of the model's own {material[0].off:g}, no difference "
+                     "worth naming")
     return out
 
 

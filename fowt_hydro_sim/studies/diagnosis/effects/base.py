@@ -23,7 +23,10 @@ class Parameter:
     ``grid_step``: a lag-type parameter, which the gaps follow in steps (a lag read from a
     cross-correlation peak is piecewise constant in a delay, so a forward difference sees
     no slope); it is fitted by a grid over its plausible range at this step, refined
-    around the best point (``method.fit_effect``)."""
+    around the best point (``method.fit_effect``).
+    ``material``: for a scale of one of the model's own terms, the smallest departure from
+    ``off`` worth naming; a fit whose every such parameter lies closer to ``off`` says the
+    term is right within what the diagnosis can attribute (``method.range_concerns``)."""
 
     name: str
     unit: str
@@ -34,6 +37,7 @@ class Parameter:
     plausible: tuple[float, float] | None = None
     why: str = ""
     grid_step: float | None = None
+    material: float = 0.0
 
     @property
     def plausible_range(self) -> tuple[float, float]:
@@ -82,6 +86,13 @@ class IndependentInjection(NamedTuple):
     form: str
     accepted: tuple[str, ...]
     strengths: tuple[dict[str, float], ...]
+
+
+# A scale of one of the model's own terms closer to 1 than this is no finding: the scored
+# attribution is right within 25 %, and each basin baseline's Cds differ from the model's by
+# a drawn share of 0.9-1.1 in every run (independent/basin.py), so a smaller departure is
+# below what the fit can attribute to the term.
+MATERIAL_SCALE = 0.2
 
 
 # ---------------------------------------------------------------------- helpers for effects

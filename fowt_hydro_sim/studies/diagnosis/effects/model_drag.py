@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_drag
-from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, scaled_term
+from fowt_hydro_sim.studies.diagnosis.effects.base import MATERIAL_SCALE, Effect, Parameter, scaled_term
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 
@@ -35,10 +35,12 @@ EFFECT = Effect(
     "the model's own drag coefficients too strong or too weak, in the wave and the low-frequency band",
     (Parameter("wave_cd_scale", "-", start=1.2, low=0.2, high=4.0, off=1.0, plausible=(0.6, 1.6),
                why="handbook Morison Cds of columns and pontoons lie within about 40 % of those fitted to a "
-                   "basin's wave-band response"),
+                   "basin's wave-band response",
+               material=MATERIAL_SCALE),
      Parameter("low_frequency_cd_scale", "-", start=0.8, low=0.05, high=4.0, off=1.0, plausible=(0.3, 2.0),
                why="the seed paper's tuned low-frequency Cds are 0.3 to 1.5 times the wave-band ones, and up to "
-                   "about twice in small seas")),
+                   "about twice in small seas",
+               material=MATERIAL_SCALE)),
     apply, term=term)
 
 # the benchmark's twin injects it at these values (one scenario each)

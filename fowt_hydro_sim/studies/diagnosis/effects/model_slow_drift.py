@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, scaled_term
+from fowt_hydro_sim.studies.diagnosis.effects.base import MATERIAL_SCALE, Effect, Parameter, scaled_term
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 
 
@@ -22,7 +22,8 @@ EFFECT = Effect(
     "the model's own slow-drift coefficients (its BEM mean-drift table) too strong or too weak",
     (Parameter("drift_scale", "-", start=0.7, low=0.0, high=4.0, off=1.0, plausible=(0.5, 2.0),
                why="Newman's approximation of a BEM mean-drift table: the full difference-frequency QTF, the "
-                   "mesh and viscous drift move a semisubmersible's slow drift by up to about a factor of two"),),
+                   "mesh and viscous drift move a semisubmersible's slow drift by up to about a factor of two",
+               material=MATERIAL_SCALE),),
     apply, wave_coherent=False, term=lambda values: scaled_term("slow drift", values["drift_scale"]))
 
 # the benchmark's twin injects it at these values (one scenario each)
