@@ -87,20 +87,22 @@ def test_a_run_without_an_unmodelled_effect_raises_no_alarm(platform):
 @pytest.mark.slow
 @pytest.mark.dask
 def test_diagnose_benchmark_small(tmp_path):
-    """The benchmark's own command on three scenarios: a wave-probe delay, a null and an
+    """The benchmark's own command on two scenarios: a wave-probe delay and an
     out-of-catalogue rotor moment, with two candidates (the delay and slow drift), two
     least-squares evaluations each (the default four give the same scores with twice the
-    model runs)."""
+    model runs). (A null on the twin is test_a_run_without_an_unmodelled_effect_raises_no_alarm;
+    the benchmark's nulls on the independent simulator, test_independent_benchmark.py.)"""
     out = tmp_path / "bench"
-    result = fowt_sim("diagnose-benchmark", "--inject", "wave_measurement_delay", "--strengths", "1", "--nulls", "1",
+    result = fowt_sim("diagnose-benchmark", "--inject", "wave_measurement_delay", "--strengths", "1", "--nulls", "0",
                       "--out-of-catalogue", "1", "--effects", "wave_measurement_delay", "slow_drift",
                       "--duration", str(RECORD_S),
                       "--max-evaluations", "2", "--workers", "2", "-o", str(out), timeout=1800)
     assert result.returncode == 0, result.stderr
     data = json.loads((out / "benchmark.json").read_text())
     summary = data["summary"]
+    assert len(data["scenarios"]) == 2, data["scenarios"]
     assert summary["injected_detected"] == 1 and summary["top1_accuracy"] == 1.0, data["scenarios"]
-    assert summary["false_alarm_rate"] == 0.0 and summary["out_of_catalogue_unexplained"] == 1.0, data["scenarios"]
+    assert summary["out_of_catalogue_unexplained"] == 1.0, data["scenarios"]
     assert summary["median_blind_closure"] > 0.5 and summary["footprint_flagged"] == 1.0
 
 
