@@ -15,6 +15,7 @@ FOWT_REQUIRE_ROS=1 (set by .ci/run), where a missing rclpy or toolbox fails the 
 import collections
 import importlib.util
 import os
+import signal
 import subprocess
 import zlib
 from pathlib import Path
@@ -22,6 +23,12 @@ from pathlib import Path
 import pytest
 
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"  # forced, never overridden
+
+# A test run started in the background of a non-interactive shell (`bash .ci/run &`) inherits
+# SIGINT ignored, and so would every command it starts: the tests that send Ctrl-C to a
+# command need it to have the default handling, as at a terminal.
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def free_domain_id(key: str) -> int:

@@ -309,9 +309,10 @@ def test_record_on_a_full_disk_ends_in_one_line_with_a_readable_bag(small_disk):
     output = "".join(seen) + output
     assert code == 1 and "Traceback" not in output, output
     assert sum("recording stopped at a failed write" in line for line in output.splitlines()) == 1, output
-    bag = Bag(out)
-    assert bag.topics["/platform/pose"].message_count > 100
-    assert len(read_with_rosbags(out)["/platform/pose"]) == bag.topics["/platform/pose"].message_count
+    bag = Bag(out)  # the topics the recorder had discovered when the disk filled (under load, not always all three)
+    assert bag.message_count > 100, bag.summary()
+    assert {topic: len(messages) for topic, messages in read_with_rosbags(out).items()} == {
+        topic: info.message_count for topic, info in bag.topics.items() if info.message_count}
 
 
 @pytest.mark.slow
