@@ -165,6 +165,7 @@ def test_section_integral_under_a_sloped_plane_and_hydrodyn_s_side_term():
 
 
 # ------------------------------------------------------------------ MHstLMod from the deck
+@pytest.mark.slow  # openfast-io read twice (7 s the first time in a process: its import)
 @pytest.mark.parametrize(("case", "deck", "mhstlmod"), [("hd_MHstLMod2", "HydroDyn.dat", 2),
                                                        ("hd_MHstLMod1_compare", "hydrodyn_input.dat", 1)])
 def test_deck_mhstlmod_reaches_the_circular_member(case, deck, mhstlmod, tmp_path):
