@@ -324,8 +324,9 @@ class HydroOptions:
                   "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
                   "member hydrostatics, MHstLMod 1), or free_surface, the still-water pressure -rho g z over "
                   "the displaced member surfaces up to the instantaneous free surface (a plane per element; "
-                  "HydroDyn's MHstLMod 2 with wave stretching for rectangular members, MHstLMod 1 with wave "
-                  "stretching for circular ones; prescribed motion only: fowt-sim loads)", choices=HYDROSTATICS)
+                  "HydroDyn's MHstLMod 2 with wave stretching for rectangular members and for circular ones "
+                  "flagged hydrostatics_by_section, MHstLMod 1 with wave stretching for the other "
+                  "circular ones; prescribed motion only: fowt-sim loads)", choices=HYDROSTATICS)
     kinematics: str = setting(
         "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
                        "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
