@@ -17,8 +17,12 @@ tapered rectangular members with axial added mass or drag (AxCa, AxCd). Cp is th
 coefficients (AxCa, AxCp, AxCd of its coefficient table: the tapered wall's axial terms,
 strips.py); MSpinOrient is ``spin_deg`` (side A's direction turned about the axis from the
 horizontal, as HydroDyn's Morison_DirCosMtrx; checked against HydroDyn's MHstLMod 2 loads on
-the r-test case hd_MHstLMod2_RectMmbr). MHstLMod is not read: member hydrostatics are a run
-option (``hydrostatics``: nonlinear for MHstLMod 1, free_surface for MHstLMod 2). A Cp of
+the r-test case hd_MHstLMod2_RectMmbr). Whether member hydrostatics follow the waves is a run
+option (``hydrostatics``: nonlinear to the still water level, free_surface to the instantaneous
+surface, HydroDyn's HstMod); a circular member's MHstLMod 2 flags it ``hydrostatics_by_section``
+(free_surface then wets each element section by section, as MHstLMod 2; MHstLMod 1 cuts it where
+its axis crosses the surface), a rectangular member's free_surface hydrostatics are MHstLMod 2's
+whatever its MHstLMod. A Cp of
 ``MCF`` flags the member ``maccamy_fuchs`` (waves/maccamy_fuchs.py; the correction's diameter
 is the member's, which HydroDyn requires within 10 % of SeaState's MCFD). Marine growth
 (MGDepths: MGDpth, MGThck, MGDens) is the platform's ``marine_growth`` table, and each circular
@@ -268,6 +272,8 @@ def _member(hd: dict, index: int, source: str) -> dict:
         size["taper_axial"] = taper_axial
     if hd["PropPot"][index]:  # HydroDyn: the potential flow has its inertia and buoyancy, it keeps its drag
         size["drag_only"] = True
+    if circular and hd["MHstLMod"][index] == 2:
+        size["hydrostatics_by_section"] = True
     if hd["NMGDepths"] > 0 and circular:  # the coefficients of its nodes with growth (MG columns)
         size["growth_zone"] = _growth_zone(hd, index, source)
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,

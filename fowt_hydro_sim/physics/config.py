@@ -141,6 +141,9 @@ class Member:
     drag_only: bool = False  # HydroDyn's PropPot: drag only, the hull's potential flow has the rest
     maccamy_fuchs: bool = False  # HydroDyn's Cp MCF: transverse inertia on the MacCamy-Fuchs acceleration
     growth_zone: Zone | None = None  # circular only: the coefficients where it carries marine growth (HydroDyn's MG)
+    # circular only: free_surface hydrostatics wet each element section by section below the surface
+    # plane at its midpoint (HydroDyn's MHstLMod 2); false: cut where the axis crosses the surface (MHstLMod 1)
+    hydrostatics_by_section: bool = False
 
     @property
     def tapered(self) -> bool:
@@ -321,8 +324,9 @@ class HydroOptions:
                   "rho g times the displaced members' exact submerged volume through its centroid (HydroDyn's "
                   "member hydrostatics, MHstLMod 1), or free_surface, the still-water pressure -rho g z over "
                   "the displaced member surfaces up to the instantaneous free surface (a plane per element; "
-                  "HydroDyn's MHstLMod 2 with wave stretching for rectangular members, MHstLMod 1 with wave "
-                  "stretching for circular ones; prescribed motion only: fowt-sim loads)", choices=HYDROSTATICS)
+                  "HydroDyn's MHstLMod 2 with wave stretching for rectangular members and for circular ones "
+                  "flagged hydrostatics_by_section, MHstLMod 1 with wave stretching for the other "
+                  "circular ones; prescribed motion only: fowt-sim loads)", choices=HYDROSTATICS)
     kinematics: str = setting(
         "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
                        "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
@@ -589,7 +593,7 @@ RECTANGULAR_ONLY = ("width_b_m", "height_b_m", "spin_deg")
 
 def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
     section = f.text("section", choices=SECTIONS)
-    own = ("diameter_b_m",) if section == "rectangular" else RECTANGULAR_ONLY
+    own = ("diameter_b_m", "hydrostatics_by_section") if section == "rectangular" else RECTANGULAR_ONLY
     for name in own:
         if f.data.get(name) is not None:
             raise ConfigError(f"{f.at(name)}: only for {'circular' if section == 'rectangular' else 'rectangular'} "
@@ -621,6 +625,7 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
         diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
         drag_only=_flag(f, "drag_only"), maccamy_fuchs=_flag(f, "maccamy_fuchs"),
+        hydrostatics_by_section=_flag(f, "hydrostatics_by_section"),
         growth_zone=_zone(f.sub("growth_zone"), section, True, bands) if f.data.get("growth_zone") else None,
     )
     f.used.add("growth_zone")
@@ -884,6 +889,8 @@ def platform_document(platform: Platform) -> dict:
             size["drag_only"] = True
         if m.maccamy_fuchs:
             size["maccamy_fuchs"] = True
+        if m.hydrostatics_by_section:
+            size["hydrostatics_by_section"] = True
         if m.growth_zone is not None:
             size["growth_zone"] = _zone_document(m.growth_zone, m.section, bands)
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),

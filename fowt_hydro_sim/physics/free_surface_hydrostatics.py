@@ -1,5 +1,6 @@
 """Member hydrostatics up to the instantaneous free surface: HydroDyn's MHstLMod 2 (rectangular
-members) and MHstLMod 1 with wave stretching (circular members).
+members; circular members flagged ``hydrostatics_by_section``) and MHstLMod 1 with wave
+stretching (the other circular members).
 
 The pressure is the still-water hydrostatic pressure p = -rho g z (z up from the still water
 line; negative, a suction, between z = 0 and a crest), integrated over the part of each member
@@ -16,7 +17,28 @@ them exactly. This is an independent computation of what HydroDyn's
 ``getElementHstLds_Mod2_Rec`` and ``GetEndPlateHstLds_Rec`` integrate in closed form along the
 element (adaptive Simpson, relative tolerance 1e-6).
 
-Circular members, possibly tapered (MHstLMod 1 with stretching, HydroDyn's
+Circular members, possibly tapered, MHstLMod 2 (HydroDyn's ``getElementHstLds_Mod2_Cyl``): each
+element, whatever its nodes' depths, takes the plane at its midpoint (the elevation there, the
+normal from central differences over the element's mean radius), and each cross-section of its
+side wall is wetted on the arc of its rim below that plane (a circular segment of the section:
+the whole rim, none of it, or the arc between the two points where the plane cuts the rim).
+The load per unit length of a section is closed form in the arc's end angles (int z n R dt
+with n = u - (dR/ds) k, u the rim's unit radius); it is integrated here along the element by
+Gauss-Legendre in a cosine-stretched variable (48 points) on the pieces between the sections
+where the plane starts and stops cutting the rim (both linear in the axial coordinate, so found
+in closed form), which takes the square-root behaviour of the arc there, where HydroDyn refines
+Simpson's rule adaptively (relative tolerance 1e-6, absolute 1e-8 N, and always across a piece
+that goes from wetted whole to dry). HydroDyn's section load (``GetSectionHstLds_Cyl``) takes
+the term R^2 cos(phi) int sin t cos t dt of the side force along the section's horizontal axis
+y with the sign opposite to the pressure integral's (phi the member's inclination from the
+horizontal): the model follows it (``_wall_sections``' ``cross_sign``). The term vanishes
+wherever the surface plane is level across the section (still water, or a wave running along
+the member) and where the plane cuts the section through its centre; on a small surface slope s
+across the section the two signs differ by 2 rho g R^2 s sin(2 beta) per unit length (2 beta
+the angle of the rim's dry arc), a side force of at most 2 rho g R^2 |s|. The end plates: as
+for MHstLMod 1, below.
+
+Circular members, possibly tapered, MHstLMod 1 with stretching (HydroDyn's
 ``getElementHstLds_Mod1``): an element whose two nodes are below the elevation over them is
 wetted whole (its whole side wall, whatever the surface between); an element whose lower node
 is below and upper node above is wetted up to the plane through the point where its axis
@@ -26,11 +48,12 @@ node up, past its upper node if the tilted plane reaches beyond it; where the pl
 the lower node, the part of the wall there above the plane is taken off (HydroDyn's closed form
 for the truncated cone counts it negative: with the element below wetted whole, the two give
 the wall below the plane); an element whose lower node is dry carries no load. The end plates
-take the plane at their node (central differences over their radius). Whole walls and discs
-are closed forms (Archimedes for the frustum less its end discs); a cut wall is integrated
-here along the axis (adaptive Gauss-Kronrod, split where the plane meets the section's rim) of
-closed-form integrals over each section's wetted arc, where HydroDyn writes the element's load
-in closed form (the truncated cone's volume and waterplane ellipse).
+take the plane at their node (central differences over their radius), the part of the disc
+below it (a circular segment). Whole walls and discs are closed forms (Archimedes for the
+frustum less its end discs); a cut wall is integrated here along the axis as MHstLMod 2's
+(the exact pressure integral, with the pieces split where the plane meets the sections' rims),
+where HydroDyn writes the element's load in closed form (the truncated cone's volume and
+waterplane ellipse).
 
 Pure numpy and scipy, no numba (about 1 ms per element and time step): ``HydroOptions(
 hydrostatics="free_surface")`` for a prescribed motion (``fowt-sim loads``), not a
@@ -65,12 +88,14 @@ class RectangularMember:
 
 @dataclass(frozen=True)
 class CircularMember:
-    """A straight circular member, its diameter varying linearly from end a to end b."""
+    """A straight circular member, its diameter varying linearly from end a to end b; its
+    elements wetted as HydroDyn's MHstLMod ``mhstlmod`` (1 or 2) wets them."""
 
     end_a_m: tuple[float, float, float]
     end_b_m: tuple[float, float, float]
     diameter_m: tuple[float, float]
     n_elements: int
+    mhstlmod: int = 1
 
 
 def section_axes(end_a: np.ndarray, end_b: np.ndarray, spin_deg: float) -> tuple[np.ndarray, ...]:
@@ -199,16 +224,19 @@ def _wet_arcs(centres: np.ndarray, radii: np.ndarray, y: np.ndarray, z: np.ndarr
 
 
 def _wall_sections(centres: np.ndarray, radii: np.ndarray, taper: float, k: np.ndarray, y: np.ndarray,
-                   z: np.ndarray, t1: np.ndarray, t2: np.ndarray) -> np.ndarray:
+                   z: np.ndarray, t1: np.ndarray, t2: np.ndarray, cross_sign: float = 1.0) -> np.ndarray:
     """(n, 6): d(wrench)/ds / (rho g) of p = -rho g z on the arcs [t1, t2] of the side wall at
     sections (n, 3) of radii (n,): int z (n, r x n) dA with n dA = (u - taper k) R dt ds,
-    u = cos t y + sin t z, r = centre + R u."""
+    u = cos t y + sin t z, r = centre + R u. ``cross_sign`` -1 takes the term
+    R z_z int sin t cos t dt of int z cos t dt with the opposite sign, as HydroDyn's
+    GetSectionHstLds_Cyl does (its C1); the term vanishes where the surface plane is level
+    across the section (the arc symmetric about -z)."""
     s1, s2, c1, c2 = np.sin(t1), np.sin(t2), np.cos(t1), np.cos(t2)
     dt, d2 = t2 - t1, 0.25 * (np.sin(2 * t2) - np.sin(2 * t1))
     one, cos, sin = dt, s2 - s1, c1 - c2
     cos2, sincos, sin2 = 0.5 * dt + d2, 0.5 * (s2 * s2 - s1 * s1), 0.5 * dt - d2
     z0, zy, zz = centres[:, 2], radii * y[2], radii * z[2]  # z on the rim: z0 + zy cos + zz sin
-    z_u = ((z0 * cos + zy * cos2 + zz * sincos)[:, None] * y
+    z_u = ((z0 * cos + zy * cos2 + cross_sign * zz * sincos)[:, None] * y
            + (z0 * sin + zy * sincos + zz * sin2)[:, None] * z)  # int z u dt
     z_1 = z0 * one + zy * cos + zz * sin  # int z dt
     along = z_u - taper * z_1[:, None] * k
@@ -277,16 +305,7 @@ def _circular_element(lower: np.ndarray, k: np.ndarray, r_lower: float, taper: f
         solid = np.concatenate([[0.0, 0.0, volume], volume * np.cross(centroid, [0.0, 0.0, 1.0])])
         return solid - _full_disc(lower, r0, -k) - _full_disc(lower + s_end * k, r1, k)
     point, normal = plane
-    # g(s) = (point - c(s)) . n and the rim's reach m(s) = R(s) |n_perp|, both linear in s: the
-    # section is wet whole while g >= m, dry once g <= -m
-    kn, g0 = k @ normal, (point - lower) @ normal
-    perp = math.sqrt(max(1.0 - kn * kn, 0.0))
-
-    def root(sign: float) -> float | None:  # g - sign m = 0
-        slope = -kn - sign * taper * perp
-        return None if abs(slope) < 1e-12 else (sign * r_lower * perp - g0) / slope
-
-    dry, whole = root(-1.0), root(1.0)
+    whole, dry = _rim_roots(lower, k, r_lower, taper, point, normal)
     top = s_end if dry is None else max(dry, 0.0)
     bottom = 0.0 if whole is None else min(whole, 0.0)
     breaks = sorted({bottom, 0.0, top, *([whole] if whole is not None and 0.0 < whole < top else [])})
@@ -294,23 +313,86 @@ def _circular_element(lower: np.ndarray, k: np.ndarray, r_lower: float, taper: f
     for s0, s1 in zip(breaks[:-1], breaks[1:]):
         if s1 <= s0:
             continue
-        half = 0.5 * (s1 - s0)
-        at = s0 + half * (1.0 - np.cos(np.pi * _TAU))
-        weight = _WEIGHT * half * np.pi * np.sin(np.pi * _TAU)
-        centres, radii = lower + np.outer(at, k), r_lower + taper * at
-        wet = _wall_sections(centres, radii, taper, k, y, z, *_wet_arcs(centres, radii, y, z, point, normal))
-        if s1 <= 0.0:  # below the lower section: minus the part above the plane
-            full = np.full(at.size, 2 * np.pi)
-            wet = wet - _wall_sections(centres, radii, taper, k, y, z, np.zeros(at.size), full)
-        total += weight @ wet
+        # below the lower section: minus the part above the plane
+        total += _wall_piece(s0, s1, lower, k, r_lower, taper, y, z, plane, minus_whole=s1 <= 0.0)
     return total
+
+
+def _rim_roots(start: np.ndarray, k: np.ndarray, r_start: float, taper: float, point: np.ndarray,
+               normal: np.ndarray) -> tuple[float | None, float | None]:
+    """Along the axis from the section at ``start`` (s, radius r_start + taper s), where the
+    plane through ``point`` with upward ``normal`` stops wetting the whole section and where it
+    stops wetting any of it: (whole, dry), None for one that never changes."""
+    # g(s) = (point - c(s)) . n and the rim's reach m(s) = R(s) |n_perp|, both linear in s: the
+    # section is wet whole while g >= m, dry once g <= -m
+    kn, g0 = k @ normal, (point - start) @ normal
+    perp = math.sqrt(max(1.0 - kn * kn, 0.0))
+
+    def root(sign: float) -> float | None:  # g - sign m = 0
+        slope = -kn - sign * taper * perp
+        return None if abs(slope) < 1e-12 else (sign * r_start * perp - g0) / slope
+
+    return root(1.0), root(-1.0)
+
+
+def _wall_piece(s0: float, s1: float, start: np.ndarray, k: np.ndarray, r_start: float, taper: float,
+                y: np.ndarray, z: np.ndarray, plane: tuple[np.ndarray, np.ndarray], minus_whole: bool = False,
+                cross_sign: float = 1.0) -> np.ndarray:
+    """int z (n, r x n) dA over the side wall below the plane between s0 and s1 along the axis
+    from the section at ``start`` (Gauss-Legendre in a cosine-stretched variable), less the whole
+    wall there with ``minus_whole``; ``cross_sign`` as ``_wall_sections``."""
+    point, normal = plane
+    half = 0.5 * (s1 - s0)
+    at = s0 + half * (1.0 - np.cos(np.pi * _TAU))
+    weight = _WEIGHT * half * np.pi * np.sin(np.pi * _TAU)
+    centres, radii = start + np.outer(at, k), r_start + taper * at
+    wet = _wall_sections(centres, radii, taper, k, y, z, *_wet_arcs(centres, radii, y, z, point, normal),
+                         cross_sign=cross_sign)
+    if minus_whole:
+        full = np.full(at.size, 2 * np.pi)
+        wet = wet - _wall_sections(centres, radii, taper, k, y, z, np.zeros(at.size), full)
+    return weight @ wet
+
+
+def _sectioned_element(start: np.ndarray, k: np.ndarray, r_start: float, taper: float, length: float,
+                       plane: tuple[np.ndarray, np.ndarray], cross_sign: float = -1.0) -> np.ndarray:
+    """int z (n, r x n) dA over an element's side wall (s from 0 to ``length`` along k from its
+    section at ``start``) below the plane, each section wetted on its own arc, as HydroDyn's
+    MHstLMod 2 integrates it (``cross_sign`` -1, its C1 sign; +1 the pressure integral's:
+    ``_wall_sections``); split where a section becomes wet whole or dry."""
+    y, z = _circle_axes(k)
+    inside = [s for s in _rim_roots(start, k, r_start, taper, *plane) if s is not None and 0.0 < s < length]
+    breaks = sorted({0.0, length, *inside})
+    total = np.zeros(6)
+    for s0, s1 in zip(breaks[:-1], breaks[1:]):
+        total += _wall_piece(s0, s1, start, k, r_start, taper, y, z, plane, cross_sign=cross_sign)
+    return total
+
+
+def _cut_elements(nodes: np.ndarray, radii: np.ndarray, k: np.ndarray, taper: float, dl: float, eta: Elevation,
+                  t: float) -> np.ndarray:
+    """int z (n, r x n) dA over the side walls of a member's elements (nodes (n + 1, 3) along k,
+    lower first) as HydroDyn's MHstLMod 1 with stretching wets them: whole, cut by the plane
+    where the axis crosses the surface, or dry (module docstring)."""
+    zeta = np.array([eta(t, n[0], n[1]) for n in nodes])
+    out = np.zeros(6)
+    for i in range(len(nodes) - 1):
+        wet_lower, wet_upper = nodes[i, 2] < zeta[i], nodes[i + 1, 2] < zeta[i + 1]
+        if wet_lower and wet_upper:
+            out += _circular_element(nodes[i], k, radii[i], taper, dl, None)
+        elif wet_lower:
+            ratio = (zeta[i] - nodes[i, 2]) / ((zeta[i] - nodes[i, 2]) - (zeta[i + 1] - nodes[i + 1, 2]))
+            crossing = nodes[i] + ratio * dl * k
+            _, normal = surface_plane(eta, t, crossing[0], crossing[1], radii[i] + taper * ratio * dl)
+            out += _circular_element(nodes[i], k, radii[i], taper, dl, (crossing, normal))
+    return out
 
 
 def circular_member_wrench(member: CircularMember, eta: Elevation, t: float, rho: float, g: float,
                            rotation: np.ndarray | None = None, position_m: np.ndarray | None = None) -> np.ndarray:
     """Hydrostatic wrench (6,) about the origin on a circular member up to the free surface as
-    HydroDyn's MHstLMod 1 with stretching wets it (module docstring); the member is displaced by
-    x -> position + rotation x (at rest by default)."""
+    HydroDyn's MHstLMod 1 with stretching or MHstLMod 2 wets it (``member.mhstlmod``, module
+    docstring); the member is displaced by x -> position + rotation x (at rest by default)."""
     rotation = np.eye(3) if rotation is None else rotation
     position_m = np.zeros(3) if position_m is None else position_m
     a = position_m + rotation @ np.asarray(member.end_a_m, float)
@@ -322,17 +404,14 @@ def circular_member_wrench(member: CircularMember, eta: Elevation, t: float, rho
     taper = (r_b - r_a) / length
     nodes = a + np.outer(np.arange(member.n_elements + 1) * dl, k)
     radii = r_a + taper * np.arange(member.n_elements + 1) * dl
-    zeta = np.array([eta(t, n[0], n[1]) for n in nodes])
     out = np.zeros(6)
-    for i in range(member.n_elements):
-        wet_lower, wet_upper = nodes[i, 2] < zeta[i], nodes[i + 1, 2] < zeta[i + 1]
-        if wet_lower and wet_upper:
-            out += _circular_element(nodes[i], k, radii[i], taper, dl, None)
-        elif wet_lower:
-            ratio = (zeta[i] - nodes[i, 2]) / ((zeta[i] - nodes[i, 2]) - (zeta[i + 1] - nodes[i + 1, 2]))
-            crossing = nodes[i] + ratio * dl * k
-            _, normal = surface_plane(eta, t, crossing[0], crossing[1], radii[i] + taper * ratio * dl)
-            out += _circular_element(nodes[i], k, radii[i], taper, dl, (crossing, normal))
+    if member.mhstlmod == 2:  # each element below the surface plane at its midpoint
+        for i in range(member.n_elements):
+            mid = 0.5 * (nodes[i] + nodes[i + 1])
+            plane = surface_plane(eta, t, mid[0], mid[1], 0.5 * (radii[i] + radii[i + 1]))
+            out += _sectioned_element(nodes[i], k, radii[i], taper, dl, plane)
+    else:
+        out += _cut_elements(nodes, radii, k, taper, dl, eta, t)
     y, z = _circle_axes(k)
     for node, radius, outward in ((nodes[0], radii[0], -k), (nodes[-1], radii[-1], k)):
         point, normal = surface_plane(eta, t, node[0], node[1], radius)
@@ -343,8 +422,8 @@ def circular_member_wrench(member: CircularMember, eta: Elevation, t: float, rho
 def platform_members(platform) -> list[RectangularMember | CircularMember]:
     """The platform's members for these hydrostatics (rectangular: width = HydroDyn's side A,
     along the section's direction d1 before the spin, height = side B; taper and spin as the
-    platform gives them; circular: the diameters at both ends; one element per strip length,
-    HydroDyn's MDivSize)."""
+    platform gives them; circular: the diameters at both ends and MHstLMod 2 where the member is
+    ``hydrostatics_by_section``, 1 otherwise; one element per strip length, HydroDyn's MDivSize)."""
     members = []
     for m in platform.members:
         if m.drag_only:  # its buoyancy is the potential flow's
@@ -352,7 +431,8 @@ def platform_members(platform) -> list[RectangularMember | CircularMember]:
         length = math.dist(m.end_a_m, m.end_b_m)
         n = max(1, math.ceil(length / m.strip_length_m - 1e-9))
         if m.section == "circular":
-            members.append(CircularMember(m.end_a_m, m.end_b_m, (m.diameter_at(0.0), m.diameter_at(1.0)), n))
+            members.append(CircularMember(m.end_a_m, m.end_b_m, (m.diameter_at(0.0), m.diameter_at(1.0)), n,
+                                          2 if m.hydrostatics_by_section else 1))
             continue
         (w0, h0), (w1, h1) = m.sides_at(0.0), m.sides_at(1.0)
         members.append(RectangularMember(m.end_a_m, m.end_b_m, (w0, w1), (h0, h1), m.spin_deg, n))
