@@ -62,11 +62,13 @@ def test_a_member_above_the_seabed_keeps_both_plates():
     assert volume == pytest.approx(AREA_M2 * 34.0, rel=1e-9)
 
 
-def test_the_tripod_deck_imports_without_its_buried_piles_and_their_joint_plates():
+def test_the_tripod_deck_imports_without_its_buried_piles_and_the_plates_of_in_line_joints():
     """The OC3 tripod deck: the three piles wholly below the 45 m seabed (members 58-60, z -50
-    to -45) are not imported (HydroDyn gives them no side loads), and the legs standing on them
-    lose their end plate at the seabed joint (HydroDyn sums a joint's end areas over the
-    members that meet there: the pile's and the leg's cancel)."""
+    to -45) are not imported (HydroDyn gives them no side loads), and the members meeting in
+    line at a joint with one diameter lose their end plates there (HydroDyn sums a joint's end
+    areas over the members that meet there: the pile's and the leg's cancel, as do two
+    segments of a leg or of the column); a joint of one member end, or of members that do not
+    cancel, keeps its plates."""
     pytest.importorskip("openfast_io")
     from fowt_hydro_sim.io.hydrodyn import platform_from_deck, read_deck
     deck = DATA / "hd_primary.inp"
@@ -74,7 +76,11 @@ def test_the_tripod_deck_imports_without_its_buried_piles_and_their_joint_plates
     names = [m["name"] for m in document["members"]]
     assert len(names) == 57 and not {"member58", "member59", "member60"} & set(names)
     legs = {m["name"]: m for m in document["members"] if m["name"] in ("member1", "member2", "member3")}
-    assert all("end_a_plate" not in m and "end_b_plate" in m for m in legs.values())
+    assert all("end_a_plate" not in m and "end_b_plate" in m for m in legs.values())  # joint 4: with braces
+    by_name = {m["name"]: m for m in document["members"]}
+    assert "end_b_plate" in by_name["member57"]  # joint 52, the column's top: one member end
+    assert "end_a_plate" not in by_name["member57"] and "end_b_plate" not in by_name["member56"]  # joint 51: in line
+    assert "end_a_plate" in by_name["member47"]  # joint 41: the tapered base with three braces
 
 
 def test_a_deck_member_crossing_the_seabed_is_refused_in_one_line(tmp_path):

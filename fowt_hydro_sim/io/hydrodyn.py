@@ -294,10 +294,13 @@ def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: s
     """The members without those wholly at or below the seabed (z = -water_depth_m), as HydroDyn
     runs them (Morison.f90: a member's nodes below the seabed take no loads; a member wholly
     below it keeps only its upper end plate's buoyancy, which the hydrostatics' seabed cut
-    gives, physics/loads/hydrostatic.py). At a joint on the seabed where a buried member meets
-    members kept, HydroDyn's end effects act on the members' end areas summed over the joint:
-    where those cancel (a pile under a leg of its own diameter, in line with it), the kept
-    members lose their end plate there; where they do not, the deck is refused. A member that
+    gives, physics/loads/hydrostatic.py). HydroDyn's joint end effects (JointAxID) act on the
+    end areas of the members meeting at a joint summed as vectors (outward normals, r^2 and r^3
+    weighted, buried members included): where those cancel (two members of one diameter in
+    line, a pile under a leg of its size) the joint has none, and the members lose their end
+    plates there (the model's per-member plates would add, not cancel, in drag and added mass);
+    elsewhere each member keeps its plate. A joint on the seabed whose areas do not cancel is
+    refused. A member that
     crosses the seabed is refused too (HydroDyn loads the part above it only; the model's strips
     are whole members). ConfigError in one line naming the member or joint."""
     seabed = -water_depth_m
@@ -310,8 +313,8 @@ def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: s
         elif min(height[a], height[b]) < seabed:
             raise ConfigError(f"{source}: member {hd['MemberID'][i]} crosses the seabed (z = {seabed:g} m): not "
                               "supported (split it into members meeting at the seabed)")
-    joints = {joint for i in buried for joint in ends[i] if abs(height[joint] - seabed) < 1e-6}
-    for joint in sorted(joints):
+    on_seabed = {joint for i in buried for joint in ends[i] if abs(height[joint] - seabed) < 1e-6}
+    for joint in sorted({joint for pair in ends for joint in pair}):
         area, cube = np.zeros(3), np.zeros(3)  # the joint's end areas (r^2) and r^3 summed, outward normals
         for i, (a, b) in enumerate(ends):
             for end, sign in ((a, -1.0), (b, 1.0)):
@@ -321,11 +324,12 @@ def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: s
                                           else "diameter_m"] if "diameter_m" in members[i] else math.nan) / 2
                     area += sign * axis / np.linalg.norm(axis) * radius**2
                     cube += sign * axis / np.linalg.norm(axis) * radius**3
-        if not (np.all(np.abs(area) < 1e-9) and np.all(np.abs(cube) < 1e-9)):
+        cancel = bool(np.all(np.abs(area) < 1e-9) and np.all(np.abs(cube) < 1e-9))
+        if joint in on_seabed and not cancel:
             raise ConfigError(f"{source}: joint {joint} on the seabed: the end areas of its members do not cancel "
                               "(a pile under a member of another size or direction): not supported")
-        for i, (a, b) in enumerate(ends):
-            if i not in buried:
+        if cancel:  # HydroDyn's joint end effects act on the summed areas: none here
+            for i, (a, b) in enumerate(ends):
                 for end, key in ((a, "end_a_plate"), (b, "end_b_plate")):
                     if end == joint:
                         members[i].pop(key, None)
