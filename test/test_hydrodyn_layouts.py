@@ -57,12 +57,13 @@ def test_deck_of_the_openfast3_layout_reads_field_by_field():
 
 
 def test_deck_of_the_openfast3_layout_imports_and_a_filled_one_is_refused_naming_the_field(tmp_path, capsys):
-    """The tripod imports (60 circular members); the OC4 jacket reads in step and is refused
+    """The tripod imports (57 circular members: its three piles below the seabed are left out);
+    the OC4 jacket reads in step and is refused
     for what the model lacks, in one line: its filled members (NFillGroups)."""
     code, _ = _import(TRIPOD, tmp_path / "tripod.yaml", capsys)
     assert code == 0
     members = yaml.safe_load((tmp_path / "tripod.yaml").read_text())["members"]
-    assert len(members) == 60 and {m["section"] for m in members} == {"circular"}
+    assert len(members) == 57 and {m["section"] for m in members} == {"circular"}
     assert members[46]["diameter_m"] == 3.4 and members[46]["diameter_b_m"] == 5.7
     code, err = _import(JACKET, tmp_path / "jacket.yaml", capsys)
     assert code == 2 and "NFillGroups 1" in err and len(err.splitlines()) == 1, err

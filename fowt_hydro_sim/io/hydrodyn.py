@@ -44,6 +44,10 @@ existed); decks of the newer layout are read without its potential-flow lines FK
 GeoFile. A deck openfast-io still cannot read is refused in one line naming the last field
 it read, and the integer switches the import uses must read as integers.
 
+Members wholly at or below the seabed (the water depth given) are not imported and the plates
+of the members standing on them at the seabed joint are dropped, as HydroDyn runs them
+(``_above_seabed``); a member crossing the seabed is refused.
+
 A potential-flow deck (PotMod 1) is imported as HydroDyn runs it for one WAMIT body at the
 reference point: PotFile (resolved relative to the deck, as HydroDyn resolves it), WAMITULEN,
 PtfmVol0, PtfmCOBxt/yt, RdtnMod 1 (convolution), 2 (state space from PotFile's ``.ss`` file) or 0
@@ -286,6 +290,52 @@ def _member(hd: dict, index: int, source: str) -> dict:
     return out
 
 
+def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: str) -> list[dict]:
+    """The members without those wholly at or below the seabed (z = -water_depth_m), as HydroDyn
+    runs them (Morison.f90: a member's nodes below the seabed take no loads; a member wholly
+    below it keeps only its upper end plate's buoyancy, which the hydrostatics' seabed cut
+    gives, physics/loads/hydrostatic.py). HydroDyn's joint end effects (JointAxID) act on the
+    end areas of the members meeting at a joint summed as vectors (outward normals, r^2 and r^3
+    weighted, buried members included): where those cancel (two members of one diameter in
+    line, a pile under a leg of its size) the joint has none, and the members lose their end
+    plates there (the model's per-member plates would add, not cancel, in drag and added mass);
+    elsewhere each member keeps its plate. A joint on the seabed whose areas do not cancel is
+    refused. A member that
+    crosses the seabed is refused too (HydroDyn loads the part above it only; the model's strips
+    are whole members). ConfigError in one line naming the member or joint."""
+    seabed = -water_depth_m
+    ends = [(hd["MJointID1"][i], hd["MJointID2"][i]) for i in range(hd["NMembers"])]
+    height = {joint: float(z) for joint, z in zip(hd["JointID"], hd["Jointzi"])}
+    buried = set()
+    for i, (a, b) in enumerate(ends):
+        if max(height[a], height[b]) <= seabed:
+            buried.add(i)
+        elif min(height[a], height[b]) < seabed:
+            raise ConfigError(f"{source}: member {hd['MemberID'][i]} crosses the seabed (z = {seabed:g} m): not "
+                              "supported (split it into members meeting at the seabed)")
+    on_seabed = {joint for i in buried for joint in ends[i] if abs(height[joint] - seabed) < 1e-6}
+    for joint in sorted({joint for pair in ends for joint in pair}):
+        area, cube = np.zeros(3), np.zeros(3)  # the joint's end areas (r^2) and r^3 summed, outward normals
+        for i, (a, b) in enumerate(ends):
+            for end, sign in ((a, -1.0), (b, 1.0)):
+                if end == joint:
+                    axis = np.subtract(members[i]["end_b_m"], members[i]["end_a_m"])
+                    radius = (members[i]["diameter_b_m" if sign > 0 and "diameter_b_m" in members[i]
+                                          else "diameter_m"] if "diameter_m" in members[i] else math.nan) / 2
+                    area += sign * axis / np.linalg.norm(axis) * radius**2
+                    cube += sign * axis / np.linalg.norm(axis) * radius**3
+        cancel = bool(np.all(np.abs(area) < 1e-9) and np.all(np.abs(cube) < 1e-9))
+        if joint in on_seabed and not cancel:
+            raise ConfigError(f"{source}: joint {joint} on the seabed: the end areas of its members do not cancel "
+                              "(a pile under a member of another size or direction): not supported")
+        if cancel:  # HydroDyn's joint end effects act on the summed areas: none here
+            for i, (a, b) in enumerate(ends):
+                for end, key in ((a, "end_a_plate"), (b, "end_b_plate")):
+                    if end == joint:
+                        members[i].pop(key, None)
+    return [m for i, m in enumerate(members) if i not in buried]
+
+
 def _first(value: Any) -> Any:
     """A per-body field's value for the one body (openfast-io reads them as lists)."""
     return value[0] if isinstance(value, (list, tuple, np.ndarray)) else value
@@ -351,7 +401,7 @@ def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: fl
     """The platform YAML document of a deck read by ``read_deck``; ConfigError for what the
     model cannot represent."""
     _refuse_unsupported(hd, source)
-    members = [_member(hd, i, source) for i in range(hd["NMembers"])]
+    members = _above_seabed(hd, [_member(hd, i, source) for i in range(hd["NMembers"])], water_depth_m, source)
     growth = _marine_growth(hd, source)
     if hd["PotMod"] == 1:
         flow, drift = _potential_flow(hd, source, water_density_kg_m3, gravity_m_s2)

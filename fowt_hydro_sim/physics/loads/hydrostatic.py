@@ -21,6 +21,20 @@ all above adds nothing, an untapered one cut through its side wall only uses a s
 (``COARSE``: the integrands are then of degree 2, so it is exact too), any other the full
 quadrature.
 
+The nonlinear hydrostatics stop at the seabed (z = -water_depth_m), as HydroDyn's member
+hydrostatics do (Morison.f90: no loads on a member's part below the seabed; a member that
+crosses it, or ends on it from below, keeps only its upper end plate): a member's part below
+the seabed displaces nothing, and the section where a member enters the seabed carries no
+pressure (it is on the soil), so the buoyancy of that section, rho g depth times its
+horizontal area, is taken off at it. A vertical pile through the seabed with its top at z_t
+below the water line is thus pushed down by rho g A |z_t|, its top plate's pressure alone.
+Where the model and HydroDyn part: a member whose bottom end sits exactly on the seabed with
+no pile under it has no bottom-plate buoyancy here (HydroDyn applies that plate; here it
+returns as soon as the bottom is above the seabed), and the cut is horizontal, so a pile
+tilted from the vertical is exact only where HydroDyn's cut, normal to its axis, agrees (the
+OC3 tripod's piles are vertical). The linear model's volume and the free-surface
+hydrostatics take no seabed.
+
 A rectangular member may taper (width and height each linear from end a to end b) and be
 spun about its axis: its lines run at fixed fractions of the local half-sides along the spun
 section directions, and the area weight grows as (1 + c_w f)(1 + c_h f) along the line (f
@@ -192,15 +206,16 @@ def _reach(member: Member) -> float:
 
 
 # a member's record in the nonlinear hydrostatics' parameters
-FIRST_FINE, N_FINE, FIRST_COARSE, N_COARSE, END_A, END_B, REACH, VOLUME, MOMENT = 0, 1, 2, 3, 4, 7, 10, 11, 12
-RECORD = 15
+FIRST_FINE, N_FINE, FIRST_COARSE, N_COARSE, END_A, END_B, REACH, VOLUME, MOMENT, SEABED = (0, 1, 2, 3, 4, 7, 10, 11,
+                                                                                         12, 15)
+RECORD = 16
 
 
 def member_records(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
     """Per member, a record (RECORD floats: where its fine and coarse lines are in the table,
-    its end centres, reach, whole volume and its first moment, body frame) and the table of
-    every member's fine then coarse lines (a tapered member's coarse lines are its fine ones:
-    its integrands are not polynomials)."""
+    its end centres, reach, whole volume and its first moment, body frame, and the seabed's z,
+    world) and the table of every member's fine then coarse lines (a tapered member's coarse
+    lines are its fine ones: its integrands are not polynomials)."""
     records, tables, first = [], [], 0
     for m in platform.members:
         if m.drag_only:  # its buoyancy is the potential flow's
@@ -213,6 +228,7 @@ def member_records(platform: Platform) -> tuple[np.ndarray, np.ndarray]:
         record[[FIRST_COARSE, N_COARSE]] = (first, len(fine)) if m.tapered else (first + len(fine), len(coarse))
         record[END_A:END_A + 3], record[END_B:END_B + 3] = m.end_a_m, m.end_b_m
         record[REACH], record[VOLUME], record[MOMENT:MOMENT + 3] = _reach(m), volume, moment
+        record[SEABED] = -platform.environment.water_depth_m
         records.append(record)
         tables += [fine] if m.tapered else [fine, coarse]
         first += len(fine) + (0 if m.tapered else len(coarse))
@@ -231,17 +247,21 @@ def _weight_integrals(c: float, f: float) -> tuple[float, float]:
 @njit(cache=True)
 def submerged_volume(rotation: np.ndarray, position_z_m: float, lines: np.ndarray) -> tuple[float, np.ndarray]:
     """Volume below z = 0 of the quadrature lines' members at the pose, and its first moment
-    (body frame)."""
-    volume, m0, m1, m2 = _add_lines(rotation, position_z_m, lines, 0, lines.shape[0], (0.0, 0.0, 0.0, 0.0))
+    (body frame); no seabed."""
+    volume, m0, m1, m2 = _add_lines(rotation, position_z_m, lines, 0, lines.shape[0], (0.0, 0.0, 0.0, 0.0), -np.inf)
     return volume, np.array([m0, m1, m2])
 
 
 @njit(cache=True)
 def members_submerged_volume(rotation: np.ndarray, position_z_m: float, records: np.ndarray,
                              lines: np.ndarray) -> tuple[float, np.ndarray]:
-    """``submerged_volume`` member by member (``member_records``): a member whose end faces are
-    all below the water plane adds its whole volume, one all above nothing, one cut through
-    its side wall only its coarse lines, any other its fine lines."""
+    """``submerged_volume`` member by member (``member_records``), between the seabed and z = 0:
+    a member whose end faces are all between them adds its whole volume, one all above the
+    water plane or all below the seabed nothing, one cut through its side wall by the water
+    plane only its coarse lines, any other its fine lines. Where a member enters the seabed,
+    the section it is cut by there carries no pressure (soil, not water, is under it): its
+    buoyancy is taken off as a negative volume, the seabed's depth times the cut's area, at the
+    cut (``_add_lines``)."""
     volume, moment = _members_volume(rotation, position_z_m, records, lines)
     return volume, np.array(moment)
 
@@ -255,34 +275,44 @@ def _members_volume(rotation: np.ndarray, position_z_m: float, records: np.ndarr
         r = records[k * RECORD:(k + 1) * RECORD]
         z_a = position_z_m + rotation[2, 0] * r[END_A] + rotation[2, 1] * r[END_A + 1] + rotation[2, 2] * r[END_A + 2]
         z_b = position_z_m + rotation[2, 0] * r[END_B] + rotation[2, 1] * r[END_B + 1] + rotation[2, 2] * r[END_B + 2]
-        reach = r[REACH]
-        if max(z_a, z_b) + reach < 0.0:
+        reach, seabed = r[REACH], r[SEABED]
+        low, high = min(z_a, z_b), max(z_a, z_b)
+        if high + reach < 0.0 and low - reach > seabed:
             total = (total[0] + r[VOLUME], total[1] + r[MOMENT], total[2] + r[MOMENT + 1], total[3] + r[MOMENT + 2])
-        elif min(z_a, z_b) - reach > 0.0:
+        elif low - reach > 0.0 or high + reach < seabed:
             continue
-        elif min(z_a, z_b) + reach < 0.0 and max(z_a, z_b) - reach > 0.0:
-            total = _add_lines(rotation, position_z_m, lines, int(r[FIRST_COARSE]), int(r[N_COARSE]), total)
+        elif low + reach < 0.0 and high - reach > 0.0 and low - reach > seabed:
+            total = _add_lines(rotation, position_z_m, lines, int(r[FIRST_COARSE]), int(r[N_COARSE]), total, seabed)
         else:
-            total = _add_lines(rotation, position_z_m, lines, int(r[FIRST_FINE]), int(r[N_FINE]), total)
+            total = _add_lines(rotation, position_z_m, lines, int(r[FIRST_FINE]), int(r[N_FINE]), total, seabed)
     return total[0], (total[1], total[2], total[3])
 
 
 @step_loop
 def _add_lines(rotation: np.ndarray, position_z_m: float, lines: np.ndarray, first: int, count: int,
-               total: tuple[float, float, float, float]) -> tuple[float, float, float, float]:
-    """``total`` (volume, first moment) plus the submerged volume of lines[first:first + count]
-    and its first moment (the lines' volume summed on its own first)."""
+               total: tuple[float, float, float, float], seabed_z_m: float) -> tuple[float, float, float, float]:
+    """``total`` (volume, first moment) plus the volume of lines[first:first + count] between
+    the seabed (z = seabed_z_m; -inf: none) and z = 0 and its first moment (the lines' volume
+    summed on its own first). A line that starts (or ends) at or below the seabed and reaches
+    above it adds minus the seabed's depth times its horizontal area there, at that point: the
+    pressure on the seabed cut, which is on the soil, taken off."""
     volume, (m0, m1, m2) = 0.0, total[1:]
+    free = seabed_z_m == -np.inf
     for q in range(first, first + count):
         line = lines[q]
         z0 = position_z_m + rotation[2, 0] * line[0] + rotation[2, 1] * line[1] + rotation[2, 2] * line[2]
         rise = rotation[2, 0] * line[3] + rotation[2, 1] * line[4] + rotation[2, 2] * line[5]  # over the line
+        cut = -1.0  # the fraction along the line where it enters the seabed, if it does
         if abs(rise) < 1e-12:
-            low, high = (0.0, 1.0) if z0 < 0.0 else (0.0, 0.0)
+            low, high = (0.0, 1.0) if z0 < 0.0 and (free or z0 > seabed_z_m) else (0.0, 0.0)
         elif rise > 0.0:
             low, high = 0.0, min(1.0, max(0.0, -z0 / rise))
+            if not free and z0 <= seabed_z_m:
+                low = cut = min(1.0, (seabed_z_m - z0) / rise)
         else:
             low, high = min(1.0, max(0.0, -z0 / rise)), 1.0
+            if not free and z0 + rise <= seabed_z_m:
+                high = cut = max(0.0, (seabed_z_m - z0) / rise)
         if high <= low:
             continue
         c = line[8] - 1.0  # the radius grows as 1 + c f along the line, the area weight as its square
@@ -294,6 +324,12 @@ def _add_lines(rotation: np.ndarray, position_z_m: float, lines: np.ndarray, fir
         m0 += wet * line[0] + first_moment * line[3]
         m1 += wet * line[1] + first_moment * line[4]
         m2 += wet * line[2] + first_moment * line[5]
+        if cut >= 0.0:  # depth times the horizontal area of the line's tube at the cut (its volume per unit rise)
+            plate = seabed_z_m * scale * (1.0 + c * cut) ** 2 / abs(rise)
+            volume += plate
+            m0 += plate * (line[0] + cut * line[3])
+            m1 += plate * (line[1] + cut * line[4])
+            m2 += plate * (line[2] + cut * line[5])
     return total[0] + volume, m0, m1, m2
 
 
