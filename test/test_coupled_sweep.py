@@ -27,8 +27,12 @@ def read_table(path: Path) -> list[dict]:
 @pytest.mark.dask
 @pytest.mark.rosco
 def test_a_system_sweep_row_is_simulate_of_the_same_run_and_resumes(tmp_path: Path):
-    """lc5.3 x winds 8, 18 m/s x seed 1, 60 s on a 1-worker LocalCluster: the 18 m/s row
+    """lc5.3 x winds 8, 18 m/s x the controller as it is and with its minimum rotor speed
+    raised to 0.7 rad/s x seed 1, 60 s on a 1-worker LocalCluster: the 18 m/s row
     against ``simulate --system`` of the same run (platform, turbine and tension statistics);
+    at 8 m/s (below rated: the optimal tip-speed ratio turns the rotor at about 0.6 rad/s)
+    the changed controller holds the rotor at its new minimum (ROSCO's VS_MinOMSpd; within 5 %:
+    the mean over 10-60 s holds the start's dip);
     ``analyze`` of that run's time series (--bags) gives the row's tower-base moment, its
     mean the quasi-static closed form T (h - z_b) + m g ((c_z - z_b) sin(pitch) + c_x
     cos(pitch)) of the mean thrust and pitch within 3 %; a rerun into the folder runs nothing."""
@@ -39,12 +43,16 @@ def test_a_system_sweep_row_is_simulate_of_the_same_run_and_resumes(tmp_path: Pa
     from fowt_hydro_sim.turbine.settings import TurbineSettings
 
     sweep = Sweep(("lc5.3",), (1,), ("constant",), system_variants(SYSTEM), RunConfig(duration_s=60.0),
-                  transient_s=10.0, system=SYSTEM, wind_speeds_m_s=(8.0, 18.0))
+                  transient_s=10.0, system=SYSTEM, wind_speeds_m_s=(8.0, 18.0),
+                  discon_changes=("", "VS_MinOMSpd=0.7"))
     outcome = run_sweep(sweep, tmp_path / "sweep", workers=1, bags=True)
-    assert outcome["runs"] == outcome["new"] == 2
+    assert outcome["runs"] == outcome["new"] == 4
     rows = read_table(tmp_path / "sweep" / RUNS_FILE)
-    assert [float(r["wind_speed_m_s"]) for r in rows] == [8.0, 18.0]
-    row = rows[1]
+    assert [(float(r["wind_speed_m_s"]), r["discon_changes"]) for r in rows] == [
+        (8.0, ""), (8.0, "VS_MinOMSpd=0.7"), (18.0, ""), (18.0, "VS_MinOMSpd=0.7")]
+    assert float(rows[1]["rotor_speed_mean_rad_s"]) == pytest.approx(0.7, rel=5e-2)
+    assert float(rows[0]["rotor_speed_mean_rad_s"]) < 0.65
+    row = rows[2]
 
     run = RunConfig(platform="volturnus_s", mooring="moorpy", duration_s=60.0)
     sea = SeaState(float(row["hs_m"]), float(row["tp_s"]), float(row["gamma"]), seed=1)
@@ -88,7 +96,7 @@ def test_a_system_sweep_row_is_simulate_of_the_same_run_and_resumes(tmp_path: Pa
     summary_rows = read_table(tmp_path / "sweep" / SUMMARY_FILE)
     assert {float(r["wind_speed_m_s"]) for r in summary_rows} == {8.0, 18.0}
     again = run_sweep(sweep, tmp_path / "sweep", workers=1)
-    assert (again["runs"], again["new"]) == (2, 0)
+    assert (again["runs"], again["new"]) == (4, 0)
 
 
 # the structure above the tower base of the closed forms: 2000 t, centre 3 m upwind and 95 m above the reference
@@ -229,6 +237,10 @@ def test_the_turbine_side_of_a_closed_loop_bag_with_a_topic_missing_its_first_sa
     (("--system", SYSTEM, "--platforms", "windmoor12", "other"), "--platforms: a system brings its platform"),
     (("--system", SYSTEM, "--wind-speeds", "8", "8"), "sweep: wind_speeds has duplicates"),
     (("--system", SYSTEM, "--wind-speeds", "0"), "sweep: wind speeds must be numbers in (0, 80] m/s"),
+    (("--discon-changes", "Fl_Kp=-5"), "--discon-changes: controller changes need a turbine: give --system"),
+    (("--system", SYSTEM, "--discon-changes", "", "Fl_kp=-5"),
+     "discon_changes: Fl_kp is not an entry of IEA-15-240-RWT-UMaineSemi_DISCON.IN (nearest: Fl_Kp)"),
+    (("--system", SYSTEM, "--discon-changes", "Fl_Kp=-5", "Fl_Kp=-5"), "sweep: discon_changes must be distinct"),
 ])
 def test_bad_system_sweep_input_is_one_line_before_any_cluster(tmp_path: Path, capsys, args: tuple, line: str):
     from fowt_hydro_sim.cli import main

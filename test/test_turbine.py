@@ -11,7 +11,7 @@ from scipy.optimize import brentq, root
 from fowt_hydro_sim.physics.config import ConfigError, HydroOptions, load_platform
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.testing import rosco_oracle
-from fowt_hydro_sim.turbine.description import load_turbine
+from fowt_hydro_sim.turbine.description import load_turbine, turbine_path
 from fowt_hydro_sim.turbine.discon import ControllerError
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rosco import Rosco
@@ -45,9 +45,10 @@ def test_thrust_at_the_rated_point_is_the_table_thrust_coefficient_by_hand():
     assert 2.0e6 < thrust < 3.0e6  # the IEA 15 MW rated thrust is about 2.5 MN
 
 
-def run_model(turbine_name: str, dt_s: float, duration_s: float, wind: Wind, rpm: float) -> dict[str, np.ndarray]:
-    turbine = load_turbine(turbine_name, controller_dt_s=dt_s)
-    rosco = Rosco(turbine.discon_path, dt_s, turbine.generator_efficiency)
+def run_model(turbine_name: str, dt_s: float, duration_s: float, wind: Wind, rpm: float,
+              discon_changes: str = "") -> dict[str, np.ndarray]:
+    turbine = load_turbine(turbine_name, controller_dt_s=dt_s, discon_changes=discon_changes)
+    rosco = Rosco(turbine.discon_path, dt_s, turbine.generator_efficiency, changes=turbine.changes)
     model = TurbineModel(turbine, RotorCoefficients(read_table(turbine.performance_path)), rosco, rpm * RPM)
     n = int(round(duration_s / dt_s))
     rows = [(0.0, model.state.rotor_speed_rad_s, 0.0, 0.0)]
@@ -216,6 +217,41 @@ def test_a_turbine_description_is_validated(tmp_path):
     with pytest.raises(ConfigError, match="not a packaged turbine"):
         load_turbine("nope")
     assert load_turbine(hub_height_m=131.7).hub_height_m == 131.7
+
+
+def test_discon_changes_are_made_in_the_controllers_copy_and_refused_in_one_line(tmp_path):
+    """``discon_changes`` replace entries of the text the controller reads, the file left as
+    it is; a turbine file's own changes come first, those given after; a name the file has
+    not (with the nearest it has), a list of another length, a value that is no number and
+    an entry without '=' are refused naming it."""
+    source = load_turbine().discon_path
+    before = source.read_text()
+    turbine = load_turbine(discon_changes="Fl_Kp=-5.0; VS_MinOMSpd=0.45")
+    entries = {line.split("!")[1].split()[0]: line.split("!")[0].split()
+               for line in turbine.controller_file().splitlines() if "!" in line and line.split("!")[1].split()}
+    assert entries["Fl_Kp"] == ["-5.0"] and entries["VS_MinOMSpd"] == ["0.45"] and entries["Fl_U"] == ["11.2770"]
+    assert source.read_text() == before
+    own = tmp_path / "turbine.yaml"
+    own.write_text(turbine_path("iea15_umaine").read_text()  # its files in the rosco wheel (rosco:...)
+                   .replace("discon: ", "discon_changes: 'Fl_Kp=-1; VS_MinOMSpd=0.5'\ndiscon: "))
+    assert load_turbine(str(own), discon_changes="Fl_Kp=-2").changes == {"Fl_Kp": "-2", "VS_MinOMSpd": "0.5"}
+    for changes, message in (("Fl_kp=-5", "Fl_kp is not an entry of .*nearest: Fl_Kp"),
+                             ("PS_BldPitchMin=0.1", "PS_BldPitchMin has 60 value"),
+                             ("Fl_Kp=fast", "Fl_Kp: expected numbers"), ("Fl_Kp", "expected NAME=VALUE")):
+        with pytest.raises(ConfigError, match=message):
+            load_turbine(discon_changes=changes)
+
+
+@pytest.mark.rosco
+def test_rosco_holds_the_minimum_rotor_speed_it_was_given():
+    """Below rated (5 m/s: the optimal tip-speed ratio would turn the rotor at 0.37 rad/s)
+    ROSCO's torque controller holds the rotor at its minimum speed ``VS_MinOMSpd`` (the
+    gearbox ratio is 1): started at 0.6 rad/s, the rotor settles at the file's 0.5236 rad/s,
+    and at 0.45 rad/s when the entry is changed: the change reaches the controller."""
+    for changes, minimum in (("", 0.52360), ("VS_MinOMSpd=0.45", 0.45)):
+        run = run_model("iea15_umaine", 0.05, 240.0, Wind(speed_m_s=5.0), 0.6 / RPM, changes)
+        settled = run["rotor_speed_rad_s"][run["time_s"] > 180.0]
+        assert settled.mean() == pytest.approx(minimum, rel=2e-3) and np.ptp(settled) < 2e-3 * minimum, changes
 
 
 def test_rosco_refusing_its_input_file_is_one_clear_error(tmp_path):

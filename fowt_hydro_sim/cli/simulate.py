@@ -24,7 +24,7 @@ STUDY_CASES = ("lc5.0", "lc5.1", "lc5.2", "lc5.3", "lc5.4", "lc6.1")
 
 # the turbine's settings a coupled run takes (--turbine rosco; the turbine itself: --turbine-model)
 TURBINE_OPTIONS = ("hub_height_m", "wind", "wind_speed_m_s", "wind_end_m_s", "wind_start_s", "wind_ramp_s", "wind_file",
-                   "rotor_start", "rotor_speed_rad_s", "pitch_rad", "fixed_platform")
+                   "rotor_start", "rotor_speed_rad_s", "pitch_rad", "fixed_platform", "discon_changes")
 TURBINE_MODEL = "iea15_umaine"  # the packaged turbine a coupled run takes by default
 TURBINE_DEFAULTS_NOTE = "the turbine node's (fowt-sim turbine --help)"
 RUN_OPTIONS = ("platform", "drag_model", "duration_s", "dt_s", "wave_table_dt_s", "output_interval_s",

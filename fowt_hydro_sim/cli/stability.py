@@ -8,6 +8,7 @@ import sys
 from fowt_hydro_sim.cli import options
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import DEFAULT_PLATFORM, RunConfig
+from fowt_hydro_sim.turbine.settings import TurbineSettings
 from fowt_hydro_sim.turbine.wind import MAX_WIND_M_S
 
 DEFAULT_TURBINE = "iea15_umaine"
@@ -27,9 +28,12 @@ def stability(args: argparse.Namespace) -> int:
     given = {"platform": args.platform, "mooring": args.mooring or "", "turbine": args.turbine}
     chosen = system_values(args.system or "", given, {"platform": DEFAULT_PLATFORM, "mooring": "",
                                                       "turbine": DEFAULT_TURBINE})
-    title = f"{chosen['platform']} + {chosen['turbine']} (ROSCO), mooring {chosen['mooring'] or 'the platform default'}"
+    title = (f"{chosen['platform']} + {chosen['turbine']} (ROSCO" + (f", {args.discon_changes}" if args.discon_changes
+                                                                      else "")
+             + f"), mooring {chosen['mooring'] or 'the platform default'}")
     for wind in args.wind_speed:
-        result = modes(chosen["platform"], chosen["turbine"], wind, chosen["mooring"], args.duration)
+        result = modes(chosen["platform"], chosen["turbine"], wind, chosen["mooring"], args.duration,
+                       args.discon_changes or "")
         sys.stdout.write(stability_text(result, title) + "\n")
     return 0
 
@@ -44,6 +48,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     options.add(p, RunConfig, ("platform", "mooring"))
     p.add_argument("--turbine", default=DEFAULT_TURBINE, help="packaged turbine name or turbine YAML "
                                                               "(default %(default)s)")
+    options.add(p, TurbineSettings, ("discon_changes",))
     p.add_argument("--wind-speed", type=float, nargs="+", default=[13.0],
                    help="hub-height wind speeds [m/s] (default %(default)s)")
     p.add_argument("--duration", type=float, default=600.0,

@@ -1,5 +1,5 @@
-"""``fowt-sim sweep``: load cases x seeds x drag models x platform variants (x wind speeds with
-a named system's turbine in the loop) on a Dask cluster, one table of statistics and band
+"""``fowt-sim sweep``: load cases x seeds x drag models x platform variants (x wind speeds x
+controller variants with a named system's turbine in the loop) on a Dask cluster, one table of statistics and band
 STDs, means over seeds with confidence intervals."""
 from __future__ import annotations
 
@@ -37,13 +37,16 @@ def sweep(args: argparse.Namespace) -> int:
         seeds = tuple(range(1, args.seeds[0] + 1)) if args.seed_count else tuple(args.seeds)
         if args.wind_speeds and not args.system:
             raise InputError("--wind-speeds: wind speeds need a turbine: give --system")
+        if args.discon_changes and not args.system:
+            raise InputError("--discon-changes: controller changes need a turbine: give --system")
         if args.system and args.platforms != [DEFAULT_PLATFORM]:
             raise InputError("--platforms: a system brings its platform; vary it with --cd-scales")
         variants = (study.system_variants(args.system, args.cd_scales) if args.system
                     else _variants(args.platforms, args.cd_scales))
         winds = tuple(args.wind_speeds or (DEFAULT_WIND_M_S,)) if args.system else ()
+        controllers = tuple(args.discon_changes or ("",))
         table = study.Sweep(tuple(args.load_cases), seeds, tuple(args.drag_models), variants, run, args.transient,
-                            args.system or "", winds)
+                            args.system or "", winds, controllers)
     outcome = study.run_sweep(table, Path(args.output), args.scheduler, args.workers, args.bags, args.confidence,
                               args.overwrite)
     sys.stdout.write(study.summary_text(outcome) + "\n")
@@ -53,7 +56,8 @@ def sweep(args: argparse.Namespace) -> int:
 def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("sweep", help="load cases x seeds x drag models x platform variants on a Dask cluster",
                        description="Run a table of runs (load cases x seeds x drag models x platform variants; "
-                                   "with --system x wind speeds, the turbine and ROSCO in the loop) on "
+                                   "with --system x wind speeds x controller variants, the turbine and ROSCO in "
+                                   "the loop) on "
                                    "a Dask cluster; runs.csv gets one row of statistics and band STDs per run as "
                                    "it finishes, summary.csv the means over seeds with confidence intervals "
                                    "(Student-t; log-normal for STDs, never below zero; Parquet copies when "
@@ -76,6 +80,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                                         "its platform replaces --platforms")
     table.add_argument("--wind-speeds", nargs="+", type=float, metavar="M_S",
                        help=f"steady hub-height wind speeds of a --system sweep [m/s] (default {DEFAULT_WIND_M_S:g})")
+    table.add_argument("--discon-changes", nargs="+", metavar="CHANGES",
+                       help="controller variants of a --system sweep, each 'NAME=VALUE; NAME=VALUE' of ROSCO's "
+                            "DISCON.IN entries ('' for the file as it is), e.g. '' 'Fl_Kp=-5' 'Fl_Kp=0' "
+                            "(default: the file as it is)")
     table.add_argument("--cd-scales", nargs="+", type=float, default=[1.0], metavar="SCALE",
                        help="every drag coefficient times each scale: one variant per platform and scale "
                             "(default %(default)s)")

@@ -14,7 +14,7 @@ NODE_OPTIONS = ("system", "platform", "drag_model", "load_case", "hs_m", "tp_s",
                 "controller_timeouts", "mooring")
 TURBINE_OPTIONS = ("turbine", "hub_height_m", "wind", "wind_speed_m_s", "wind_end_m_s", "wind_start_s", "wind_ramp_s",
                    "wind_file", "wind_bag", "wind_topic", "rotor_start", "rotor_speed_rad_s", "pitch_rad",
-                   "fixed_platform", "rosco_logging")
+                   "fixed_platform", "rosco_logging", "discon_changes")
 
 
 def parser(defaults: bool = True) -> argparse.ArgumentParser:

@@ -57,7 +57,7 @@ class TurbineNode(Node):
         s = self.settings = with_system(parameters.read(self, TurbineSettings))
         start = None if s.rotor_start == "steady" else (s.rotor_speed_rad_s, s.pitch_rad, 0.0)
         self.rotor = turbine_on_platform(s.turbine, load_platform(s.platform), s.make_wind(), s.hub_height_m, start,
-                                         s.fixed_platform, s.rosco_logging)
+                                         s.fixed_platform, s.rosco_logging, discon_changes=s.discon_changes)
         self.turbine, self.model, self.wind = self.rotor.turbine, self.rotor.model, self.rotor.wind
         self.failed = False
         qos = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)

@@ -97,7 +97,7 @@ def run_coupled_case(platform: Platform, run: RunConfig, turbine: TurbineSetting
     model = model_for(platform, run, waves)
     start_rotor = None if turbine.rotor_start == "steady" else (turbine.rotor_speed_rad_s, turbine.pitch_rad, 0.0)
     rotor = turbine_on_platform(turbine.turbine, platform, turbine.make_wind(bag_series), turbine.hub_height_m,
-                                start_rotor, turbine.fixed_platform)
+                                start_rotor, turbine.fixed_platform, discon_changes=turbine.discon_changes)
     try:
         if initial_state is None:
             initial_state = tuple(float(v) for v in static_offset(model, rotor))

@@ -113,12 +113,13 @@ def platform_decay(platform: str, mooring: str = "", duration_s: float = 600.0) 
 
 
 def coupled_decay(platform: str, turbine: str, wind_m_s: float, mooring: str = "", duration_s: float = 600.0,
-                  held: bool = False) -> dict[str, Mode | None]:
+                  held: bool = False, discon_changes: str = "") -> dict[str, Mode | None]:
     """The surge and pitch modes of the platform with the rotor and ROSCO (``held``: the
-    blade pitch and generator torque held at the operating point) in steady wind."""
+    blade pitch and generator torque held at the operating point; ``discon_changes``: entries
+    of its DISCON.IN replaced) in steady wind."""
     chosen = load_platform(platform)
     model = PlatformModel(chosen, None, dt_s=0.05, mooring_model=mooring)
-    rotor = turbine_on_platform(turbine, chosen, Wind(speed_m_s=wind_m_s), held=held)
+    rotor = turbine_on_platform(turbine, chosen, Wind(speed_m_s=wind_m_s), held=held, discon_changes=discon_changes)
     try:
         model.reset(motion=static_offset(model, rotor) + KICK)
         parts = list(run_coupled(model, rotor, duration_s, SAMPLE_S))
@@ -176,22 +177,24 @@ class Stability:
 
 
 def stability(platform: str, turbine: str, wind_m_s: float, mooring: str = "",
-              duration_s: float = 600.0) -> Stability:
+              duration_s: float = 600.0, discon_changes: str = "") -> Stability:
     """The surge and pitch modes of ``platform`` with ``turbine`` and its ROSCO at
-    ``wind_m_s`` (see the module's description)."""
+    ``wind_m_s`` (see the module's description; ``discon_changes``: entries of ROSCO's
+    DISCON.IN replaced, ``TurbineDescription.discon_changes``)."""
     from fowt_hydro_sim.turbine.coupled import restoring
     from fowt_hydro_sim.turbine.description import load_turbine
     from fowt_hydro_sim.turbine.performance import read_table
 
     chosen = load_platform(platform)
     model = PlatformModel(chosen, None, dt_s=0.05, mooring_model=mooring)
-    description = load_turbine(turbine)
+    description = load_turbine(turbine, discon_changes=discon_changes)
     coefficients = RotorCoefficients(read_table(description.performance_path))
     aero = aerodynamic_damping(description, coefficients, wind_m_s, float(chosen.hub_point_m[2]),
                                model.mass_matrix(), restoring(model)[1])
     return Stability(wind_m_s, platform_decay(platform, mooring, duration_s),
                      coupled_decay(platform, turbine, wind_m_s, mooring, duration_s, held=True),
-                     coupled_decay(platform, turbine, wind_m_s, mooring, duration_s), aero)
+                     coupled_decay(platform, turbine, wind_m_s, mooring, duration_s, discon_changes=discon_changes),
+                     aero)
 
 
 def _mode_text(mode: Mode | None) -> str:

@@ -25,6 +25,7 @@ import json
 import logging
 import math
 import os
+import re
 import time
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field, replace
@@ -65,9 +66,10 @@ SUMMARY_FILE = "summary.csv"
 SETTINGS_FILE = "sweep.json"
 KEY = ("load_case", "seed", "drag_model", "variant")
 GROUP = ("load_case", "drag_model", "variant")
-WIND = "wind_speed_m_s"  # a coupled sweep's key column more
-COUPLED_KEY = ("load_case", WIND, "seed", "drag_model", "variant")
-COUPLED_GROUP = ("load_case", WIND, "drag_model", "variant")
+WIND = "wind_speed_m_s"  # a coupled sweep's key columns more: the wind speed and the controller's changes
+CONTROLLER = "discon_changes"
+COUPLED_KEY = ("load_case", WIND, CONTROLLER, "seed", "drag_model", "variant")
+COUPLED_GROUP = ("load_case", WIND, CONTROLLER, "drag_model", "variant")
 _STATS = ("mean", "std", "min", "max")
 _SCALES = ("cd_scale", "added_mass_scale", "mooring_stiffness_scale")
 
@@ -114,6 +116,7 @@ class Sweep:
     transient_s: float = 0.0
     system: str = ""  # a named system: the coupled turbine in the loop (variants of its platform)
     wind_speeds_m_s: tuple[float, ...] = ()  # the coupled sweep's hub-height wind speeds (steady wind)
+    discon_changes: tuple[str, ...] = ("",)  # the coupled sweep's controller variants: DISCON.IN changes ("": none)
 
     def __post_init__(self) -> None:
         check_sweep(self)
@@ -129,11 +132,13 @@ class Sweep:
         return COUPLED_KEY if self.coupled else KEY
 
     def runs(self) -> list[dict]:
-        """Every run's key (load_case, [wind_speed_m_s,] seed, drag_model, variant), in table order."""
+        """Every run's key (load_case, [wind_speed_m_s, discon_changes,] seed, drag_model,
+        variant), in table order."""
         names = [v.name for v in self.variants]
         if self.coupled:
-            return [dict(zip(COUPLED_KEY, k)) for k in product(self.load_cases, self.wind_speeds_m_s, self.seeds,
-                                                                self.drag_models, names)]
+            return [dict(zip(COUPLED_KEY, k)) for k in product(self.load_cases, self.wind_speeds_m_s,
+                                                                self.discon_changes, self.seeds, self.drag_models,
+                                                                names)]
         return [dict(zip(KEY, k)) for k in product(self.load_cases, self.seeds, self.drag_models, names)]
 
     def run_settings(self) -> RunConfig:
@@ -188,6 +193,10 @@ def check_sweep(sweep: Sweep) -> None:
         raise ConfigError(f"sweep: transient_s must be in [0, duration_s), got {sweep.transient_s:g}")
     if sweep.wind_speeds_m_s and not sweep.system:
         raise ConfigError("sweep: wind speeds need a turbine: give a named system (--system)")
+    if sweep.discon_changes != ("",) and not sweep.system:
+        raise ConfigError("sweep: controller changes need a turbine: give a named system (--system)")
+    if not sweep.discon_changes or len(set(sweep.discon_changes)) != len(sweep.discon_changes):
+        raise ConfigError(f"sweep: discon_changes must be distinct, got {list(sweep.discon_changes)}")
     if sweep.system:
         from fowt_hydro_sim.turbine.system import load_system
         chosen = load_system(sweep.system)
@@ -201,6 +210,9 @@ def check_sweep(sweep: Sweep) -> None:
         if other:
             raise ConfigError(f"sweep: variant {other[0]!r}: with system {chosen.name!r} a variant edits its "
                               f"platform {chosen.platform!r}")
+        from fowt_hydro_sim.turbine.description import load_turbine
+        for changes in sweep.discon_changes:  # a name its DISCON.IN has not: refused before any run
+            load_turbine(chosen.turbine, discon_changes=changes)
 
 
 def _variant(data: Any, where: str) -> Variant:
@@ -238,13 +250,14 @@ def sweep_from_dict(data: Any, source: str = "sweep") -> Sweep:
 
         system: iea15_volturnus_s
         wind_speeds: [8, 12, 18]
+        discon_changes: ["", "Fl_Kp=-5.0", "Fl_Kp=0"]   # controller variants (DISCON.IN entries)
         load_cases: [lc5.3]
         seeds: 3
     """
     if not isinstance(data, dict):
         raise ConfigError(f"{source}: expected a mapping")
     unknown = set(data) - {"load_cases", "seeds", "drag_models", "variants", "run", "transient_s", "system",
-                           "wind_speeds"}
+                           "wind_speeds", "discon_changes"}
     if unknown:
         raise ConfigError(f"{source}: unknown field(s) {', '.join(sorted(unknown))}")
 
@@ -272,9 +285,11 @@ def sweep_from_dict(data: Any, source: str = "sweep") -> Sweep:
             (DEFAULT_WIND_M_S,) if system else ())
     except (TypeError, ValueError):
         raise ConfigError(f"{source}: transient_s and wind_speeds: must be numbers") from None
+    controllers = tuple("" if c is None else str(c) for c in names("discon_changes", [""]))
     return Sweep(tuple(str(c) for c in names("load_cases")), seeds,
                  tuple(str(d) for d in names("drag_models", ["constant"])),
-                 variants, run_from_dict(data.get("run") or {}, f"{source}: run"), transient_s, system, winds)
+                 variants, run_from_dict(data.get("run") or {}, f"{source}: run"), transient_s, system, winds,
+                 controllers)
 
 
 def load_sweep_file(path: str | Path) -> Sweep:
@@ -348,8 +363,11 @@ def sea_of(key: dict) -> SeaState:
 
 
 def run_name(key: dict) -> str:
-    """A run's folder name: ``lc5.3_seed1_constant_base`` (a coupled run's: ``lc5.3_wind12_seed1_...``)."""
+    """A run's folder name: ``lc5.3_seed1_constant_base`` (a coupled run's: ``lc5.3_wind12_seed1_...``,
+    with controller changes ``lc5.3_wind12_Fl_Kp=-5_seed1_...``)."""
     wind = f"_wind{key[WIND]:g}" if WIND in key else ""
+    if key.get(CONTROLLER):
+        wind += "_" + re.sub(r"[^A-Za-z0-9.=+-]+", "_", key[CONTROLLER]).strip("_")
     return f"{key['load_case']}{wind}_seed{key['seed']}_{key['drag_model']}_{key['variant']}"
 
 
@@ -365,7 +383,8 @@ def run_coupled_one(key: dict, platform: Platform, run: RunConfig, transient_s: 
     sea = sea_of(key)
     waves, info = sea_state_waves(sea, run.duration_s, key["load_case"])
     settings = replace(run, drag_model=key["drag_model"])
-    turbine = TurbineSettings(turbine=load_system(system).turbine, wind_speed_m_s=float(key[WIND]))
+    turbine = TurbineSettings(turbine=load_system(system).turbine, wind_speed_m_s=float(key[WIND]),
+                              discon_changes=key[CONTROLLER])
     folder = Path(bag_folder) / run_name(key) if bag_folder is not None else None
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
@@ -437,7 +456,7 @@ def _line(row: dict) -> str:
 
 
 def _value(column: str, text: str) -> Any:
-    if column in ("load_case", "drag_model", "variant"):
+    if column in ("load_case", "drag_model", "variant", CONTROLLER):
         return text
     return int(text) if column == "seed" else float(text)
 
@@ -640,7 +659,7 @@ def summary_text(outcome: dict, statistics_shown: tuple[str, ...] | None = None)
     width = max([14, *(len(r["variant"]) + 2 for r in shown)])
     for r in shown:
         interval = f"[{r['ci_low']:.4g}, {r['ci_high']:.4g}]" if r["n_seeds"] > 1 else "(one seed)"
-        wind = f"{r[WIND]:5g} m/s  " if coupled else ""
+        wind = f"{r[WIND]:5g} m/s  " + (f"{r[CONTROLLER]}  " if r[CONTROLLER] else "") if coupled else ""
         lines.append(f"{r['load_case']:8s}{wind}{r['drag_model']:10s}{r['variant']:{width}s}{r['statistic']:28s}"
                      f"{r['mean']:10.4g} {interval}  n={r['n_seeds']}")
     lines.append("wrote " + ", ".join(outcome["files"]))

@@ -129,11 +129,11 @@ class ControllerLimits(NamedTuple):
         return float(np.interp(wind_m_s, self.shaving_wind_m_s, self.shaving_pitch_rad))
 
 
-def controller_limits(discon: Path) -> ControllerLimits:
-    """The ``ControllerLimits`` of a ROSCO DISCON.IN (lines ``VALUES ! NAME - comment``);
-    ConfigError naming a missing entry."""
+def controller_limits(discon: Path, text: str | None = None) -> ControllerLimits:
+    """The ``ControllerLimits`` of a ROSCO DISCON.IN (lines ``VALUES ! NAME - comment``; its
+    ``text`` if given, e.g. with changes made); ConfigError naming a missing entry."""
     values: dict[str, list[float]] = {}
-    for line in discon.read_text().splitlines():
+    for line in (discon.read_text() if text is None else text).splitlines():
         numbers, _, comment = line.partition("!")
         name = comment.split()[0] if comment.split() else ""
         if name in ("VS_MinOMSpd", "WE_GearboxRatio", "PS_Mode", "PS_WindSpeeds", "PS_BldPitchMin"):
@@ -157,7 +157,7 @@ def controlled_operating_point(turbine: TurbineDescription, coefficients: RotorC
     ``ControllerLimits`` (at least the minimum rotor speed, at least peak shaving's pitch),
     the generator torque balancing the rotor's torque there."""
     speed, pitch, torque = steady_operating_point(turbine, coefficients, wind_m_s)
-    limits = controller_limits(turbine.discon_path)
+    limits = controller_limits(turbine.discon_path, turbine.controller_file())
     bounded_speed, bounded_pitch = max(speed, limits.min_rotor_speed_rad_s), max(pitch, limits.min_pitch_rad(wind_m_s))
     if (bounded_speed, bounded_pitch) == (speed, pitch):
         return speed, pitch, torque
@@ -167,18 +167,19 @@ def controlled_operating_point(turbine: TurbineDescription, coefficients: RotorC
 
 def turbine_on_platform(turbine: str, platform: Platform, wind: Wind, hub_height_m: float = 0.0,
                         rotor_start: tuple[float, float, float] | None = None, fixed: bool = False,
-                        rosco_logging: int = 0, held: bool = False) -> TurbineOnPlatform:
-    """The packaged turbine ``turbine`` (or a turbine YAML) with its ROSCO on ``platform``,
+                        rosco_logging: int = 0, held: bool = False, discon_changes: str = "") -> TurbineOnPlatform:
+    """The packaged turbine ``turbine`` (or a turbine YAML) with its ROSCO on ``platform``
+    (``discon_changes``: entries of its DISCON.IN replaced, ``TurbineDescription.discon_changes``),
     starting at its steady operating point in the initial wind within its controller's
     limits (``controlled_operating_point``; or at ``rotor_start``: rotor
     speed [rad/s], blade pitch [rad], generator torque [N m]); ``held``: no controller, the
     generator torque and blade pitch held where they start (``HeldControls``)."""
-    description = load_turbine(turbine)
+    description = load_turbine(turbine, discon_changes=discon_changes)
     coefficients = RotorCoefficients(read_table(description.performance_path))
     start = rotor_start or controlled_operating_point(description, coefficients, wind.at(0.0))
     controller = (HeldControls(start[2], start[1]) if held else
                   Rosco(description.discon_path, description.controller_dt_s, description.generator_efficiency,
-                        rosco_logging, pitch_rad=start[1]))
+                        rosco_logging, pitch_rad=start[1], changes=description.changes))
     model = TurbineModel(description, coefficients, controller, *start)
     return TurbineOnPlatform(description, coefficients, model, wind, np.array(platform.hub_point_m), hub_height_m,
                              fixed)

@@ -11,6 +11,7 @@ import yaml
 
 from fowt_hydro_sim.physics.config import ConfigError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, setting
+from fowt_hydro_sim.turbine.rosco import discon_text, parse_changes
 
 ROSCO_PREFIX = "rosco:"  # a path relative to the test cases installed with the rosco wheel
 
@@ -39,10 +40,24 @@ class TurbineDescription:
                                                "rosco wheel's test cases)")
     discon: str = setting(REQUIRED, "ROSCO DISCON.IN of the turbine (path; rosco: = in the rosco wheel's "
                                     "test cases)")
+    discon_changes: str = setting("", "DISCON.IN entries replaced, 'NAME=VALUE; NAME=VALUE' (VALUE: the entry's "
+                                      "numbers, space-separated for a list), e.g. 'Fl_Kp=-5.0'; the file is "
+                                      "left as it is")
 
     def __post_init__(self) -> None:
         if self.min_pitch_rad >= self.max_pitch_rad:
             raise ConfigError(f"turbine {self.name}: min_pitch_rad must be below max_pitch_rad")
+        if self.discon_changes:
+            self.controller_file()  # a name the file has not, or a list of another length: refused now
+
+    @property
+    def changes(self) -> dict[str, str]:
+        """``discon_changes`` as ``{NAME: VALUE}``."""
+        return parse_changes(self.discon_changes)
+
+    def controller_file(self) -> str:
+        """The text of the DISCON.IN the controller reads: the file with ``discon_changes`` made."""
+        return discon_text(self.discon_path, self.changes)
 
     @property
     def rated_generator_torque_nm(self) -> float:
@@ -82,11 +97,14 @@ def turbine_path(name_or_path: str) -> Path:
     return path
 
 
-def turbine_from_dict(data: object, where: str, **overrides: float) -> TurbineDescription:
-    """A validated description; ``overrides`` replace fields (e.g. ``hub_height_m``). Relative
-    file paths are taken relative to the YAML file's folder (``where``)."""
+def turbine_from_dict(data: object, where: str, **overrides: float | str) -> TurbineDescription:
+    """A validated description; ``overrides`` replace fields (e.g. ``hub_height_m``; the
+    ``discon_changes`` given are made after the file's own). Relative file paths are taken
+    relative to the YAML file's folder (``where``)."""
     if not isinstance(data, dict):
         raise ConfigError(f"{where}: expected a mapping, got {type(data).__name__}")
+    if overrides.get("discon_changes") and data.get("discon_changes"):
+        overrides = {**overrides, "discon_changes": f"{data['discon_changes']}; {overrides['discon_changes']}"}
     items = described(TurbineDescription)
     unknown = sorted(set(data) - set(items))
     if unknown:
@@ -110,8 +128,9 @@ def turbine_from_dict(data: object, where: str, **overrides: float) -> TurbineDe
     return TurbineDescription(**values)
 
 
-def load_turbine(name_or_path: str = "iea15_umaine", **overrides: float) -> TurbineDescription:
-    """A packaged turbine by name (``iea15_umaine``) or a turbine YAML file."""
+def load_turbine(name_or_path: str = "iea15_umaine", **overrides: float | str) -> TurbineDescription:
+    """A packaged turbine by name (``iea15_umaine``) or a turbine YAML file; ``overrides``
+    given (not empty) replace its fields (``discon_changes`` is added to the file's own)."""
     path = turbine_path(name_or_path)
     try:
         data = yaml.safe_load(path.read_text())

@@ -10,10 +10,12 @@ output off unless asked)."""
 from __future__ import annotations
 
 import ctypes
+import difflib
 import logging
 import re
 import shutil
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 
 from fowt_hydro_sim.physics.config import ConfigError
@@ -22,12 +24,57 @@ from fowt_hydro_sim.turbine.discon import ControllerError, Discon
 log = logging.getLogger("fowt_hydro_sim.rosco")
 
 
-def discon_copy(source: Path, folder: Path, logging_level: int = 0) -> Path:
-    """DISCON.IN in ``folder``: its PerfFileName made absolute, its LoggingLevel set."""
+def parse_changes(spec: str) -> dict[str, str]:
+    """DISCON.IN entries to replace, from ``NAME=VALUE; NAME=VALUE`` (VALUE: the entry's
+    numbers, space-separated for a list) as ``{NAME: VALUE}``; ConfigError naming what does
+    not read."""
+    changes = {}
+    for item in filter(None, (part.strip() for part in spec.split(";"))):
+        name, equals, value = (text.strip() for text in item.partition("="))
+        if not equals or not name or not value:
+            raise ConfigError(f"discon_changes: expected NAME=VALUE (entries separated by ';'), got {item!r}")
+        try:
+            [float(v) for v in value.split()]
+        except ValueError:
+            raise ConfigError(f"discon_changes: {name}: expected numbers, got {value!r}") from None
+        changes[name] = value
+    return changes
+
+
+def changed_discon(text: str, changes: Mapping[str, str], where: str) -> str:
+    """The DISCON.IN ``text`` (lines ``VALUES ! NAME - comment``) with each entry of
+    ``changes`` given its new values; ConfigError for a name the file has not (with the
+    nearest it has) or a list of another length than the entry's."""
+    lines = text.splitlines(keepends=True)
+    names = [(comment.split() or [""])[0] for _, _, comment in (line.partition("!") for line in lines)]
+    for name, value in changes.items():
+        if name not in names:
+            near = difflib.get_close_matches(name, [n for n in names if n], n=1)
+            raise ConfigError(f"discon_changes: {name} is not an entry of {where}"
+                              + (f" (nearest: {near[0]})" if near else ""))
+        i = names.index(name)
+        values, bang, comment = lines[i].partition("!")
+        if len(values.split()) != len(value.split()):
+            raise ConfigError(f"discon_changes: {name} has {len(values.split())} value(s) in {where}, "
+                              f"got {len(value.split())}")
+        lines[i] = f"{value:<19s} {bang}{comment}"
+    return "".join(lines)
+
+
+def discon_text(source: Path, changes: Mapping[str, str] | None = None) -> str:
+    """The text of the DISCON.IN ``source`` with ``changes`` (``changed_discon``);
+    ConfigError if it cannot be read."""
     try:
         text = source.read_text()
     except OSError as exc:
         raise ConfigError(f"DISCON file {source}: cannot be read ({exc.strerror})") from None
+    return changed_discon(text, changes, source.name) if changes else text
+
+
+def discon_copy(source: Path, folder: Path, logging_level: int = 0, changes: Mapping[str, str] | None = None) -> Path:
+    """DISCON.IN in ``folder``: ``changes`` made (``changed_discon``), its PerfFileName made
+    absolute, its LoggingLevel set."""
+    text = discon_text(source, changes)
 
     def absolute(match: re.Match) -> str:
         path = Path(match.group(1))
@@ -42,15 +89,16 @@ def discon_copy(source: Path, folder: Path, logging_level: int = 0) -> Path:
 
 class Rosco:
     """One ROSCO instance: ``step`` passes the turbine's measurements and returns the
-    generator torque [N m] and collective blade pitch [rad] it commands."""
+    generator torque [N m] and collective blade pitch [rad] it commands. ``changes``: DISCON.IN
+    entries replaced (``changed_discon``), the file itself left as it is."""
 
     def __init__(self, discon: Path, dt_s: float, generator_efficiency: float, logging_level: int = 0,
-                 pitch_rad: float = 0.0):
+                 pitch_rad: float = 0.0, changes: Mapping[str, str] | None = None):
         from rosco import discon_lib_path  # the package's __init__ only locates the library
 
         self._folder = tempfile.TemporaryDirectory(prefix="fowt_rosco_")
         folder = Path(self._folder.name)
-        param = discon_copy(Path(discon), folder, logging_level)
+        param = discon_copy(Path(discon), folder, logging_level, changes)
         self.dt_s, self._efficiency = dt_s, generator_efficiency
         ctypes.CDLL(discon_lib_path)  # the installed library loads the libraries it needs beside it (its rpath)
         library = shutil.copy2(discon_lib_path, folder / Path(discon_lib_path).name)  # the copy: its own globals

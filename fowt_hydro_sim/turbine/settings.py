@@ -9,6 +9,7 @@ import numpy as np
 
 from fowt_hydro_sim.physics.config import ConfigError, RunConfig
 from fowt_hydro_sim.settings import like, setting
+from fowt_hydro_sim.turbine.description import TurbineDescription
 from fowt_hydro_sim.turbine.wind import DEFAULT_WIND_M_S, WIND_KINDS, Wind, check_series, read_series, series_wind
 
 WIND_TOPIC = "/turbine/wind_speed"  # the turbine's free wind topic (msg_adapters.topics.TURBINE; test_coupled)
@@ -22,6 +23,7 @@ class TurbineSettings:
     system: str = setting("", "named system (packaged name or system YAML: platform, turbine and mooring that "
                               "belong together, e.g. iea15_volturnus_s); fills platform and turbine")
     turbine: str = setting("iea15_umaine", "packaged turbine name or turbine YAML file")
+    discon_changes: str = like(TurbineDescription, "discon_changes", note=" (over the turbine file's own)")
     platform: str = like(RunConfig, "platform", note="; its hub point is where the wrench is applied")
     hub_height_m: float = setting(0.0, "height of the thrust point above the platform's reference point [m]; "
                                        "0 = the platform's hub point", ge=0.0)
