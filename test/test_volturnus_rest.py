@@ -58,6 +58,7 @@ LIN_POSE = np.array([OUT["ED PtfmSurge"], 0.0, OUT["ED PtfmHeave"], 0.0, math.ra
 
 
 def elastodyn(name: str) -> float:
+    """A number of the packaged ElastoDyn deck."""
     fields, _ = deck_fields(ELASTODYN)
     return deck_number(fields, name, ELASTODYN)
 
@@ -92,6 +93,7 @@ def map_lines():
 
 
 def test_the_lin_outputs_are_read_as_the_file_gives_them():
+    """The outputs' operating points as the .lin's header prints them (4 significant digits)."""
     assert OUT["ED TwrBsFzt"] == -2.215e4 and OUT["ED TwrBsMyt"] == -2.279e4  # [kN], [kN m]
     assert OUT["AD RtAeroFxh"] == 4.2e5 and OUT["AD RtAeroMyh"] == 9.078e5  # [N], [N m]
     assert LIN_POSE[2] == -2.106e-2 and LIN_POSE[4] == pytest.approx(-4.887e-3, rel=1e-3)
