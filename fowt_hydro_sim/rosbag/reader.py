@@ -22,7 +22,7 @@ from mcap.stream_reader import get_chunk_data_stream
 from mcap.writer import MCAP0_MAGIC
 
 from fowt_hydro_sim.frames import euler_from_quaternion
-from fowt_hydro_sim.rosbag.writer import METADATA_FILE, RUN_CONFIG_KEY, BagError
+from fowt_hydro_sim.rosbag.writer import MESSAGE_HEAD, METADATA_FILE, RECORD_PREFIX_BYTES, RUN_CONFIG_KEY, BagError
 from msg_adapters import topics as contract
 from msg_adapters.cdr import decode_stamped
 
@@ -76,17 +76,17 @@ def _indexed_messages(stream, summary, topics: list[str]) -> Iterator[tuple[str,
         channels = [cid for cid in wanted if cid in index.message_index_offsets]
         if not channels:
             continue
-        stream.seek(index.chunk_start_offset + 9)  # past the record's opcode and length
+        stream.seek(index.chunk_start_offset + RECORD_PREFIX_BYTES)
         data = get_chunk_data_stream(Chunk.read(ReadDataStream(stream)))[0].read(index.uncompressed_size)
         entries = []
         for cid in channels:
-            stream.seek(index.message_index_offsets[cid] + 9)
+            stream.seek(index.message_index_offsets[cid] + RECORD_PREFIX_BYTES)
             head = stream.read(6)  # channel id, byte length of the (log time, offset) pairs
             pairs = np.frombuffer(stream.read(int.from_bytes(head[2:6], "little")), dtype="<u8").reshape(-1, 2)
             entries += [(int(t), int(offset), cid) for t, offset in pairs]
         for log_time, offset, cid in sorted(entries):
-            length = int.from_bytes(data[offset + 1:offset + 9], "little")  # channel 2, sequence 4, times 16
-            yield wanted[cid], log_time, data[offset + 31:offset + 9 + length]
+            length = int.from_bytes(data[offset + 1:offset + RECORD_PREFIX_BYTES], "little")
+            yield wanted[cid], log_time, data[offset + MESSAGE_HEAD.size:offset + RECORD_PREFIX_BYTES + length]
 
 
 class Bag:

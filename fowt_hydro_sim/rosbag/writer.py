@@ -60,7 +60,8 @@ log = logging.getLogger(__name__)
 METADATA_FILE = "metadata.yaml"
 BAG_VERSION = 9  # rosbag2_bagfile_information version (Jazzy)
 RUN_CONFIG_KEY = "fowt_hydro_sim.run_config"  # metadata.yaml custom_data and MCAP metadata name
-_MESSAGE_HEAD = struct.Struct("<BQHIQQ")  # opcode, record length, channel, sequence, log time, publish time
+MESSAGE_HEAD = struct.Struct("<BQHIQQ")  # opcode, record length, channel, sequence, log time, publish time
+RECORD_PREFIX_BYTES = 9  # every MCAP record's opcode (1 byte) and length (8)
 _LOG_TIME = 15  # byte offsets of the log and publish times in a Message record
 _PUBLISH_TIME = 23
 _INFINITE = {"sec": 9223372036, "nsec": 854775807}
@@ -79,15 +80,15 @@ def message_records(log_times_ns: np.ndarray, channels: list[int], blocks: list[
     order its record head and its message (row i of its block (n, length))."""
     n = len(log_times_ns)
     times = np.ascontiguousarray(log_times_ns, dtype="<u8").view(np.uint8).reshape(n, 8)
-    rows = np.empty((n, sum(_MESSAGE_HEAD.size + b.shape[1] for b in blocks)), dtype=np.uint8)
+    rows = np.empty((n, sum(MESSAGE_HEAD.size + b.shape[1] for b in blocks)), dtype=np.uint8)
     column = 0
     for channel_id, messages in zip(channels, blocks):
         length = messages.shape[1]
-        head = _MESSAGE_HEAD.pack(Opcode.MESSAGE, _MESSAGE_HEAD.size - 9 + length, channel_id, 0, 0, 0)
-        rows[:, column:column + _MESSAGE_HEAD.size] = np.frombuffer(head, dtype=np.uint8)
+        head = MESSAGE_HEAD.pack(Opcode.MESSAGE, MESSAGE_HEAD.size - RECORD_PREFIX_BYTES + length, channel_id, 0, 0, 0)
+        rows[:, column:column + MESSAGE_HEAD.size] = np.frombuffer(head, dtype=np.uint8)
         rows[:, column + _LOG_TIME:column + _LOG_TIME + 8] = times
         rows[:, column + _PUBLISH_TIME:column + _PUBLISH_TIME + 8] = times
-        column += _MESSAGE_HEAD.size
+        column += MESSAGE_HEAD.size
         rows[:, column:column + length] = messages
         column += length
     return rows
@@ -192,7 +193,7 @@ class BagWriter:
         with self._lock:
             if self._closed:
                 return
-            chunk, offsets, pack = self._chunk, self._offsets, _MESSAGE_HEAD.pack
+            chunk, offsets, pack = self._chunk, self._offsets, MESSAGE_HEAD.pack
             for log_time_ns, messages in rows:
                 for channel_id, data in messages:
                     times, places = offsets[channel_id]
@@ -223,7 +224,7 @@ class BagWriter:
                 channel_times, places = self._offsets[channel_id]
                 channel_times.extend(times)
                 places.extend((row_starts + column).tolist())
-                column += _MESSAGE_HEAD.size + messages.shape[1]
+                column += MESSAGE_HEAD.size + messages.shape[1]
             self._chunk_start_ns = min(self._chunk_start_ns, min(times))
             self._chunk_end_ns = max(self._chunk_end_ns, max(times))
             self._maybe_write_chunk()
