@@ -46,7 +46,10 @@ it read, and the integer switches the import uses must read as integers.
 
 Members wholly at or below the seabed (the water depth given) are not imported and the plates
 of the members standing on them at the seabed joint are dropped, as HydroDyn runs them
-(``_above_seabed``); a member crossing the seabed is refused.
+(``_above_seabed``); a member crossing the seabed is refused. The joint axial coefficients
+(JointAxID) become end plates as HydroDyn applies them, to the end areas of the members meeting
+at a joint summed as vectors: none where they cancel, none on a pair of ends in line, and one
+plate carrying the sums (``joint_area_m2``, ``joint_volume_m3``) where two or more ends are left.
 
 A potential-flow deck (PotMod 1) is imported as HydroDyn runs it for one WAMIT body at the
 reference point: PotFile (resolved relative to the deck, as HydroDyn resolves it), WAMITULEN,
@@ -290,19 +293,55 @@ def _member(hd: dict, index: int, source: str) -> dict:
     return out
 
 
+# a joint's end areas cancel (HydroDyn: no joint end loads) when their sum is below this fraction of
+# the areas summed: decks give joints to about 1e-5 m, so two members in line meet at slightly
+# different directions; HydroDyn's joint loads scale with the residual area and volume vectors
+# (drag with |An|, added mass with |Vn|, dynamic pressure with An), below 1e-4 of one end's here
+_CANCEL = 1e-4
+
+
+def _end_vectors(members: list[dict], ends: list[tuple[int, int]], joint: int) -> list[tuple[int, str, np.ndarray]]:
+    """Each member end at ``joint``: (member index, plate key, [pi r^2 n, 2 pi r^3 n / 3]) with n
+    the end's outward normal (HydroDyn's terms of An and Vn); NaN for a rectangular end."""
+    vectors = []
+    for i, (a, b) in enumerate(ends):
+        for end, sign, key in ((a, -1.0, "end_a_plate"), (b, 1.0, "end_b_plate")):
+            if end != joint:
+                continue
+            axis = np.subtract(members[i]["end_b_m"], members[i]["end_a_m"])
+            normal = sign * axis / np.linalg.norm(axis)
+            radius = (members[i]["diameter_b_m" if sign > 0 and "diameter_b_m" in members[i] else "diameter_m"]
+                      if "diameter_m" in members[i] else math.nan) / 2
+            vectors.append((i, key, np.array([math.pi * radius**2 * normal, 2 * math.pi / 3 * radius**3 * normal])))
+    return vectors
+
+
+def _cancel(vectors: list[np.ndarray]) -> bool:
+    """Whether the end vectors sum to zero, area and volume (within ``_CANCEL`` of their sizes)."""
+    total, size = np.sum(vectors, axis=0), np.sum([np.linalg.norm(v, axis=1) for v in vectors], axis=0)
+    return bool(np.all(np.linalg.norm(total, axis=1) <= _CANCEL * size))
+
+
 def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: str) -> list[dict]:
     """The members without those wholly at or below the seabed (z = -water_depth_m), as HydroDyn
     runs them (Morison.f90: a member's nodes below the seabed take no loads; a member wholly
     below it keeps only its upper end plate's buoyancy, which the hydrostatics' seabed cut
-    gives, physics/loads/hydrostatic.py). HydroDyn's joint end effects (JointAxID) act on the
-    end areas of the members meeting at a joint summed as vectors (outward normals, r^2 and r^3
-    weighted, buried members included): where those cancel (two members of one diameter in
-    line, a pile under a leg of its size) the joint has none, and the members lose their end
-    plates there (the model's per-member plates would add, not cancel, in drag and added mass);
-    elsewhere each member keeps its plate. A joint on the seabed whose areas do not cancel is
-    refused. A member that
-    crosses the seabed is refused too (HydroDyn loads the part above it only; the model's strips
-    are whole members). ConfigError in one line naming the member or joint."""
+    gives, physics/loads/hydrostatic.py), and the end plates as HydroDyn's joint end effects
+    (JointAxID) act. HydroDyn sums the end areas of the members meeting at a joint as vectors
+    (outward normals; ``An`` pi r^2 and ``Vn`` 2 pi r^3 / 3 weighted, buried members included) and loads the
+    joint with the sums: drag with |An|, added mass with |Vn|, dynamic pressure with An. The
+    model's plates are per member end, and their drag (|w| w along the normal) and added mass
+    (along n n^T) do not change sign with the normal, so two plates in line add instead of
+    cancelling. Hence: where the joint's vectors cancel (within ``_CANCEL``: two members of one
+    diameter in line, a pile under a leg of its size, members whose ends balance) the joint
+    has no plates; elsewhere each pair of ends that cancels (in line, one diameter) loses its
+    plates, one end left keeps its own plate (its vectors are the joint's), and of two or
+    more ends left one plate carries the joint's sums (``joint_area_m2``, ``joint_volume_m3``)
+    and the others none (per end if one of them is drag only, PropPot, or the deck has marine
+    growth: the sums are of the bare radii, HydroDyn's of the grown ones). A joint on the seabed
+    whose areas do not cancel is refused. A member that crosses the seabed is refused too
+    (HydroDyn loads the part above it only; the model's strips are whole members). ConfigError
+    in one line naming the member or joint."""
     seabed = -water_depth_m
     ends = [(hd["MJointID1"][i], hd["MJointID2"][i]) for i in range(hd["NMembers"])]
     height = {joint: float(z) for joint, z in zip(hd["JointID"], hd["Jointzi"])}
@@ -315,24 +354,30 @@ def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: s
                               "supported (split it into members meeting at the seabed)")
     on_seabed = {joint for i in buried for joint in ends[i] if abs(height[joint] - seabed) < 1e-6}
     for joint in sorted({joint for pair in ends for joint in pair}):
-        area, cube = np.zeros(3), np.zeros(3)  # the joint's end areas (r^2) and r^3 summed, outward normals
-        for i, (a, b) in enumerate(ends):
-            for end, sign in ((a, -1.0), (b, 1.0)):
-                if end == joint:
-                    axis = np.subtract(members[i]["end_b_m"], members[i]["end_a_m"])
-                    radius = (members[i]["diameter_b_m" if sign > 0 and "diameter_b_m" in members[i]
-                                          else "diameter_m"] if "diameter_m" in members[i] else math.nan) / 2
-                    area += sign * axis / np.linalg.norm(axis) * radius**2
-                    cube += sign * axis / np.linalg.norm(axis) * radius**3
-        cancel = bool(np.all(np.abs(area) < 1e-9) and np.all(np.abs(cube) < 1e-9))
-        if joint in on_seabed and not cancel:
-            raise ConfigError(f"{source}: joint {joint} on the seabed: the end areas of its members do not cancel "
-                              "(a pile under a member of another size or direction): not supported")
-        if cancel:  # HydroDyn's joint end effects act on the summed areas: none here
-            for i, (a, b) in enumerate(ends):
-                for end, key in ((a, "end_a_plate"), (b, "end_b_plate")):
-                    if end == joint:
-                        members[i].pop(key, None)
+        vectors = _end_vectors(members, ends, joint)
+        if _cancel([v for _, _, v in vectors]):  # HydroDyn's joint end effects act on the sums: none here
+            dropped = vectors
+        else:
+            if joint in on_seabed:
+                raise ConfigError(f"{source}: joint {joint} on the seabed: the end areas of its members do not "
+                                  "cancel (a pile under a member of another size or direction): not supported")
+            dropped, left, kept = [], list(vectors), []
+            while left:
+                first = left.pop(0)
+                partner = next((other for other in left if _cancel([first[2], other[2]])), None)
+                if partner is None:
+                    kept.append(first)
+                else:
+                    left.remove(partner)
+                    dropped += [first, partner]
+            i, key, _ = kept[0] if kept else (0, "", None)
+            if len(kept) > 1 and key in members[i] and not hd["NMGDepths"] \
+                    and not any(members[k].get("drag_only") for k, _, _ in kept):
+                total = np.sum([v for _, _, v in vectors], axis=0)  # HydroDyn's An and Vn: one plate carries them
+                members[i][key].update(joint_area_m2=total[0].tolist(), joint_volume_m3=total[1].tolist())
+                dropped += kept[1:]
+        for i, key, _ in dropped:
+            members[i].pop(key, None)
     return [m for i, m in enumerate(members) if i not in buried]
 
 

@@ -109,11 +109,17 @@ class Zone:
 
 @dataclass(frozen=True)
 class EndPlate:
-    """Axial end terms (HydroDyn's): pressure on the end area, added mass on a hemisphere."""
+    """Axial end terms (HydroDyn's): pressure on the end area, added mass on a hemisphere.
+    ``joint_area_m2`` and ``joint_volume_m3`` (body axes, outward), when given, replace the
+    end's own area (pi r^2 along its outward normal) and hemisphere (2 pi r^3 / 3): HydroDyn's
+    joint end effects act on the sums of these vectors over the members meeting at the joint
+    (its An and Vn), the drag and pressure on An, the added mass on Vn."""
 
     ca: float
     cp: float
     cd: float
+    joint_area_m2: tuple[float, float, float] | None = None
+    joint_volume_m3: tuple[float, float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -581,9 +587,17 @@ def _zone(f: _Fields, section: str, is_last: bool, bands: tuple[str, ...]) -> Zo
     return zone
 
 
-def _end_plate(f: _Fields) -> EndPlate:
+def _end_plate(f: _Fields, joint: bool = False) -> EndPlate:
+    """An end plate (``joint``: a member's, which may carry its joint's summed vectors) or a
+    tapered wall's axial coefficients."""
+    vectors = [f.vector(name) if joint and f.data.get(name) is not None else None
+               for name in ("joint_area_m2", "joint_volume_m3")]
+    if joint:
+        f.used.update({"joint_area_m2", "joint_volume_m3"})
+        if (vectors[0] is None) != (vectors[1] is None):
+            raise ConfigError(f"{f.path}: joint_area_m2 and joint_volume_m3 are given together or not at all")
     plate = EndPlate(ca=f.number("ca", non_negative=True), cp=f.number("cp", 1.0),
-                     cd=f.number("cd", non_negative=True))
+                     cd=f.number("cd", non_negative=True), joint_area_m2=vectors[0], joint_volume_m3=vectors[1])
     f.finish()
     return plate
 
@@ -621,8 +635,8 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         name=f.text("name"), section=section, end_a_m=a, end_b_m=b, width_m=width, height_m=height,
         strip_length_m=f.number("strip_length_m", 1.0, positive=True),
         zones=tuple(_zone(z, section, i == len(zones) - 1, bands) for i, z in enumerate(zones)),
-        end_a_plate=_end_plate(f.sub("end_a_plate")) if f.data.get("end_a_plate") else None,
-        end_b_plate=_end_plate(f.sub("end_b_plate")) if f.data.get("end_b_plate") else None,
+        end_a_plate=_end_plate(f.sub("end_a_plate"), joint=True) if f.data.get("end_a_plate") else None,
+        end_b_plate=_end_plate(f.sub("end_b_plate"), joint=True) if f.data.get("end_b_plate") else None,
         diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
         drag_only=_flag(f, "drag_only"), maccamy_fuchs=_flag(f, "maccamy_fuchs"),
         hydrostatics_by_section=_flag(f, "hydrostatics_by_section"),
@@ -878,11 +892,12 @@ def platform_document(platform: Platform) -> dict:
     members = []
     for m in platform.members:
         size = {"diameter_m": m.width_m} if m.section == "circular" else {"width_m": m.width_m, "height_m": m.height_m}
+        taper_axial = {"ca": m.taper_axial.ca, "cp": m.taper_axial.cp, "cd": m.taper_axial.cd}
         if m.tapered and m.section == "circular":
-            size.update(diameter_b_m=m.diameter_b_m, taper_axial=vars(m.taper_axial).copy())
+            size.update(diameter_b_m=m.diameter_b_m, taper_axial=taper_axial)
         elif m.tapered:
             size.update({k: getattr(m, k) for k in ("width_b_m", "height_b_m") if getattr(m, k) is not None},
-                        taper_axial=vars(m.taper_axial).copy())
+                        taper_axial=taper_axial)
         if m.spin_deg:
             size["spin_deg"] = m.spin_deg
         if m.drag_only:
@@ -900,6 +915,9 @@ def platform_document(platform: Platform) -> dict:
             plate = getattr(m, end)
             if plate is not None:
                 member[end] = {"ca": plate.ca, "cp": plate.cp, "cd": plate.cd}
+                if plate.joint_area_m2 is not None:
+                    member[end].update(joint_area_m2=list(plate.joint_area_m2),
+                                       joint_volume_m3=list(plate.joint_volume_m3))
         members.append(member)
     (ixx, ixy, ixz), (_, iyy, iyz), (_, _, izz) = platform.mass.inertia_about_cog_kg_m2
     mooring = platform.mooring

@@ -226,6 +226,17 @@ def discretise(platform: Platform, points_above_water: bool = False) -> Discreti
                 continue
             if member.section != "circular":
                 raise ConfigError(f"member {member.name}: end plates are supported on circular sections only")
+            if plate.joint_area_m2 is not None:  # the joint's sums: inward normals, area then hemisphere
+                area, volume = np.array(plate.joint_area_m2), np.array(plate.joint_volume_m3)
+                for vector, scale in ((area, (plate.cp, 0.0, plate.cd)), (volume, (0.0, plate.ca, 0.0))):
+                    size = float(np.linalg.norm(vector))
+                    if size > 0.0:
+                        plates["centre"].append(end)
+                        plates["normal"].append(-vector / size)
+                        plates["pressure"].append(keep * scale[0] * size)
+                        plates["added"].append(keep * rho * scale[1] * size)
+                        plates["drag"].append(0.25 * rho * scale[2] * size)
+                continue
             radius = member.diameter_at(fraction) / 2
             plates["centre"].append(end)
             plates["normal"].append(normal)
