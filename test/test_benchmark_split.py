@@ -86,3 +86,21 @@ def test_a_set_is_run_with_each_scenarios_own_load_cases_and_the_benchmark_says_
     assert [c for s, c, w in benchmark.truth_jobs([injected]) if not w] == ["lc5.2", "lc5.3", "lc5.4"]
     _, line = benchmark.chosen_scenarios("independent", strengths=1, nulls=1, out_of_catalogue=0)
     assert line.startswith("scenario set: generated (4 scenarios")
+
+
+def test_scenarios_are_picked_in_the_order_given():
+    names = ["null#h2", "baseline_drift#h1", "frequency_dependent_drift#h1"]
+    assert [s.name for s in benchmark.split_scenarios("held-out", names=names)] == names
+
+
+def test_a_benchmark_run_again_into_its_folder_keeps_the_scores_made_with_the_same_settings(tmp_path: Path):
+    """What ``diagnose-benchmark`` resumes from: the scores of ``scenarios.jsonl`` when the
+    folder's settings are the run's; another run's settings empty it."""
+    document = {"scenario_set": "held-out", "duration_s": 3600.0, "scenarios": ["null#h1", "null#h2"]}
+    assert benchmark.scored_before(tmp_path, document) == {}
+    score = benchmark.Score("null#h1", "null", None, True, "baseline mismatch", None, True, wall_s=12.0)
+    (tmp_path / "scenarios.jsonl").write_text(json.dumps(score.__dict__) + "\n")
+    assert benchmark.scored_before(tmp_path, document) == {"null#h1": score}
+    assert benchmark.scored_before(tmp_path, {**document, "duration_s": 10800.0}) == {}
+    assert not (tmp_path / "scenarios.jsonl").exists()
+    assert benchmark.scored_before(tmp_path, document) == {}  # the folder now holds the other run's settings

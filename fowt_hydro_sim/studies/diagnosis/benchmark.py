@@ -23,7 +23,7 @@ import json
 import logging
 import statistics
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import NamedTuple
 
@@ -119,6 +119,7 @@ SPLIT_FILE = Path(__file__).parent / "independent" / "data" / "split.yaml"
 SPLIT_SETS = ("development", "held-out")
 KINDS = ("injected", "null", "out_of_catalogue", "baseline_term")
 SCALE_TOLERANCE = 0.25  # a baseline-term scenario: the fitted scale within 25 % of the right one
+RUN_SETTINGS_FILE = "benchmark_settings.json"  # what a resumed benchmark must share with the scores on disk
 
 
 class BaselineTerm(NamedTuple):
@@ -260,7 +261,8 @@ def split_scenarios(which: str, inject: list[str] | None = None, names: list[str
         if unknown:
             raise InputError(f"--scenarios: not in the {which} set: {', '.join(unknown)} "
                              f"(it has: {', '.join(s.name for s in out)})")
-        out = [s for s in out if s.name in names]
+        by_name = {s.name: s for s in out}
+        out = [by_name[n] for n in dict.fromkeys(names)]  # in the order given
     return out
 
 
@@ -429,6 +431,33 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     return scores
 
 
+def score_line(score: Score) -> str:
+    """One scenario's line of the report: verdict, named effect, right or wrong, closure (and,
+    for a baseline-term scenario, the fitted scale against the right one), wall time."""
+    closure = '-' if score.blind_closure is None else f'{100 * score.blind_closure:.0f} %'
+    if score.right_scale:  # a baseline-term scenario: the named effect's fit against the right scale
+        fitted = ", ".join(f"{k} {(score.named_values or {}).get(k, float('nan')):.2f} (right {v:.2f})"
+                           for k, v in score.right_scale.items())
+        closure += f"  {fitted}"
+    return (f"{score.scenario:<30} {score.verdict:<19} named {str(score.named):<26} "
+            f"{'right' if score.correct else 'WRONG'}  detected {score.detected}  blind closure {closure}  "
+            f"{score.wall_s:.0f} s")
+
+
+def scored_before(output: Path, document: dict) -> dict[str, Score]:
+    """The scores in ``output/scenarios.jsonl`` of a benchmark run with the settings
+    ``document`` (by scenario name); none, the file emptied and the settings written, if the
+    folder holds another benchmark's or nothing."""
+    output.mkdir(parents=True, exist_ok=True)
+    settings, partial = output / RUN_SETTINGS_FILE, output / "scenarios.jsonl"
+    if settings.exists() and json.loads(settings.read_text()) == document and partial.exists():
+        return {s.scenario: s for s in (Score(**json.loads(line)) for line in partial.read_text().splitlines()
+                                        if line.strip())}
+    partial.unlink(missing_ok=True)
+    settings.write_text(json.dumps(document, indent=1) + "\n")
+    return {}
+
+
 def chosen_scenarios(source: str, inject: list[str] | None = None, strengths: int = 2, nulls: int = 10,
                      out_of_catalogue: int = 2, first_seed: int | None = None, scenario_set: str | None = None,
                      names: list[str] | None = None) -> tuple[list[Scenario], str]:
@@ -466,9 +495,10 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
     diagnosis written to ``reports/SCENARIO``; the independent source's runs cached in
     ``output/runs``); ``first_seed`` (default 1000 twin, 2000 independent) sets the scenarios'
     realisations. ``scenario_set`` (independent source): the split file's ``development`` or
-    ``held-out`` scenarios instead of the generated list (``names``: only those), its seeds
-    fixed. Returns the report's lines (which scenarios ran, one line per scenario, then the
-    summary)."""
+    ``held-out`` scenarios instead of the generated list (``names``: only those, in that
+    order), its seeds fixed. Run again into the same ``output`` with the same scenarios and
+    settings, it resumes: the scenarios already scored in ``scenarios.jsonl`` are not run again.
+    Returns the report's lines (which scenarios ran, one line per scenario, then the summary)."""
     if source not in SOURCES:
         raise InputError(f"--source: must be one of {', '.join(SOURCES)}, got {source!r}")
     if scenario_set is not None and source != "independent":
@@ -489,28 +519,37 @@ def benchmark(platform: Platform, settings: GapSettings, effects: dict[str, Effe
         if any(s.effect == "catenary_mooring" for s in chosen) and importlib.util.find_spec("moorpy") is None:
             raise InputError("--source independent: the catenary_mooring scenario needs moorpy "
                              "(pip install '.[benchmark]'), or leave it out with --inject")
-    output.mkdir(parents=True, exist_ok=True)
-    (output / "scenarios.jsonl").unlink(missing_ok=True)
+    document = json.loads(json.dumps(
+        {"source": source, "scenario_set": scenario_set, "scenarios": sorted(s.name for s in chosen),
+         "seeds": sorted(s.seed for s in chosen), "duration_s": duration_s, "dt_s": dt_s,
+         "max_evaluations": max_evaluations, "effects": sorted(effects or CATALOGUE), "platform": platform.name,
+         "gap_settings": asdict(settings)}, default=list))
+    done = scored_before(output, document)
     lines = [ran]
     logging.getLogger(__name__).info(ran)
+    if done:
+        logging.getLogger(__name__).info("%d of %d scenarios scored before in %s: not run again", len(done),
+                                         len(chosen), output)
 
-    def report(score: Score) -> None:
-        closure = '-' if score.blind_closure is None else f'{100 * score.blind_closure:.0f} %'
-        if score.right_scale:  # a baseline-term scenario: the named effect's fit against the right scale
-            fitted = ", ".join(f"{k} {(score.named_values or {}).get(k, float('nan')):.2f} (right {v:.2f})"
-                               for k, v in score.right_scale.items())
-            closure += f"  {fitted}"
-        lines.append(f"{score.scenario:<30} {score.verdict:<19} named {str(score.named):<26} "
-                     f"{'right' if score.correct else 'WRONG'}  detected {score.detected}  blind closure {closure}  "
-                     f"{score.wall_s:.0f} s")
+    def report(score: Score, earlier: bool = False) -> None:
+        lines.append(score_line(score) + ("  (scored before)" if earlier else ""))
         logging.getLogger(__name__).info(lines[-1])
-        with open(output / "scenarios.jsonl", "a") as partial:  # as each ends: a long benchmark's results so far
-            partial.write(json.dumps(score.__dict__) + "\n")
+        if not earlier:
+            with open(output / "scenarios.jsonl", "a") as partial:  # as each ends: a long benchmark's results so far
+                partial.write(json.dumps(score.__dict__) + "\n")
 
-    with dask_client(scheduler, workers) as client:
-        scores = run_benchmark(client, chosen, platform, settings, effects, duration_s, max_evaluations, report,
-                               dt_s, source, output / "runs" if source == "independent" else None,
-                               output / "reports")
+    for scenario in chosen:
+        if scenario.name in done:
+            report(done[scenario.name], earlier=True)
+    todo = [s for s in chosen if s.name not in done]
+    new: list[Score] = []
+    if todo:
+        with dask_client(scheduler, workers) as client:
+            new = run_benchmark(client, todo, platform, settings, effects, duration_s, max_evaluations, report,
+                                dt_s, source, output / "runs" if source == "independent" else None,
+                                output / "reports")
+    by_name = {**done, **{s.scenario: s for s in new}}
+    scores = [by_name[s.name] for s in chosen]
     figures = {"scenario_set": scenario_set or ("generated" if source == "independent" else "twin"),
                **summary(scores)}
     (output / "benchmark.json").write_text(json.dumps({"summary": figures, "scenarios": [s.__dict__ for s in scores]},
