@@ -87,14 +87,16 @@ def test_a_run_without_an_unmodelled_effect_raises_no_alarm(platform):
 @pytest.mark.slow
 @pytest.mark.dask
 def test_diagnose_benchmark_small(tmp_path):
-    """The benchmark's own command on two scenarios: a wave-probe delay and an
-    out-of-catalogue rotor moment, with two candidates (the delay and slow drift), two
-    least-squares evaluations each (the default four give the same scores with twice the
-    model runs). (A null on the twin is test_a_run_without_an_unmodelled_effect_raises_no_alarm;
-    the benchmark's nulls on the independent simulator, test_independent_benchmark.py.)"""
+    """The benchmark's own command on two scenarios: slow drift (its weaker twin strength) and
+    an out-of-catalogue rotor moment, with two candidates (slow drift and the wave-probe
+    delay), two least-squares evaluations each (the default four give the same scores with
+    twice the model runs). (A null on the twin is
+    test_a_run_without_an_unmodelled_effect_raises_no_alarm; the benchmark's nulls on the
+    independent simulator, test_independent_benchmark.py; the delay's grid fit,
+    test_diagnosis_rules.py.)"""
     out = tmp_path / "bench"
-    result = fowt_sim("diagnose-benchmark", "--inject", "wave_measurement_delay", "--strengths", "1", "--nulls", "0",
-                      "--out-of-catalogue", "1", "--effects", "wave_measurement_delay", "slow_drift",
+    result = fowt_sim("diagnose-benchmark", "--inject", "slow_drift", "--strengths", "1", "--nulls", "0",
+                      "--out-of-catalogue", "1", "--effects", "slow_drift", "wave_measurement_delay",
                       "--duration", str(RECORD_S),
                       "--max-evaluations", "2", "--workers", "2", "-o", str(out), timeout=1800)
     assert result.returncode == 0, result.stderr
