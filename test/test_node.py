@@ -148,7 +148,9 @@ def test_lockstep_is_deterministic_at_any_speed():
 @pytest.mark.slow
 @pytest.mark.parametrize("factor", [1.0, 10.0])
 def test_pacing_follows_the_real_time_factor(factor: float):
-    """Simulated time over wall time, from /clock as it arrives, over about 10 s: within 2 %."""
+    """Simulated time over wall time, from /clock as it arrives, over about 10 s: the slope of
+    a straight line through (arrival, simulated time) within 2 % (a line, not the end points:
+    one message delayed by a busy machine moves an end point, not the slope)."""
     listener = Listener({"/clock": Clock})
     node = start("node", real_time_factor=factor, drag_model="constant")
     try:
@@ -161,7 +163,7 @@ def test_pacing_follows_the_real_time_factor(factor: float):
         finish(node, 10)
         listener.close()
     keep = arrivals >= arrivals[0] + 1.0  # after the first second
-    ratio = (sim[keep][-1] - sim[keep][0]) / (arrivals[keep][-1] - arrivals[keep][0])
+    ratio = np.polyfit(arrivals[keep], sim[keep], 1)[0]
     assert arrivals[keep][-1] - arrivals[keep][0] > 9.0
     assert ratio == pytest.approx(factor, rel=0.02)
 
