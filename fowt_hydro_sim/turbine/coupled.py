@@ -20,7 +20,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from dataclasses import replace
-from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
@@ -30,7 +29,7 @@ from fowt_hydro_sim.physics.loads import N_LOADS, RESTORING, ROW
 from fowt_hydro_sim.physics.model import WAVE_BLOCK_S, PlatformModel, RunResult
 from fowt_hydro_sim.turbine.description import TurbineDescription, load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
-from fowt_hydro_sim.turbine.rosco import Rosco
+from fowt_hydro_sim.turbine.rosco import Rosco, entry_name
 from fowt_hydro_sim.turbine.rotor import HubMotion, TurbineModel, aero_loads, hub_motion, steady_operating_point
 from fowt_hydro_sim.turbine.wind import Wind
 
@@ -129,13 +128,13 @@ class ControllerLimits(NamedTuple):
         return float(np.interp(wind_m_s, self.shaving_wind_m_s, self.shaving_pitch_rad))
 
 
-def controller_limits(discon: Path, text: str | None = None) -> ControllerLimits:
-    """The ``ControllerLimits`` of a ROSCO DISCON.IN (lines ``VALUES ! NAME - comment``; its
-    ``text`` if given, e.g. with changes made); ConfigError naming a missing entry."""
+def controller_limits(turbine: TurbineDescription) -> ControllerLimits:
+    """The ``ControllerLimits`` of the turbine's DISCON.IN as its controller reads it (its
+    ``discon_changes`` made); ConfigError naming a missing entry."""
+    discon = turbine.discon_path
     values: dict[str, list[float]] = {}
-    for line in (discon.read_text() if text is None else text).splitlines():
-        numbers, _, comment = line.partition("!")
-        name = comment.split()[0] if comment.split() else ""
+    for line in turbine.controller_file().splitlines():
+        name, numbers = entry_name(line)
         if name in ("VS_MinOMSpd", "WE_GearboxRatio", "PS_Mode", "PS_WindSpeeds", "PS_BldPitchMin"):
             try:
                 values[name] = [float(v) for v in numbers.split()]
@@ -157,7 +156,7 @@ def controlled_operating_point(turbine: TurbineDescription, coefficients: RotorC
     ``ControllerLimits`` (at least the minimum rotor speed, at least peak shaving's pitch),
     the generator torque balancing the rotor's torque there."""
     speed, pitch, torque = steady_operating_point(turbine, coefficients, wind_m_s)
-    limits = controller_limits(turbine.discon_path, turbine.controller_file())
+    limits = controller_limits(turbine)
     bounded_speed, bounded_pitch = max(speed, limits.min_rotor_speed_rad_s), max(pitch, limits.min_pitch_rad(wind_m_s))
     if (bounded_speed, bounded_pitch) == (speed, pitch):
         return speed, pitch, torque

@@ -41,12 +41,19 @@ def parse_changes(spec: str) -> dict[str, str]:
     return changes
 
 
+def entry_name(line: str) -> tuple[str, str]:
+    """A DISCON.IN line ``VALUES ! NAME - comment`` as (NAME, VALUES); NAME empty for a
+    line without one."""
+    values, _, comment = line.partition("!")
+    return (comment.split() or [""])[0], values
+
+
 def changed_discon(text: str, changes: Mapping[str, str], where: str) -> str:
     """The DISCON.IN ``text`` (lines ``VALUES ! NAME - comment``) with each entry of
     ``changes`` given its new values; ConfigError for a name the file has not (with the
     nearest it has) or a list of another length than the entry's."""
     lines = text.splitlines(keepends=True)
-    names = [(comment.split() or [""])[0] for _, _, comment in (line.partition("!") for line in lines)]
+    names = [entry_name(line)[0] for line in lines]
     for name, value in changes.items():
         if name not in names:
             near = difflib.get_close_matches(name, [n for n in names if n], n=1)
