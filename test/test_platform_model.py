@@ -256,7 +256,8 @@ def test_stepping_one_dt_at_a_time_equals_a_batch_run_bit_for_bit():
 
 @pytest.mark.parametrize("drag_model", ["constant", "filtered"])
 def test_the_time_loop_allocates_nothing(drag_model: str):
-    """The compiled time loop (RK4 start and ABM4 steps, every right-hand side) makes no array:
+    """The compiled time loop (RK4 start and ABM4 steps, every right-hand side, the derivative
+    evaluated again after an input changed) makes no array:
     numba's allocation counters do not move over 200 steps (the step loop is compiled
     without numba's runtime, physics.jit; before, every right-hand side made a few arrays)."""
     from numba.core.runtime import _nrt_python, rtsys
@@ -270,7 +271,7 @@ def test_the_time_loop_allocates_nothing(drag_model: str):
     outputs = np.empty(n), np.empty((n, 12)), np.empty((n, 6)), np.empty((n, N_LOADS, 6))
     _nrt_python.memsys_enable_stats()
     before = rtsys.get_allocation_stats()
-    written = dynamics.integrate(model._state, 0, model.dt_s, n, 1, model._data, model._work,  # noqa: SLF001
+    written = dynamics.integrate(model._state, 0, model.dt_s, n, 1, model._data, model._work, True,  # noqa: SLF001
                                  model._history, model._newest, *outputs)  # noqa: SLF001 (the kernel's own call)
     after = rtsys.get_allocation_stats()
     assert written == n and np.all(np.isfinite(outputs[1]))
@@ -327,6 +328,36 @@ def test_external_wrench_frames():
         model.set_external_wrench(thrust, frame="tower")
     with pytest.raises(ValueError, match="finite"):
         model.set_external_wrench(np.array([np.nan] * 6))
+
+
+def test_a_wrench_set_between_steps_acts_from_the_time_it_is_set():
+    """A wrench changed at every exchange (a rotor's thrust each controller step) moves the
+    platform as the same piecewise-constant wrench given as a Python force, which the model
+    evaluates at every stage; and it is in the loads and the acceleration at once, before
+    the next step."""
+    waves = synthesize(load_case("lc5.3").sea_state, 600.0)
+    held = np.zeros(6)
+
+    def wrench_at(k: int) -> np.ndarray:
+        return np.array([1.5e6 + 2e5 * np.sin(0.3 * k), 0.0, 0.0, 0.0, 2.0e8 * np.cos(0.2 * k), 0.0])
+
+    def user(t: float, position: np.ndarray, velocity: np.ndarray) -> np.ndarray:
+        return held
+
+    compiled = PlatformModel(load_platform("windmoor12"), waves)
+    python = PlatformModel(load_platform("windmoor12"), waves, user_force=user)
+    before = compiled.acceleration
+    compiled.set_external_wrench(wrench_at(0))
+    assert np.array_equal(compiled.loads[ROW["external"]], wrench_at(0))
+    assert np.abs(compiled.acceleration[0] - before[0]) > 1e-3  # 1.5 MN on 4e7 kg of mass and added mass
+    for k in range(40):
+        compiled.set_external_wrench(wrench_at(k))
+        held[:] = wrench_at(k)
+        python._input_changed = True  # noqa: SLF001 (its held force changed: the same refresh as a set wrench)
+        compiled.step(2)
+        python.step(2)
+    assert np.abs(python.motion - compiled.motion).max() < 1e-9 * np.abs(compiled.motion).max()
+    assert np.allclose(python.acceleration, compiled.acceleration, rtol=1e-8, atol=1e-9)
 
 
 def test_a_user_force_of_zero_steps_like_the_compiled_loop_bit_for_bit():

@@ -364,8 +364,8 @@ def abm4_correct(y: np.ndarray, h: float, fp: np.ndarray, f0: np.ndarray, f1: np
 # step_loop's options (physics.jit) and nogil: a node publishes the last batch while the next one runs
 @njit(cache=True, nogil=True, _nrt=False, fastmath={"contract"})
 def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_every: int,
-              d: KernelData, w: Workspace, history: np.ndarray, newest: np.ndarray, out_t: np.ndarray,
-              out_y: np.ndarray, out_acceleration: np.ndarray, out_loads: np.ndarray) -> int:
+              d: KernelData, w: Workspace, refresh: bool, history: np.ndarray, newest: np.ndarray,
+              out_t: np.ndarray, out_y: np.ndarray, out_acceleration: np.ndarray, out_loads: np.ndarray) -> int:
     """Advance ``n_steps`` steps of the 4th-order Adams-Bashforth-Moulton predictor-corrector
     (PECE, as OpenFAST's ElastoDyn), started with RK4 until four derivatives are known.
 
@@ -375,11 +375,14 @@ def integrate(y: np.ndarray, first_step: int, dt: float, n_steps: int, record_ev
     stepping one at a time and in a batch give the same numbers. The body state,
     accelerations and loads at every ``record_every``-th step end are written to the
     outputs; returns the number written. Both evaluations of a step are at its end time: the
-    kinematics are interpolated once for them.
+    kinematics are interpolated once for them. ``refresh``: an input changed at the first
+    step's start (the external wrench): the latest derivative is evaluated there again first.
     """
     predicted, fp = w.trial_state, w.trial_rates[0]
     h = dt / 24.0
     written = 0
+    if refresh:
+        derivative(first_step * dt, y, d, w, history[newest[0]])
     for n in range(n_steps):
         t = (first_step + n) * dt
         t_next = (first_step + n + 1) * dt

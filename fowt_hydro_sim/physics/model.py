@@ -17,6 +17,7 @@ A force written in Python, without a load component of its own (docs/contributin
 from __future__ import annotations
 
 import logging
+import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, fields, replace
 
@@ -273,7 +274,7 @@ class PlatformModel:
     # ------------------------------------------------------------------ blocked wave table
     def _table_row(self, t: float) -> int:
         """The table row at or before time t, as the kernel's interpolation computes it."""
-        return int(np.floor(t / self.wave_table_step_s))
+        return math.floor(t / self.wave_table_step_s)
 
     def _hold_rows(self, first_row: int, last_row: int) -> None:
         """Synthesise into the ring the blocks holding table rows first..last (at most two
@@ -391,6 +392,7 @@ class PlatformModel:
         """Forget the integrator's past derivatives (after a jump in state)."""
         self._history = np.full((4, self._state.size), np.nan)
         self._newest = np.zeros(1, dtype=np.int64)  # the ring's latest row
+        self._input_changed = False
         self._hold_times(self.time_s, self.time_s)
         self._rates(self.time_s, self._state, self._history[0])
 
@@ -418,9 +420,15 @@ class PlatformModel:
         """
         external.set_wrench(params_of("external", self._data.component_params), wrench, frame,
                             self.platform.hub_point_m)
-        # the derivative at the current time changes with the input
-        self._hold_times(self.time_s, self.time_s)
-        self._rates(self.time_s, self._state, self._history[self._newest[0]])
+        self._input_changed = True  # the derivative at the current time changes with it: ``_refresh``
+
+    def _refresh(self) -> None:
+        """Evaluate the derivative at the current time again if an input changed since (the
+        next step does it inside the kernel's call; the acceleration and loads read before it)."""
+        if self._input_changed:
+            self._hold_times(self.time_s, self.time_s)
+            self._rates(self.time_s, self._state, self._history[self._newest[0]])
+            self._input_changed = False
 
     def use_streamed_waves(self, step_s: float, n_rows: int = 256) -> None:
         """Take the wave kinematics from ``write_waves`` (a stream, e.g. a wave topic) instead of
@@ -465,6 +473,7 @@ class PlatformModel:
 
     @property
     def acceleration(self) -> np.ndarray:
+        self._refresh()
         return self._history[self._newest[0], 6:12].copy()
 
     def strip_velocities(self) -> tuple[np.ndarray, np.ndarray]:
@@ -484,6 +493,7 @@ class PlatformModel:
     @property
     def loads(self) -> np.ndarray:
         """(N_LOADS, 6) loads at the current time (load registry order)."""
+        self._refresh()
         return self._work.loads.copy()
 
     def wave_elevation(self, time_s: float | np.ndarray) -> np.ndarray:
@@ -505,7 +515,7 @@ class PlatformModel:
         (default every step), the current time included as the first row."""
         n_steps = int(round(duration_s / self.dt_s))
         every = max(1, int(round((output_interval_s or self.dt_s) / self.dt_s)))
-        first = (self.time_s, self._state[:N_BODY_STATES].copy(), self.acceleration, self._work.loads.copy())
+        first = (self.time_s, self._state[:N_BODY_STATES].copy(), self.acceleration, self.loads)
         t, y, acc, loads = self._advance(n_steps, every)
         time = np.concatenate([[first[0]], t])
         states = np.vstack([first[1], y])
@@ -557,8 +567,10 @@ class PlatformModel:
                        out_loads[written:])
             if self.user_force is None and self.mooring_lines is None:
                 written += dynamics.integrate(self._state, self._step_index, self.dt_s, part, every, self._data,
-                                              self._work, *outputs)
+                                              self._work, self._input_changed, *outputs)
+                self._input_changed = False
             else:
+                self._refresh()
                 written += dynamics.integrate_stepwise(self._rates, self._state, self._step_index, self.dt_s, part,
                                                        every, self._work, *outputs)
             self._step_index += part

@@ -3,6 +3,8 @@ world axes at the reference point, body axes at the reference point or body axes
 hub point (``frames.WRENCH_FRAMES``). Also the check of a wrench received from outside."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -35,14 +37,13 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
 
 def set_wrench(params: np.ndarray, wrench: np.ndarray, frame: str, hub_point_m) -> None:
     """Write a wrench given in ``frame`` into the component's params, in place."""
-    wrench = np.asarray(wrench, dtype=float)
-    if wrench.shape != (6,) or not np.all(np.isfinite(wrench)):
+    values = [float(v) for v in np.ravel(wrench)]  # (plain floats: a coupled loop's exchange in microseconds)
+    if len(values) != 6 or not all(math.isfinite(v) for v in values):
         raise ValueError(f"external wrench: need 6 finite numbers, got {wrench!r}")
     if frame not in WRENCH_FRAMES:
         raise ValueError(f"external wrench: unknown frame {frame!r} ({', '.join(WRENCH_FRAMES)})")
-    params[0:6] = wrench if frame == "world" else 0.0
-    params[6:12] = 0.0 if frame == "world" else wrench
-    params[12:15] = hub_point_m if frame == "hub" else 0.0
+    params[:] = (values + [0.0] * 9 if frame == "world" else
+                 [0.0] * 6 + values + (list(hub_point_m) if frame == "hub" else [0.0] * 3))
 
 
 @step_loop
