@@ -49,7 +49,7 @@ def deck_number(fields: dict[str, str], name: str, path: Path) -> float:
         raise InputError(f"{path}: {name} is not a number ({fields[name]!r})") from None
 
 
-def _table(lines: list[str], header: str, n_rows: int, path: Path) -> np.ndarray:
+def deck_table(lines: list[str], header: str, n_rows: int, path: Path) -> np.ndarray:
     """The ``n_rows`` numeric rows after the line holding ``header`` and its units line."""
     start = next((k for k, line in enumerate(lines) if line.split()[:1] == [header]), None)
     if start is None:
@@ -106,7 +106,7 @@ def system_mass_properties(elastodyn_path: Path | str, blade_path: Path | str | 
                                                          [0, 0, num("PtfmYIner")]], float)))
     tower_path = path.parent / ed["TwrFile"]
     tw, tw_lines = deck_fields(tower_path)
-    tower = _table(tw_lines, "HtFract", int(deck_number(tw, "NTwInpSt", tower_path)), tower_path)
+    tower = deck_table(tw_lines, "HtFract", int(deck_number(tw, "NTwInpSt", tower_path)), tower_path)
     base = np.array([0.0, 0.0, num("TowerBsHt")]) - ref
     top = np.array([0.0, 0.0, num("TowerHt")]) - ref
     tower_density = np.stack([tower[:, 0], tower[:, 1] * deck_number(tw, "AdjTwMa", tower_path)], axis=1)
@@ -123,7 +123,7 @@ def system_mass_properties(elastodyn_path: Path | str, blade_path: Path | str | 
     parts.append((num("HubMass"), apex + num("HubCM") * shaft, spin * np.outer(shaft, shaft)))
     blade_path = Path(blade_path) if blade_path is not None else path.parent / ed["BldFile1"]
     bl, bl_lines = deck_fields(blade_path)
-    blade = _table(bl_lines, "BlFract", int(deck_number(bl, "NBlInpSt", blade_path)), blade_path)
+    blade = deck_table(bl_lines, "BlFract", int(deck_number(bl, "NBlInpSt", blade_path)), blade_path)
     density = np.stack([blade[:, 0], blade[:, 2] * deck_number(bl, "AdjBlMs", blade_path)], axis=1)
     span = num("TipRad") - num("HubRad")
     for k in range(int(num("NumBl"))):

@@ -91,7 +91,7 @@ def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float,
     from fowt_hydro_sim.physics.config import load_platform
     from fowt_hydro_sim.physics.model import PlatformModel
     from fowt_hydro_sim.ros.turbine_node import TurbineSettings
-    from fowt_hydro_sim.turbine.coupled import restoring, steady_thrust_wrench
+    from fowt_hydro_sim.turbine.coupled import restoring, steady_wind_wrench
     from fowt_hydro_sim.turbine.description import load_turbine
     from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 
@@ -102,7 +102,7 @@ def static_offset(node: dict[str, Any], turbine: dict[str, Any]) -> tuple[float,
     point = np.array(platform.hub_point_m)
     if settings.hub_height_m:
         point[2] = settings.hub_height_m
-    wrench = steady_thrust_wrench(description, coefficients, settings.make_wind().at(0.0), point)
+    wrench = steady_wind_wrench(description, coefficients, settings.make_wind().at(0.0), point)
     at_rest, stiffness = restoring(PlatformModel(platform, None, mooring_model=node.get("mooring") or ""))
     return tuple(float(v) for v in np.linalg.solve(stiffness, at_rest + wrench))
 

@@ -31,6 +31,7 @@ from fowt_hydro_sim.turbine.description import TurbineDescription, load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rosco import Rosco, entry_name
 from fowt_hydro_sim.turbine.rotor import HubMotion, TurbineModel, aero_loads, hub_motion, steady_operating_point
+from fowt_hydro_sim.turbine.tower import TowerPoints, tower_drag, tower_points
 from fowt_hydro_sim.turbine.wind import Wind
 
 STAMP_TOLERANCE_S = 1e-9  # platform times closer than this are the same time
@@ -42,9 +43,10 @@ CHANNELS = ("rotor_speed_rad_s", "generator_torque_nm", "generator_power_w", "bl
 class TurbineOnPlatform:
     """A turbine model (rotor, drivetrain, actuator, controller) on a platform whose motion
     it is given at each platform output time: ``answer`` advances it there; ``hub_wrench``
-    is then the wrench on the platform (frame ``hub``: the platform's hub point, body axes)
-    and ``channels`` its state. ``thrust_height_m`` is the thrust point's height above the
-    platform's reference point; ``fixed`` ignores the platform's motion."""
+    is then the wrench on the platform (frame ``hub``: the platform's hub point, body axes):
+    the rotor's, and the wind's drag on the tower when the turbine has a tower table
+    (``turbine.tower``), and ``channels`` its state. ``thrust_height_m`` is the thrust
+    point's height above the platform's reference point; ``fixed`` ignores the platform's motion."""
 
     def __init__(self, turbine: TurbineDescription, coefficients: RotorCoefficients, model: TurbineModel,
                  wind: Wind, hub_point_m: np.ndarray, thrust_height_m: float = 0.0, fixed: bool = False):
@@ -53,6 +55,10 @@ class TurbineOnPlatform:
         self.thrust_height_m = thrust_height_m or float(self.hub_point_m[2])
         self.fixed = fixed
         self.last: HubMotion | None = None  # the hub's motion at the last time answered
+        table = turbine.tower_table()
+        self.tower: TowerPoints | None = (None if table is None else
+                                          tower_points(table, turbine.hub_height_m, turbine.wind_shear_exponent))
+        self.tower_load = (0.0, 0.0)  # the tower's drag [N] and its moment about the hub point [N m]
 
     @property
     def last_time_s(self) -> float | None:
@@ -75,15 +81,20 @@ class TurbineOnPlatform:
             s.relative_wind_m_s = s.wind_m_s - motion.velocity_m_s
             s.thrust_n, s.aero_torque_nm = aero_loads(self.turbine, self.coefficients, s.relative_wind_m_s,
                                                       s.rotor_speed_rad_s, s.pitch_rad)
+        if self.tower is not None:
+            velocity = 0.0 if self.fixed else float(body_twist[0])
+            self.tower_load = tower_drag(self.tower, self.turbine.air_density_kg_m3, model.state.wind_m_s, velocity,
+                                         motion.pitch_rate_rad_s, float(self.hub_point_m[2]))
         self.last = motion
 
     def hub_wrench(self) -> np.ndarray:
         """[Fx, Fy, Fz, Mx, My, Mz] on the platform in frame ``hub``: the thrust along x, the
-        shaft torque's reaction about it, and the thrust's moment about the platform's hub
-        point when the thrust point is elsewhere."""
+        shaft torque's reaction about it, the thrust's moment about the platform's hub
+        point when the thrust point is elsewhere, and the tower's drag with its moment."""
         thrust, torque = self.model.hub_wrench()
         offset = self.thrust_height_m - float(self.hub_point_m[2])
-        return np.array([thrust, 0.0, 0.0, torque, offset * thrust, 0.0])
+        drag, moment = self.tower_load
+        return np.array([thrust + drag, 0.0, 0.0, torque, offset * thrust + moment, 0.0])
 
     def channels(self) -> tuple[float, ...]:
         """The turbine's state, in the order of ``CHANNELS``."""
@@ -184,15 +195,22 @@ def turbine_on_platform(turbine: str, platform: Platform, wind: Wind, hub_height
                              fixed)
 
 
-def steady_thrust_wrench(turbine: TurbineDescription, coefficients: RotorCoefficients, wind_m_s: float,
-                         thrust_point_m: np.ndarray) -> np.ndarray:
-    """The rotor's steady thrust at its steady operating point in ``wind_m_s`` (within its
-    controller's limits, ``controlled_operating_point``), acting at ``thrust_point_m``: its
-    wrench in world axes about the reference point (platform at rest)."""
+def steady_wind_wrench(turbine: TurbineDescription, coefficients: RotorCoefficients, wind_m_s: float,
+                       thrust_point_m: np.ndarray) -> np.ndarray:
+    """The wind's steady wrench on the turbine in ``wind_m_s``, platform at rest: the rotor's
+    thrust at its steady operating point (within its controller's limits,
+    ``controlled_operating_point``) acting at ``thrust_point_m``, and the tower's drag when
+    the turbine has a tower table; world axes, about the reference point."""
     speed, pitch, _ = controlled_operating_point(turbine, coefficients, wind_m_s)
     thrust, _ = aero_loads(turbine, coefficients, wind_m_s, speed, pitch)
     force = np.array([thrust, 0.0, 0.0])
-    return np.concatenate([force, np.cross(thrust_point_m, force)])
+    wrench = np.concatenate([force, np.cross(thrust_point_m, force)])
+    table = turbine.tower_table()
+    if table is not None:
+        points = tower_points(table, turbine.hub_height_m, turbine.wind_shear_exponent)
+        drag, moment = tower_drag(points, turbine.air_density_kg_m3, wind_m_s, 0.0, 0.0, 0.0)
+        wrench += np.array([drag, 0.0, 0.0, 0.0, moment, 0.0])
+    return wrench
 
 
 def restoring(model: PlatformModel, step: float = 1e-4) -> tuple[np.ndarray, np.ndarray]:
@@ -217,12 +235,12 @@ def restoring(model: PlatformModel, step: float = 1e-4) -> tuple[np.ndarray, np.
 
 
 def static_offset(model: PlatformModel, rotor: TurbineOnPlatform) -> np.ndarray:
-    """The platform's offset K^-1 (F0 + F) under the rotor's steady thrust F in its initial
-    wind (K, F0: the restoring matrix and the wrench at rest, ``restoring``), where a coupled
-    run starts without a large start-up swing."""
+    """The platform's offset K^-1 (F0 + F) under the wind's steady wrench F in its initial
+    wind (``steady_wind_wrench``; K, F0: the restoring matrix and the wrench at rest,
+    ``restoring``), where a coupled run starts without a large start-up swing."""
     point = rotor.hub_point_m.copy()
     point[2] = rotor.thrust_height_m
-    wrench = steady_thrust_wrench(rotor.turbine, rotor.coefficients, rotor.wind.at(0.0), point)
+    wrench = steady_wind_wrench(rotor.turbine, rotor.coefficients, rotor.wind.at(0.0), point)
     at_rest, stiffness = restoring(model)
     return np.linalg.solve(stiffness, at_rest + wrench)
 

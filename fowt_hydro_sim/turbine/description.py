@@ -9,6 +9,8 @@ from pathlib import Path
 
 import yaml
 
+from fowt_hydro_sim.errors import InputError
+from fowt_hydro_sim.io.aerodyn import TowerTable, tower_table
 from fowt_hydro_sim.physics.config import ConfigError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, setting
 from fowt_hydro_sim.turbine.rosco import discon_text, parse_changes
@@ -43,12 +45,22 @@ class TurbineDescription:
     discon_changes: str = setting("", "DISCON.IN entries replaced, 'NAME=VALUE; NAME=VALUE' (VALUE: the entry's "
                                       "numbers, space-separated for a list), e.g. 'Fl_Kp=-5.0'; the file is "
                                       "left as it is")
+    tower_aerodyn: str = setting("", "AeroDyn 15 input file whose tower table (TwrElev above the still water line, "
+                                     "TwrDiam, TwrCd; TwrAero True) gives the wind's drag on the tower (path; "
+                                     "rosco: = in the rosco wheel's test cases); empty: no tower drag")
+    wind_shear_exponent: float = setting(0.0, "power-law exponent of the wind's profile below the hub, for the "
+                                              "tower's drag (InflowWind's PLexp) [-]", ge=0.0, le=1.0)
 
     def __post_init__(self) -> None:
         if self.min_pitch_rad >= self.max_pitch_rad:
             raise ConfigError(f"turbine {self.name}: min_pitch_rad must be below max_pitch_rad")
         if self.discon_changes:
             self.controller_file()  # a name the file has not, or a list of another length: refused now
+        if self.tower_aerodyn:
+            try:
+                self.tower_table()
+            except InputError as exc:
+                raise ConfigError(f"turbine {self.name}: tower_aerodyn: {exc}") from None
 
     @property
     def changes(self) -> dict[str, str]:
@@ -70,6 +82,10 @@ class TurbineDescription:
     @property
     def discon_path(self) -> Path:
         return resolve(self.discon)
+
+    def tower_table(self) -> TowerTable | None:
+        """The tower's aerodynamic table (``tower_aerodyn``); None without tower drag."""
+        return tower_table(resolve(self.tower_aerodyn)) if self.tower_aerodyn else None
 
 
 def resolve(path: str) -> Path:
@@ -119,8 +135,10 @@ def turbine_from_dict(data: object, where: str, **overrides: float | str) -> Tur
         except SettingError as exc:
             raise ConfigError(f"{where}: {name}: {exc}") from None
     folder = Path(where).parent
-    for name in ("performance_table", "discon"):
+    for name in ("performance_table", "discon", "tower_aerodyn"):
         path = values[name]
+        if not path:
+            continue
         if not path.startswith(ROSCO_PREFIX) and not Path(path).is_absolute():
             values[name] = str(folder / path)
         if not resolve(values[name]).is_file():
