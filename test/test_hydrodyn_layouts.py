@@ -23,8 +23,8 @@ OLDER = (TRIPOD, JACKET, COLUMN_OLDER, COLUMN_VERTICAL, OC4_SEMI)
 COLUMN = RTEST / "hd_WaveStMod3" / "hydrodyn_input.dat"  # the same column, r-test c00e123e
 
 
-def _import(deck, out, capsys=None) -> tuple[int, str]:
-    code = main(["platform", "import", str(deck), "-o", str(out), "--overwrite", "--water-depth", "45"])
+def _import(deck, out, capsys=None, depth: str = "45") -> tuple[int, str]:
+    code = main(["platform", "import", str(deck), "-o", str(out), "--overwrite", "--water-depth", depth])
     return code, capsys.readouterr().err.strip() if capsys else ""
 
 
@@ -56,17 +56,23 @@ def test_deck_of_the_openfast3_layout_reads_field_by_field():
     assert hd["NFillGroups"] == 0 and hd["NMGDepths"] == 0 and hd["AMMod"] == 0
 
 
-def test_deck_of_the_openfast3_layout_imports_and_a_filled_one_is_refused_naming_the_field(tmp_path, capsys):
+def test_decks_of_the_openfast3_layout_import_the_tripod_and_the_jacket_with_its_fill_group(tmp_path, capsys):
     """The tripod imports (57 circular members: its three piles below the seabed are left out);
-    the OC4 jacket reads in step and is refused
-    for what the model lacks, in one line: its filled members (NFillGroups)."""
+    the OC4 jacket (in its driver's 320 m) reads in step and imports with its fill group (32 members, FillFSLoc 0,
+    FillDens 1025), each filled member with its property sets' PropThck."""
     code, _ = _import(TRIPOD, tmp_path / "tripod.yaml", capsys)
     assert code == 0
     members = yaml.safe_load((tmp_path / "tripod.yaml").read_text())["members"]
     assert len(members) == 57 and {m["section"] for m in members} == {"circular"}
     assert members[46]["diameter_m"] == 3.4 and members[46]["diameter_b_m"] == 5.7
-    code, err = _import(JACKET, tmp_path / "jacket.yaml", capsys)
-    assert code == 2 and "NFillGroups 1" in err and len(err.splitlines()) == 1, err
+    code, err = _import(JACKET, tmp_path / "jacket.yaml", capsys, "320")  # its driver's WtrDpth
+    assert code == 0, err
+    document = yaml.safe_load((tmp_path / "jacket.yaml").read_text())
+    (group,) = document["fill_groups"]
+    assert len(group["members"]) == 32 and group["free_surface_z_m"] == 0.0 and group["density_kg_m3"] == 1025.0
+    walls = {m["name"]: m.get("wall_thickness_m") for m in document["members"]}
+    assert (walls["member1"], walls["member17"], walls["member105"], walls["member109"]) == (0.05, 0.035, 0.491, 0.06)
+    assert walls["member19"] is None  # not filled
 
 
 @pytest.mark.parametrize("edit, message", [

@@ -6,7 +6,7 @@ The deck is read with ``openfast-io`` (``InputReader_OpenFAST().read_HydroDyn``)
 the file line by line by position: a deck of another layout is misread, not refused (its
 SeaState reader misreads newer files silently the same way). So the values read here are
 checked for what they must be (finite, known switches, joints that exist) and what the model
-cannot represent is refused with one line naming the member: filled members, depth-based
+cannot represent is refused with one line naming the member: filled rectangular members, depth-based
 coefficient tables whose rows differ (HydroDyn interpolates in depth, the model's zones are
 piecewise constant; equal rows are read as constants), Cb other than 1, rectangular members
 with different side-A and side-B Morison coefficients (which of the model's two drag and
@@ -28,7 +28,9 @@ is the member's, which HydroDyn requires within 10 % of SeaState's MCFD). Marine
 (MGDepths: MGDpth, MGThck, MGDens) is the platform's ``marine_growth`` table, and each circular
 member's MG coefficients (CdMG, CaMG, CpMG; CbMG 1) its ``growth_zone``
 (physics/marine_growth.py); the axial MG coefficients are not read (the grown pieces' tapered
-walls take the member's own).
+walls take the member's own). Filled members (NFillGroups: FillMList, FillFSLoc, FillDens, its
+DEFAULT the water's density) are the platform's ``fill_groups``, each filled member keeping its
+wall (PropThck) as ``wall_thickness_m`` (physics/fill.py).
 
 Decks of the OpenFAST 3.x layouts (the deck's own water depth and density, one cross-section
 table, coefficient tables without Cb, members without MSecGeom, MSpinOrient, MHstLMod) are first
@@ -149,8 +151,48 @@ def read_deck(path: str | Path) -> dict[str, Any]:
 def _refuse_unsupported(hd: dict, source: str) -> None:
     if hd["PotMod"] not in (0, 1):
         raise ConfigError(f"{source}: PotMod {hd['PotMod']}: only 0 (strip theory) and 1 (WAMIT) are supported")
-    if hd["NFillGroups"] > 0:
-        raise ConfigError(f"{source}: filled members (NFillGroups {hd['NFillGroups']}) are not supported")
+
+
+def _fill_groups(hd: dict, members: list[dict], source: str, water_density_kg_m3: float) -> dict:
+    """The deck's fill groups (FillMList, FillFSLoc, FillDens; DEFAULT: the water's density) as
+    the platform's ``fill_groups``, the members left above the seabed only, and each filled
+    member's wall (PropThck of its two property sets) as its ``wall_thickness_m``
+    (physics/fill.py); ConfigError for a filled rectangular member or one filled twice."""
+    by_name = {m["name"]: m for m in members}
+    groups, seen = [], set()
+    for k in range(hd["NFillGroups"]):
+        ids = [int(i) for i in hd["FillMList"][k][:hd["FillNumM"][k]]]
+        density = hd["FillDens"][k]
+        if isinstance(density, str):
+            if density.upper() != "DEFAULT":
+                raise ConfigError(f"{source}: FillDens {density!r}: a number or DEFAULT")
+            density = water_density_kg_m3
+        density, surface = float(density), float(hd["FillFSLoc"][k])
+        if not (math.isfinite(density) and density > 0 and math.isfinite(surface)):
+            raise ConfigError(f"{source}: fill group {k + 1}: FillFSLoc {surface}, FillDens {density}: finite "
+                              "numbers, the density positive")
+        names = []
+        for member in ids:
+            if member not in hd["MemberID"]:
+                raise ConfigError(f"{source}: FillMList: member {member} is not in the member table")
+            if member in seen:
+                raise ConfigError(f"{source}: FillMList: member {member} is in more than one fill group")
+            seen.add(member)
+            index = hd["MemberID"].index(member)
+            if hd["MSecGeom"][index] != 1:
+                raise ConfigError(f"{source}: FillMList: member {member} is rectangular: filled rectangular members "
+                                  "are not supported")
+            if f"member{member}" not in by_name:  # wholly below the seabed: HydroDyn fills none of it
+                continue
+            walls = [float(hd["CylPropThck"][hd["CylPropSetID"].index(s)])
+                     for s in (hd["MPropSetID1"][index], hd["MPropSetID2"][index])]
+            by_name[f"member{member}"]["wall_thickness_m"] = walls[0]
+            if walls[1] != walls[0]:
+                by_name[f"member{member}"]["wall_thickness_b_m"] = walls[1]
+            names.append(f"member{member}")
+        if names:
+            groups.append({"members": names, "free_surface_z_m": surface, "density_kg_m3": density})
+    return {"fill_groups": groups} if groups else {}
 
 
 def _table_values(hd: dict, index: int, kind: str, names: tuple[str, ...], source: str) -> dict[str, Any]:
@@ -447,7 +489,7 @@ def platform_from_deck(hd: dict, name: str, source: str, water_density_kg_m3: fl
     model cannot represent."""
     _refuse_unsupported(hd, source)
     members = _above_seabed(hd, [_member(hd, i, source) for i in range(hd["NMembers"])], water_depth_m, source)
-    growth = _marine_growth(hd, source)
+    growth = {**_marine_growth(hd, source), **_fill_groups(hd, members, source, water_density_kg_m3)}
     if hd["PotMod"] == 1:
         flow, drift = _potential_flow(hd, source, water_density_kg_m3, gravity_m_s2)
         volume = flow["displaced_volume_m3"]

@@ -150,6 +150,14 @@ class Member:
     # circular only: free_surface hydrostatics wet each element section by section below the surface
     # plane at its midpoint (HydroDyn's MHstLMod 2); false: cut where the axis crosses the surface (MHstLMod 1)
     hydrostatics_by_section: bool = False
+    wall_thickness_m: float = 0.0  # circular only: the wall's thickness at end a (HydroDyn's PropThck; fill_groups)
+    wall_thickness_b_m: float | None = None  # circular only: at end b, where it differs from end a's
+
+    def inner_radius_at(self, fraction: float) -> float:
+        """Inner radius (circular: the diameter's half less the wall) at ``fraction`` of the way
+        from end a to end b, linear between the ends as HydroDyn's Rin."""
+        end_b = self.wall_thickness_m if self.wall_thickness_b_m is None else self.wall_thickness_b_m
+        return self.diameter_at(fraction) / 2 - (self.wall_thickness_m + fraction * (end_b - self.wall_thickness_m))
 
     @property
     def tapered(self) -> bool:
@@ -256,6 +264,18 @@ class MarineGrowthLevel:
 
 
 @dataclass(frozen=True)
+class FillGroup:
+    """Flooded (filled) members (HydroDyn's fill group: FillMList, FillFSLoc, FillDens): the
+    circular ``members`` hold fluid of ``density_kg_m3`` inside their walls up to the height
+    ``free_surface_z_m`` (relative to the still water level), or to their top if it is
+    higher (physics/fill.py)."""
+
+    members: tuple[str, ...]
+    free_surface_z_m: float
+    density_kg_m3: float
+
+
+@dataclass(frozen=True)
 class Platform:
     """A floating platform: environment, mass properties, Morison members and mooring
     (``load_platform`` reads one from a YAML file or the packaged platforms)."""
@@ -273,6 +293,7 @@ class Platform:
     potential_flow: PotentialFlow | None = None  # a WAMIT hull (HydroDyn's PotMod 1)
     linear_mooring: LinearMooring | None = None  # a mooring given as a 6x6 stiffness
     marine_growth: tuple[MarineGrowthLevel, ...] = ()  # by height, highest first (physics/marine_growth.py)
+    fill_groups: tuple[FillGroup, ...] = ()  # flooded members (physics/fill.py)
 
 
 @dataclass(frozen=True)
@@ -470,11 +491,11 @@ class _Fields:
             raise ConfigError(f"{self.at(name)}: must not be negative, got {value:g}")
         return value
 
-    def optional_number(self, name: str, *, positive: bool = False) -> float | None:
+    def optional_number(self, name: str, *, positive: bool = False, non_negative: bool = False) -> float | None:
         if self.data.get(name) is None:
             self.used.add(name)
             return None
-        return self.number(name, positive=positive)
+        return self.number(name, positive=positive, non_negative=non_negative)
 
     def vector(self, name: str, size: int = 3, default: Any = None) -> tuple[float, ...]:
         value = self._raw(name, _REQUIRED if default is None else default)
@@ -603,11 +624,12 @@ def _end_plate(f: _Fields, joint: bool = False) -> EndPlate:
 
 
 RECTANGULAR_ONLY = ("width_b_m", "height_b_m", "spin_deg")
+CIRCULAR_ONLY = ("diameter_b_m", "hydrostatics_by_section", "wall_thickness_m", "wall_thickness_b_m")
 
 
 def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
     section = f.text("section", choices=SECTIONS)
-    own = ("diameter_b_m", "hydrostatics_by_section") if section == "rectangular" else RECTANGULAR_ONLY
+    own = CIRCULAR_ONLY if section == "rectangular" else RECTANGULAR_ONLY
     for name in own:
         if f.data.get(name) is not None:
             raise ConfigError(f"{f.at(name)}: only for {'circular' if section == 'rectangular' else 'rectangular'} "
@@ -620,6 +642,8 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
     width_b, height_b = (f.optional_number(name, positive=True) if section == "rectangular" else None
                          for name in ("width_b_m", "height_b_m"))
     spin = f.number("spin_deg", 0.0) if section == "rectangular" else 0.0
+    wall = f.number("wall_thickness_m", 0.0, non_negative=True) if section == "circular" else 0.0
+    wall_b = f.optional_number("wall_thickness_b_m", non_negative=True) if section == "circular" else None
     f.used.update(own)
     taper_axial = _end_plate(f.sub("taper_axial")) if f.data.get("taper_axial") else EndPlate(0.0, 1.0, 0.0)
     f.used.add("taper_axial")
@@ -639,10 +663,12 @@ def _member(f: _Fields, bands: tuple[str, ...]) -> Member:
         end_b_plate=_end_plate(f.sub("end_b_plate"), joint=True) if f.data.get("end_b_plate") else None,
         diameter_b_m=diameter_b, taper_axial=taper_axial, width_b_m=width_b, height_b_m=height_b, spin_deg=spin,
         drag_only=_flag(f, "drag_only"), maccamy_fuchs=_flag(f, "maccamy_fuchs"),
-        hydrostatics_by_section=_flag(f, "hydrostatics_by_section"),
+        hydrostatics_by_section=_flag(f, "hydrostatics_by_section"), wall_thickness_m=wall, wall_thickness_b_m=wall_b,
         growth_zone=_zone(f.sub("growth_zone"), section, True, bands) if f.data.get("growth_zone") else None,
     )
     f.used.add("growth_zone")
+    if section == "circular" and min(member.inner_radius_at(0.0), member.inner_radius_at(1.0)) <= 0.0:
+        raise ConfigError(f"{f.at('wall_thickness_m')}: the wall must be thinner than the radius at both ends")
     if member.growth_zone is not None and section != "circular":
         raise ConfigError(f"{f.at('growth_zone')}: marine growth is supported on circular members only")
     if member.maccamy_fuchs and (section != "circular" or member.tapered or member.drag_only):
@@ -837,7 +863,8 @@ def platform_from_dict(data: Any, source: str = "platform", folder: Path | None 
         name=f.text("name"), description=f.text("description", ""), environment=env, mass=mass,
         hub_point_m=f.vector("hub_point_m"), members=members,
         mooring=mooring, drag_bands=drag_bands, drift_coefficients_n_m2=_drift_coefficients(f),
-        potential_flow=potential_flow, linear_mooring=linear_mooring, marine_growth=_marine_growth(f))
+        potential_flow=potential_flow, linear_mooring=linear_mooring, marine_growth=_marine_growth(f),
+        fill_groups=_fill_groups(f, members, env))
     f.used.update(k for k in f.data if k.endswith(("_zones", "_end")))  # YAML anchors' holders
     f.finish()
     return platform
@@ -857,6 +884,33 @@ def _marine_growth(f: _Fields) -> tuple[MarineGrowthLevel, ...]:
     if heights != sorted(heights, reverse=True) or len(set(heights)) < len(heights):
         raise ConfigError(f"{f.at('marine_growth')}: z_m must decrease from one row to the next, got {heights}")
     return tuple(rows)
+
+
+def _fill_groups(f: _Fields, members: tuple[Member, ...], env: Environment) -> tuple[FillGroup, ...]:
+    """The platform's fill groups: circular members of the platform, each in one group at most."""
+    if f.data.get("fill_groups") is None:
+        f.used.add("fill_groups")
+        return ()
+    sections = {m.name: m.section for m in members}
+    groups, seen = [], set()
+    for row in f.items("fill_groups"):
+        value = row.data.get("members")
+        row.used.add("members")
+        if not isinstance(value, list) or not value or not all(isinstance(name, str) for name in value):
+            raise ConfigError(f"{row.at('members')}: must be a list of member names")
+        for name in value:
+            if name not in sections:
+                raise ConfigError(f"{row.at('members')}: no member named {name!r}")
+            if sections[name] != "circular":
+                raise ConfigError(f"{row.at('members')}: member {name} is rectangular: filled members are supported "
+                                  "circular only")
+            if name in seen:
+                raise ConfigError(f"{row.at('members')}: member {name} is in more than one fill group")
+            seen.add(name)
+        groups.append(FillGroup(tuple(value), row.number("free_surface_z_m"),
+                                row.number("density_kg_m3", env.water_density_kg_m3, positive=True)))
+        row.finish()
+    return tuple(groups)
 
 
 def _cd_document(cd: DragCoefficients, bands: tuple[DragBand, ...]) -> float | dict:
@@ -906,6 +960,10 @@ def platform_document(platform: Platform) -> dict:
             size["maccamy_fuchs"] = True
         if m.hydrostatics_by_section:
             size["hydrostatics_by_section"] = True
+        if m.wall_thickness_m:
+            size["wall_thickness_m"] = m.wall_thickness_m
+        if m.wall_thickness_b_m is not None:
+            size["wall_thickness_b_m"] = m.wall_thickness_b_m
         if m.growth_zone is not None:
             size["growth_zone"] = _zone_document(m.growth_zone, m.section, bands)
         member = {"name": m.name, "section": m.section, **size, "end_a_m": list(m.end_a_m),
@@ -936,6 +994,9 @@ def platform_document(platform: Platform) -> dict:
         document["potential_flow"] = _potential_flow_document(platform.potential_flow, bands)
     if platform.marine_growth:
         document["marine_growth"] = [dict(vars(row)) for row in platform.marine_growth]
+    if platform.fill_groups:
+        document["fill_groups"] = [{"members": list(g.members), "free_surface_z_m": g.free_surface_z_m,
+                                    "density_kg_m3": g.density_kg_m3} for g in platform.fill_groups]
     if platform.linear_mooring is not None:
         lm = platform.linear_mooring
         document["linear_mooring"] = {"force_at_rest_n": list(lm.force_at_rest_n),

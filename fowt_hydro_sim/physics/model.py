@@ -57,7 +57,7 @@ from fowt_hydro_sim.physics.loads import (
     params_of,
 )
 from fowt_hydro_sim.physics.loads.extension import Extension
-from fowt_hydro_sim.physics.loads.hydrostatic import GROWTH, RECORDS, Hydrostatics, growth_wrench, hydrostatics
+from fowt_hydro_sim.physics.loads.hydrostatic import Hydrostatics, carried_wrench, hydrostatics
 from fowt_hydro_sim.physics.marine_growth import grown_platform, growth_mass
 from fowt_hydro_sim.physics.mooring.catenary_tables import MOORPY, SPAN_H_M, SPAN_V_M, line_forces
 from fowt_hydro_sim.physics.mooring.moordyn_lines import MoorDynLines
@@ -165,9 +165,11 @@ class PlatformModel:
         if user_force is not None and not callable(user_force):
             raise ConfigError(f"user force: need a function f(t, position, velocity), got {user_force!r}")
         self.user_force = user_force
-        # marine growth: the members grown (cut at the table's rows), its mass on the hydrostatic component
+        # marine growth: the members grown (cut at the table's rows), its mass on the hydrostatic component,
+        # as the fill's loads and mass (of the members as given)
         growth = growth_mass(platform)
-        platform = replace(grown_platform(platform), marine_growth=(),
+        filled = platform
+        platform = replace(grown_platform(platform), marine_growth=(), fill_groups=(),
                            mooring=platform.mooring.chosen(mooring_model))
         if platform.mooring.model == "linear" and platform.linear_mooring is None:
             raise ConfigError(f"mooring linear: platform {platform.name} has no linear_mooring")
@@ -189,7 +191,7 @@ class PlatformModel:
         bands = platform.drag_bands if drag_model == "filtered" else ()
         self.drag_bands = tuple(b.name for b in bands)
         self.filter_bank: StateSpace = bank_state_space(bands)
-        self.hydrostatics: Hydrostatics = hydrostatics(platform, self.geometry.strips, growth)
+        self.hydrostatics: Hydrostatics = hydrostatics(platform, self.geometry.strips, growth, filled)
         env = platform.environment
         n_points = len(self.geometry.points_m)
         self._blocks: BlocksAhead | None = None  # the blocked table's blocks
@@ -625,21 +627,23 @@ class PlatformModel:
             out[:, ROW["hydrostatic"]] = free_surface.prescribed_motion_wrenches(
                 free_surface.platform_members(self.platform), eta, time_s, motion,
                 env.water_density_kg_m3, env.gravity_m_s2)
-            if self.hydrostatics.growth[0] > 0:  # the kernel's row also held the growth's weight and inertia
-                out[:, ROW["hydrostatic"]] += self._growth_loads(time_s, states, acceleration)
+            if self.hydrostatics.growth[0] > 0 or len(self.hydrostatics.fill_records):
+                # the kernel's row also held the growth's weight, the fill's end-cap loads and their inertia
+                out[:, ROW["hydrostatic"]] += self._carried_loads(time_s, states, acceleration)
         if self.user_force is not None:
             out[:, ROW["user"]] = [self._user_wrench(t, y) for t, y in zip(time_s, states)]
         return out
 
-    def _growth_loads(self, time_s: np.ndarray, states: np.ndarray, acceleration: np.ndarray) -> np.ndarray:
-        """(n, 6): the marine growth's weight and inertial reaction along the motion, as the
-        hydrostatic component's kernel adds them."""
+    def _carried_loads(self, time_s: np.ndarray, states: np.ndarray, acceleration: np.ndarray) -> np.ndarray:
+        """(n, 6): the marine growth's weight, the fill's end-cap loads and their inertial
+        reaction along the motion, as the hydrostatic component's kernel adds them."""
         params = params_of("hydrostatic", self._data.component_params)
         out = np.zeros((time_s.size, 6))
         mass = np.zeros((6, 6))
         for i, y in enumerate(states):
             rotation = rotation_matrix(y[3], y[4], y[5])
-            growth_wrench(y, rotation, params[GROWTH:RECORDS], out[i], mass)
+            mass[:] = 0.0
+            carried_wrench(y, rotation, params, out[i], mass)
             out[i] -= mass @ acceleration[i]
         return out
 

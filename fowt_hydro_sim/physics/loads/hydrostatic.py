@@ -55,12 +55,13 @@ Gravity acts separately at the centre of gravity.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
 
 from fowt_hydro_sim.physics.config import ConfigError, Member, Platform
+from fowt_hydro_sim.physics.fill import FILL_RECORD, fill_mass, fill_records, fill_wrench
 from fowt_hydro_sim.physics.jit import step_loop
 from fowt_hydro_sim.physics.strips import Strips, member_directions
 
@@ -83,6 +84,10 @@ class Hydrostatics:
     waterplane_error: str | None = None  # why the platform has no linear waterplane, if it has none
     # marine growth's mass [kg], centroid (body) [m] and inertia about it [kg m^2] (physics/marine_growth.py)
     growth: tuple[float, np.ndarray, np.ndarray] = (0.0, np.zeros(3), np.zeros((3, 3)))
+    # the fill's mass [kg], centroid (body) [m], inertia about it [kg m^2] and end-cap records (physics/fill.py)
+    fill: tuple[float, np.ndarray, np.ndarray] = (0.0, np.zeros(3), np.zeros((3, 3)))
+    fill_records: np.ndarray = field(default_factory=lambda: np.zeros((0, FILL_RECORD)))
+    gravity_m_s2: float = 9.80665
 
 
 def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
@@ -116,12 +121,16 @@ def _waterplane(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
     return area, first, second
 
 
-def hydrostatics(platform: Platform, strips: Strips,
-                 growth: tuple[float, np.ndarray, np.ndarray] | None = None) -> Hydrostatics:
+def hydrostatics(platform: Platform, strips: Strips, growth: tuple[float, np.ndarray, np.ndarray] | None = None,
+                 filled: Platform | None = None) -> Hydrostatics:
     """The platform's displaced volume, centre of buoyancy, waterplane and restoring matrix
-    (strips: its discretisation); ``growth``: its marine growth's mass properties, carried
-    by this component (physics/marine_growth.py)."""
+    (strips: its discretisation); ``growth``: its marine growth's mass properties, and
+    ``filled``: the platform whose fill groups the component carries (physics/fill.py; the
+    platform before its members were grown)."""
     growth = growth or (0.0, np.zeros(3), np.zeros((3, 3)))
+    carried = {"growth": growth, "gravity_m_s2": platform.environment.gravity_m_s2}
+    if filled is not None and filled.fill_groups:
+        carried.update(fill=fill_mass(filled), fill_records=fill_records(filled))
     env = platform.environment
     rho_g = env.water_density_kg_m3 * env.gravity_m_s2
     submerged = strips.centre_m[:, 2] < 0.0  # strips are cut at the water line
@@ -135,7 +144,7 @@ def hydrostatics(platform: Platform, strips: Strips,
         force = np.array([0.0, 0.0, rho_g * volume])
         return Hydrostatics(volume, centre, math.nan, np.full(2, math.nan), np.full((2, 2), math.nan),
                             np.concatenate([force, np.cross(centre, force)]), np.full((6, 6), math.nan), str(exc),
-                            growth)
+                            **carried)
     c = np.zeros((6, 6))
     c[2, 2] = rho_g * area
     c[2, 3] = c[3, 2] = rho_g * first[1]
@@ -147,7 +156,7 @@ def hydrostatics(platform: Platform, strips: Strips,
     c[4, 5] = -rho_g * volume * centre[1]
     force = np.array([0.0, 0.0, rho_g * volume])
     wrench = np.concatenate([force, np.cross(centre, force)])
-    return Hydrostatics(volume, centre, area, first, second, wrench, c, None, growth)
+    return Hydrostatics(volume, centre, area, first, second, wrench, c, None, **carried)
 
 
 def section_quadrature(member: Member, fraction: float = 0.0,
@@ -338,21 +347,44 @@ def _add_lines(rotation: np.ndarray, position_z_m: float, lines: np.ndarray, fir
 MODES = {"linear": 0.0, "nonlinear": 1.0, "free_surface": 0.0}
 
 
-GROWTH = 44  # params[44:58]: the marine growth's mass, weight, centroid (3), inertia about it (9)
-RECORDS = 58
+GROWTH = 44  # params[44:61]: the carried mass (marine growth and fill): mass, the growth's weight, the mass's
+# centroid (3), its inertia about it (9), the growth's centroid (3, where its weight acts)
+FILL = 61  # params[61]: the number of filled members, then their records (physics/fill.py)
+
+
+@njit(cache=True, inline="always")
+def records_start(params: np.ndarray) -> int:
+    """Where the nonlinear hydrostatics' member records start in the parameters."""
+    return FILL + 1 + FILL_RECORD * int(params[FILL])
+
+
+def carried_mass(h: Hydrostatics) -> np.ndarray:
+    """The marine growth and the fill as one rigid body, and the growth's weight: the
+    parameters' block at GROWTH."""
+    (mg, cg, ig), (mf, cf, i_f) = h.growth, h.fill
+    mass = mg + mf
+    if mass <= 0.0:
+        return np.zeros(FILL - GROWTH)
+    centre = (mg * cg + mf * cf) / mass
+    inertia = np.zeros((3, 3))
+    for m, c, i in ((mg, cg, ig), (mf, cf, i_f)):
+        d = np.asarray(c) - centre
+        inertia += i + m * (d @ d * np.eye(3) - np.outer(d, d))
+    return np.concatenate([[mass, mg * h.gravity_m_s2], centre, np.ravel(inertia), cg])
 
 
 def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
-    """[mode (0 linear, 1 nonlinear), rho g, W0 (6), C (36), the marine growth (14), and,
-    nonlinear, the member records] and, nonlinear, the quadrature lines (member_records)."""
+    """[mode (0 linear, 1 nonlinear), rho g, W0 (6), C (36), the carried mass (17), the fill's
+    records (a count, then FILL_RECORD each), and, nonlinear, the member records] and,
+    nonlinear, the quadrature lines (member_records)."""
     h, env = inputs.hydrostatics, inputs.platform.environment
     mode = inputs.options.hydrostatics
     if mode == "linear" and h.waterplane_error:
         raise ConfigError(f"hydrostatics 'linear': {h.waterplane_error}; use nonlinear or free_surface")
     linear = (h.buoyancy_wrench, h.stiffness.ravel()) if mode == "linear" else (np.zeros(6), np.zeros(36))
-    mass, centroid, inertia = h.growth
-    growth = np.concatenate([[mass, mass * env.gravity_m_s2], centroid, np.ravel(inertia)])
-    params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], *linear, growth])
+    fill = [[len(h.fill_records)], np.ravel(h.fill_records)]
+    params = np.concatenate([[MODES[mode], env.water_density_kg_m3 * env.gravity_m_s2], *linear, carried_mass(h),
+                             *fill])
     if mode != "nonlinear":
         return params, np.zeros((1, 1))
     records, lines = member_records(inputs.platform)
@@ -360,15 +392,30 @@ def parameters(inputs) -> tuple[np.ndarray, np.ndarray]:
 
 
 @njit(cache=True)
+def carried_wrench(y: np.ndarray, rotation: np.ndarray, params: np.ndarray, out: np.ndarray,
+                   mass: np.ndarray) -> None:
+    """The marine growth's weight and the fill's end-cap loads (physics/fill.py) into ``out``,
+    and the rigid-body mass of both (HydroDyn's F_IMG and F_If) into ``mass`` with its
+    velocity terms into ``out``; ``params`` the hydrostatic component's."""
+    if params[GROWTH] > 0.0:
+        growth_wrench(y, rotation, params[GROWTH:FILL], out, mass)
+    if params[FILL] > 0.0:
+        fill_wrench(y, rotation, params[FILL + 1:records_start(params)], out)
+
+
+@njit(cache=True)
 def growth_wrench(y: np.ndarray, rotation: np.ndarray, growth: np.ndarray, out: np.ndarray,
                   mass: np.ndarray) -> None:
-    """The marine growth's weight at its displaced centroid and its velocity terms (-bias)
-    into ``out``, its rigid-body mass matrix about the reference point (world axes) into
-    ``mass``: HydroDyn's F_WMG and F_IMG. (Written out: no temporaries in the step loop.)"""
+    """The carried mass's rigid-body mass matrix about the reference point (world axes) into
+    ``mass`` and its velocity terms (-bias) into ``out``, and the marine growth's weight at its
+    displaced centroid: HydroDyn's F_WMG, F_IMG and F_If. (Written out: no temporaries in the
+    step loop.)"""
     m, weight = growth[0], growth[1]
     g0 = rotation[0, 0] * growth[2] + rotation[0, 1] * growth[3] + rotation[0, 2] * growth[4]
     g1 = rotation[1, 0] * growth[2] + rotation[1, 1] * growth[3] + rotation[1, 2] * growth[4]
     g2 = rotation[2, 0] * growth[2] + rotation[2, 1] * growth[3] + rotation[2, 2] * growth[4]
+    p0 = rotation[0, 0] * growth[14] + rotation[0, 1] * growth[15] + rotation[0, 2] * growth[16]
+    p1 = rotation[1, 0] * growth[14] + rotation[1, 1] * growth[15] + rotation[1, 2] * growth[16]
     w0, w1, w2 = y[9], y[10], y[11]
     for i in range(3):  # R I_c R^T into the rotational block
         for j in range(3):
@@ -387,14 +434,14 @@ def growth_wrench(y: np.ndarray, rotation: np.ndarray, growth: np.ndarray, out: 
             mass[i, 3 + j] = -m * skew[i][j]
             mass[3 + i, j] = m * skew[i][j]
             mass[3 + i, 3 + j] -= m * (skew[i][0] * skew[0][j] + skew[i][1] * skew[1][j] + skew[i][2] * skew[2][j])
-    # centripetal w x (w x g), gyroscopic w x (I w), and g x centripetal
+    # centripetal w x (w x g), gyroscopic w x (I w), and g x centripetal; the weight at the growth's centroid
     wg0, wg1, wg2 = w1 * g2 - w2 * g1, w2 * g0 - w0 * g2, w0 * g1 - w1 * g0
     c0, c1, c2 = w1 * wg2 - w2 * wg1, w2 * wg0 - w0 * wg2, w0 * wg1 - w1 * wg0
     out[0] -= m * c0
     out[1] -= m * c1
     out[2] -= m * c2 + weight
-    out[3] -= (w1 * iw2 - w2 * iw1) + m * (g1 * c2 - g2 * c1) + g1 * weight
-    out[4] -= (w2 * iw0 - w0 * iw2) + m * (g2 * c0 - g0 * c2) - g0 * weight
+    out[3] -= (w1 * iw2 - w2 * iw1) + m * (g1 * c2 - g2 * c1) + p1 * weight
+    out[4] -= (w2 * iw0 - w0 * iw2) + m * (g2 * c0 - g0 * c2) - p0 * weight
     out[5] -= (w0 * iw1 - w1 * iw0) + m * (g0 * c1 - g1 * c0)
 
 
@@ -403,9 +450,8 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
            out: np.ndarray, mass: np.ndarray) -> None:
     """Linear: W0 - C q about the undisplaced position. Nonlinear: rho g V_sub through the
     displaced centre of buoyancy, about the displaced reference point. Either with the marine
-    growth's weight and mass, if any."""
-    if params[GROWTH] > 0.0:
-        growth_wrench(y, rotation, params[GROWTH:RECORDS], out, mass)
+    growth's weight, the fill's end-cap loads and their mass, if any."""
+    carried_wrench(y, rotation, params, out, mass)
     if params[0] == 0.0:
         for i in range(6):  # written out: no temporaries in the step loop
             acc = params[2 + i]
@@ -413,7 +459,7 @@ def wrench(t: float, y: np.ndarray, rotation: np.ndarray, params: np.ndarray, ta
                 acc -= params[8 + 6 * i + j] * y[j]
             out[i] += acc
         return
-    volume, moment = _members_volume(rotation, y[2], params[RECORDS:], table)
+    volume, moment = _members_volume(rotation, y[2], params[records_start(params):], table)
     if volume <= 0.0:
         return
     force = params[1] * volume
