@@ -28,7 +28,7 @@ MAY_IMPORT: dict[str, set[str]] = {
     "settings": {"errors"},
     "msg_adapters": {"frames"},
     "physics": BASICS,
-    "turbine": BASICS | {"physics"},
+    "turbine": BASICS | {"physics", "io"},  # (the field's turbine files: AeroDyn's tower table)
     "io": BASICS | {"physics"},
     "rosbag": BASICS | {"msg_adapters"},
     "studies": BASICS | {"physics", "turbine", "rosbag", "io", "msg_adapters"},

@@ -7,7 +7,6 @@ step. Every entry point the model calls from Python (the set-up's derivative, th
 loop, the analyses' static loads, strip velocities, prescribed motion and displaced kinematics) is called here
 once with the argument types of a real run; the argument types do not depend on the
 platform, the drag model or the waves, so one warm-up serves every later run in any process.
-The coupled loop's tower drag is compiled here too.
 """
 from __future__ import annotations
 
@@ -36,15 +35,6 @@ def _prescribed(model: PlatformModel) -> None:
     model.prescribed_motion_loads(t, np.zeros((4, 6)), np.zeros((4, 6)), np.zeros((4, 6)))
 
 
-def _tower_drag() -> None:
-    """The coupled loop's own kernel: the wind's drag on a tower."""
-    from fowt_hydro_sim.io.aerodyn import TowerTable
-    from fowt_hydro_sim.turbine.tower import tower_drag, tower_points
-
-    table = TowerTable(np.array([10.0, 100.0]), np.array([6.0, 4.0]), np.array([0.5, 0.5]))
-    tower_drag(tower_points(table, 100.0, 0.1), 1.225, 10.0, 0.0, 0.0, 0.0)
-
-
 def entry_points() -> dict[str, Callable[[dict], None]]:
     """What to call, by name, in order; each step may use the models made before (``made``)."""
     return {
@@ -55,7 +45,6 @@ def entry_points() -> dict[str, Callable[[dict], None]]:
         "prescribed motion": lambda made: _prescribed(_model("constant")),
         "displaced kinematics": lambda made: moving_point_kinematics(
             made["filtered"].waves, np.zeros((1, 3)), np.zeros(1), 100.0, 9.81, 1025.0),
-        "tower drag (coupled loop)": lambda made: _tower_drag(),
     }
 
 
