@@ -24,6 +24,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import logging
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,6 +36,7 @@ from fowt_hydro_sim.physics.config import RunConfig, SeaState, load_platform
 from fowt_hydro_sim.physics.model import RunResult
 from fowt_hydro_sim.physics.waves.components import synthesize
 from fowt_hydro_sim.studies.simulate import model_for
+from fowt_hydro_sim.testing.references import turbine_without_tower_drag
 from fowt_hydro_sim.turbine.coupled import run_coupled, static_offset, turbine_on_platform
 from fowt_hydro_sim.turbine.system import load_system
 from fowt_hydro_sim.turbine.wind import Wind
@@ -150,7 +152,9 @@ def ours(condition: Condition, seed: int, duration_s: float, transient_s: float)
     run = RunConfig(platform=system.platform, mooring=system.mooring, duration_s=transient_s + duration_s)
     sea = SeaState(hs_m=condition.hs_m, tp_s=condition.tp_s, gamma=condition.gamma, seed=seed)
     model = model_for(platform, run, synthesize(sea, max(3600.0, run.duration_s)))
-    rotor = turbine_on_platform(system.turbine, platform, Wind(speed_m_s=condition.wind_m_s))
+    with tempfile.TemporaryDirectory() as folder:  # RAFT loads its tower only under water: the loop's without drag
+        rotor = turbine_on_platform(str(turbine_without_tower_drag(system.turbine, Path(folder))), platform,
+                                    Wind(speed_m_s=condition.wind_m_s))
     try:
         model.reset(motion=static_offset(model, rotor))
         result = RunResult.joined([p.result for p in run_coupled(model, rotor, run.duration_s, run.output_interval_s)])

@@ -10,7 +10,9 @@ error of an STD estimated from n independent cycles, 2 / sqrt(2 n), with n the r
 length over the DOF's dominant period: the surge mode's for surge (106 s, 0.0094 Hz, the
 loop's free decay at 13 m/s in docs/validation.md; 118 s at 19 m/s: the shorter period, the
 smaller allowance, is taken), the sea's peak period (12 s) for heave and pitch.
-Surge STD within 15 % + 57 %, heave and pitch STDs within 15 % + 29 %, means within 15 %."""
+Surge STD within 15 % + 57 %, heave and pitch STDs within 15 % + 29 %, means within 15 %.
+RAFT loads its tower only under water: the loop runs without the wind's drag on the tower here
+(with it, the surge mean is 15.3 % above RAFT's at 18 m/s)."""
 from __future__ import annotations
 
 import math
@@ -56,7 +58,7 @@ def raft() -> dict:
 
 
 @pytest.fixture(scope="module")
-def ours(raft: dict) -> dict[str, float]:
+def ours(raft: dict, tmp_path_factory) -> dict[str, float]:
     from fowt_hydro_sim.physics.config import RunConfig, SeaState, load_platform
     from fowt_hydro_sim.physics.model import RunResult
     from fowt_hydro_sim.physics.waves.components import synthesize
@@ -71,7 +73,10 @@ def ours(raft: dict) -> dict[str, float]:
     run = RunConfig(platform=system.platform, mooring=system.mooring, duration_s=TRANSIENT_S + RECORD_S)
     sea = SeaState(hs_m=case["hs_m"], tp_s=case["tp_s"], gamma=case["gamma"], seed=SEED)
     model = model_for(platform, run, synthesize(sea, 3600.0))
-    rotor = turbine_on_platform(system.turbine, platform, Wind(speed_m_s=case["wind_speed_m_s"]))
+    from fowt_hydro_sim.testing.references import turbine_without_tower_drag
+
+    turbine = str(turbine_without_tower_drag(system.turbine, tmp_path_factory.mktemp("turbine")))
+    rotor = turbine_on_platform(turbine, platform, Wind(speed_m_s=case["wind_speed_m_s"]))
     try:
         model.reset(motion=static_offset(model, rotor))
         result = RunResult.joined([p.result for p in run_coupled(model, rotor, run.duration_s, run.output_interval_s)])

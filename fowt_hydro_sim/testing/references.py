@@ -51,3 +51,19 @@ def reference_motion() -> np.ndarray:
     dofs = (x, gen.harmonic(t, 0.02, 0.02), gen.harmonic(t, 0.6, 0.07, 0.3), gen.harmonic(t, 0.02, 0.02),
             gen.harmonic(t, 0.04, 0.035, 0.5), gen.harmonic(t, 0.02, 0.02))
     return np.column_stack([t] + [dof[order] for order in range(3) for dof in dofs])
+
+
+RAFT_UNMODELLED = ("tower_aerodyn", "wind_shear_exponent")  # RAFT loads its tower only under water
+
+
+def turbine_without_tower_drag(turbine: str, folder: Path) -> Path:
+    """A turbine file in ``folder``: the packaged ``turbine`` without the wind's drag on its
+    tower (RAFT, whose response it is compared with, has none)."""
+    import yaml
+
+    from fowt_hydro_sim.turbine.description import turbine_path
+
+    data = yaml.safe_load(turbine_path(turbine).read_text())
+    path = folder / f"{turbine}_without_tower_drag.yaml"
+    path.write_text(yaml.safe_dump({k: v for k, v in data.items() if k not in RAFT_UNMODELLED}))
+    return path
