@@ -28,9 +28,10 @@ is the member's, which HydroDyn requires within 10 % of SeaState's MCFD). Marine
 (MGDepths: MGDpth, MGThck, MGDens) is the platform's ``marine_growth`` table, and each circular
 member's MG coefficients (CdMG, CaMG, CpMG; CbMG 1) its ``growth_zone``
 (physics/marine_growth.py); the axial MG coefficients are not read (the grown pieces' tapered
-walls take the member's own). Filled members (NFillGroups: FillMList, FillFSLoc, FillDens, its
-DEFAULT the water's density) are the platform's ``fill_groups``, each filled member keeping its
-wall (PropThck) as ``wall_thickness_m`` (physics/fill.py).
+walls, where the growth tapers between two nodes, take the member's own AxCa, AxCp, AxCd).
+Filled members (NFillGroups: FillMList, FillFSLoc, FillDens, its DEFAULT the water's density)
+are the platform's ``fill_groups``, each filled member keeping its wall (PropThck) as
+``wall_thickness_m`` (physics/fill.py).
 
 Decks of the OpenFAST 3.x layouts (the deck's own water depth and density, one cross-section
 table, coefficient tables without Cb, members without MSecGeom, MSpinOrient, MHstLMod) are first
@@ -327,6 +328,7 @@ def _member(hd: dict, index: int, source: str) -> dict:
         size["hydrostatics_by_section"] = True
     if hd["NMGDepths"] > 0 and circular:  # the coefficients of its nodes with growth (MG columns)
         size["growth_zone"] = _growth_zone(hd, index, source)
+        size["taper_axial"] = taper_axial  # the axial terms of the growth's taper between its nodes
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
            "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),
            "zones": [{"name": "all", **coefficients}]}
