@@ -1,8 +1,10 @@
 """Marine growth (``physics/marine_growth.py``, HydroDyn's MGDepths) against closed forms on a
 vertical cylinder with a growth layer: the table's interpolation, the layer's mass, centroid
 and the hydrostatic component's weight, buoyancy and inertial reaction, and the fluid
-inertia on the grown diameter with the growth coefficients; the platform document and the
-HydroDyn importer carry the table."""
+inertia on the grown diameter with the growth coefficients, the growth tapering over the
+elements that hold the table's ends as HydroDyn's nodes give it (its axial added mass there)
+and a joint plate's growth end mass; the platform document and the HydroDyn importer carry the
+table."""
 from __future__ import annotations
 
 import dataclasses
@@ -48,7 +50,14 @@ def column(table=TABLE, growth_ca: float = 1.5):
     return dataclasses.replace(p, members=(member,), environment=env, marine_growth=table)
 
 
-LAYER = RHO_MG * math.pi * ((R + T) ** 2 - R**2) * (TOP - BOTTOM)  # the layer's mass, closed form
+LAYER = RHO_MG * math.pi * ((R + T) ** 2 - R**2) * (TOP - BOTTOM)  # the layer's mass between the rows, closed form
+# HydroDyn's nodes, every 0.25 m (the strip length) from z = -20 m: the grown radius tapers over the element holding
+# each table end, from R + T at -2 m to R at -1.75 m and from R at -15.25 m to R + T at -15 m
+H = 0.25
+TAPER_VOLUME = math.pi * H * (R * T + T**2 / 3)  # int pi ((R + t)^2 - R^2) dz, t linear from T to 0 over H
+TAPER_RISE = H * (R * T / 3 + T**2 / 12) / (R * T + T**2 / 3)  # its centroid above the end where t = T
+# each element takes the density of its lower node: the upper taper's (-2 m) is RHO_MG, the lower one's (-15.25 m) 0
+GROWTH = LAYER + RHO_MG * TAPER_VOLUME
 
 
 def test_thickness_and_density_follow_hydrodyns_table():
@@ -59,20 +68,56 @@ def test_thickness_and_density_follow_hydrodyns_table():
 
 
 def test_growth_mass_and_centroid_are_the_layers():
+    """The layer between the rows and HydroDyn's tapers at their ends (closed forms), the inertia
+    against a fine midpoint sum of thick rings (20000 slices)."""
     mass, centroid, inertia = growth_mass(column())
-    assert mass == pytest.approx(LAYER, rel=1e-12)
-    assert np.allclose(centroid, [X, 0.0, (TOP + BOTTOM) / 2], atol=1e-12)
-    # about its own axis a thick ring: m (Ro^2 + Ri^2) / 2; transverse: m ((Ro^2 + Ri^2) / 4 + L^2 / 12)
-    ring = (R + T) ** 2 + R**2
-    assert inertia[2, 2] == pytest.approx(LAYER * ring / 2, rel=1e-12)
-    assert inertia[0, 0] == pytest.approx(LAYER * (ring / 4 + (TOP - BOTTOM) ** 2 / 12), rel=1e-10)
+    assert mass == pytest.approx(GROWTH, rel=1e-12)
+    z_c = (LAYER * (TOP + BOTTOM) / 2 + RHO_MG * TAPER_VOLUME * (TOP + TAPER_RISE)) / GROWTH
+    assert np.allclose(centroid, [X, 0.0, z_c], atol=1e-12)
+    z = np.linspace(BOTTOM, TOP + H, 20001)
+    z = (z[1:] + z[:-1]) / 2
+    t = np.interp(z, [BOTTOM, TOP, TOP + H], [T, T, 0.0])
+    dm = RHO_MG * math.pi * ((R + t) ** 2 - R**2) * (z[1] - z[0])
+    ring = (R + t) ** 2 + R**2
+    assert inertia[2, 2] == pytest.approx(np.sum(dm * ring / 2), rel=1e-7)
+    assert inertia[0, 0] == pytest.approx(np.sum(dm * (ring / 4 + (z - z_c) ** 2)), rel=1e-7)
 
 
-def test_member_is_cut_at_the_table_and_grown_in_between():
+def test_member_is_cut_at_hydrodyns_nodes_and_tapers_over_the_elements_holding_the_rows():
     pieces = grown_platform(column()).members
-    assert [(p.end_a_m[2], p.end_b_m[2]) for p in pieces] == [(-20.0, BOTTOM), (BOTTOM, TOP), (TOP, 5.0)]
-    assert [p.width_m for p in pieces] == [2 * R, 2 * (R + T), 2 * R]
-    assert [p.zones[0].ca[0] for p in pieces] == [1.0, 1.5, 1.0]
+    heights = [(-20.0, BOTTOM - H), (BOTTOM - H, BOTTOM), (BOTTOM, TOP), (TOP, TOP + H), (TOP + H, 5.0)]
+    assert np.array([(p.end_a_m[2], p.end_b_m[2]) for p in pieces]) == pytest.approx(np.array(heights), abs=1e-12)
+    assert [p.width_m for p in pieces] == pytest.approx([2 * R, 2 * R, 2 * (R + T), 2 * (R + T), 2 * R], abs=1e-12)
+    assert [p.diameter_b_m for p in pieces] == [None, pytest.approx(2 * (R + T)), None, pytest.approx(2 * R), None]
+    assert [p.zones[0].ca[0] for p in pieces] == [1.0, 1.5, 1.5, 1.5, 1.0]
+
+
+def test_the_growths_tapers_carry_the_axial_added_mass_in_heave():
+    """With the member's AxCa 1 each taper of the growth adds HydroDyn's axial added mass
+    2 rho AxCa pi R^2 |dR/dl| over its length, rho 2 pi ((R + T)^3 - R^3) / 3 integrated (closed
+    form; one strip each, its midpoint: within 1e-3), under a heave acceleration."""
+    base = column()
+    member = dataclasses.replace(base.members[0], taper_axial=EndPlate(ca=1.0, cp=1.0, cd=0.0))
+    model = PlatformModel(dataclasses.replace(base, members=(member,)), options=HYDRODYN)
+    still, heave = np.zeros((2, 6)), np.zeros((2, 6))
+    heave[1, 2] = 0.3
+    load = model.prescribed_motion_loads(np.array([0.0, 0.1]), still, still, heave)[:, ROW["added_mass"]]
+    expected = -2 * RHO * 2 * math.pi / 3 * ((R + T) ** 3 - R**3) * 0.3
+    assert load[1, 2] - load[0, 2] == pytest.approx(expected, rel=1e-3)
+
+
+def test_a_joint_plate_under_growth_carries_hydrodyns_end_mass():
+    """A plate at the column's lower end (z = -20 m) inside a growth table reaching it: the growth's
+    mass there is rho_mg t |An| with An the end's grown area pi (R + t)^2 (HydroDyn's Mass_MG_End),
+    a point mass at the end; without the plate none."""
+    table = (MarineGrowthLevel(TOP, T, RHO_MG), MarineGrowthLevel(-30.0, T, RHO_MG))
+    bare = column(table)
+    plate = EndPlate(ca=1.0, cp=1.0, cd=0.0)
+    plated = dataclasses.replace(bare, members=(dataclasses.replace(bare.members[0], end_a_plate=plate),))
+    (m0, c0, _), (m1, c1, _) = growth_mass(bare), growth_mass(plated)
+    end = RHO_MG * T * math.pi * (R + T) ** 2
+    assert m1 - m0 == pytest.approx(end, rel=1e-12)
+    assert (m1 * c1 - m0 * c0) / end == pytest.approx([X, 0.0, -20.0], abs=1e-9)
 
 
 @pytest.mark.parametrize("hydrostatics", ["nonlinear", "free_surface"])
@@ -83,17 +128,18 @@ def test_hydrostatic_component_carries_buoyancy_weight_and_inertia_of_the_layer(
     still, heave = np.zeros((2, 6)), np.zeros((2, 6))
     heave[1, 2] = 0.3
     load = model.prescribed_motion_loads(np.array([0.0, 0.1]), still, still, heave)[:, ROW["hydrostatic"]]
-    volume_layer = LAYER / RHO_MG
-    fz = RHO * G * math.pi * R**2 * 20.0 + (RHO - RHO_MG) * G * volume_layer
+    volume_layer = LAYER / RHO_MG + 2 * TAPER_VOLUME  # both tapers displace water, one has growth mass
+    fz = RHO * G * (math.pi * R**2 * 20.0 + volume_layer) - G * GROWTH
     assert load[0, 2] == pytest.approx(fz, rel=1e-9)
     assert load[0, 4] == pytest.approx(-X * fz, rel=1e-9)
-    assert load[1, 2] - load[0, 2] == pytest.approx(-LAYER * 0.3, rel=1e-9)
+    assert load[1, 2] - load[0, 2] == pytest.approx(-GROWTH * 0.3, rel=1e-9)
 
 
 def test_fluid_inertia_takes_the_grown_diameter_and_the_growth_coefficients():
     """A regular wave (T 8 s, H 2 m), at rest, undisplaced: the inertia force's amplitude is
     the integral of rho Cm pi r(z)^2 a(z) over the wetted column, Cm = 2 bare and 2.5 grown,
-    r = R + T between the table's rows (closed form of the cosh profile), within 1e-4."""
+    r = R + T between the table's rows (closed form of the cosh profile) and tapering to R over
+    the elements holding them (HydroDyn's nodes; a fine trapezoid sum there), within 1e-4."""
     period, height = 8.0, 2.0
     waves = WaveComponents(np.array([1 / period]), np.array([height / 2]), np.zeros(1), np.zeros(1), period)
     t = np.arange(20) * period / 20
@@ -106,9 +152,16 @@ def test_fluid_inertia_takes_the_grown_diameter_and_the_growth_coefficients():
     def profile(z0: float, z1: float) -> float:  # int cosh k(z+h) / sinh kh dz
         return (math.sinh(k * (z1 + DEPTH)) - math.sinh(k * (z0 + DEPTH))) / (k * math.sinh(k * DEPTH))
 
+    def tapered(z0: float, z1: float, r0: float, r1: float) -> float:  # int r(z)^2 cosh k(z+h) / sinh kh dz
+        z = np.linspace(z0, z1, 2001)
+        f = np.interp(z, [z0, z1], [r0, r1]) ** 2 * np.cosh(k * (z + DEPTH)) / math.sinh(k * DEPTH)
+        return float(np.sum((f[1:] + f[:-1]) / 2) * (z[1] - z[0]))
+
     acc = omega**2 * height / 2
-    amplitude = RHO * math.pi * acc * (2.0 * R**2 * (profile(-20.0, BOTTOM) + profile(TOP, 0.0))
-                                       + 2.5 * (R + T) ** 2 * profile(BOTTOM, TOP))
+    amplitude = RHO * math.pi * acc * (2.0 * R**2 * (profile(-20.0, BOTTOM - H) + profile(TOP + H, 0.0))
+                                       + 2.5 * (R + T) ** 2 * profile(BOTTOM, TOP)
+                                       + 2.5 * tapered(BOTTOM - H, BOTTOM, R, R + T)
+                                       + 2.5 * tapered(TOP, TOP + H, R + T, R))
     phase = np.sin(omega * t - k * X)
     assert np.max(np.abs(fx + amplitude * phase)) < 1e-4 * amplitude
 

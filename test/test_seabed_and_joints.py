@@ -182,3 +182,29 @@ def test_a_leg_joint_with_one_brace_keeps_the_brace_plate_alone():
                                                          DEPTH_M)["members"]}
     assert "end_b_plate" not in by_name["member4"] and "end_a_plate" not in by_name["member7"]
     assert by_name["member13"]["end_a_plate"] == {"ca": 1.0, "cp": 1.0, "cd": 1.0}
+
+
+def test_a_joint_under_marine_growth_sums_the_grown_ends(tmp_path):
+    """The V of two braces under marine growth (0.1 m thick from z = -10 to -30 m): HydroDyn sums the
+    ends at the joint on their grown radii (Morison_Init: RMG = r + t at the joint), An = pi (r + t)^2
+    (n1 + n2), Vn = 2 pi (r + t)^3 / 3 (n1 + n2): one plate of each along the vertical, of size sqrt(2)
+    times one grown end's (not a plate per brace end, whose heave added mass would add)."""
+    pytest.importorskip("openfast_io")
+    joints = [(-5.0, 0.0, -20.0), (0.0, 0.0, -15.0), (5.0, 0.0, -20.0)]
+    deck = _small_deck(tmp_path, joints, [(1, 2, 3), (3, 2, 3)])
+    text = deck.read_text()
+    old = "             0   NMGDepths"
+    assert old in text
+    text = text.replace(old, "             2   NMGDepths").replace(
+        "(m)        (m)         (kg/m^3)", "(m)        (m)         (kg/m^3)\r\n-10.0      0.1         1100\r\n"
+        "-30.0      0.1         1100", 1)
+    deck.write_text(text)
+    document, plates = _plates(deck)
+    grown, rho = 1.875 / 2 + 0.1, 1025.0
+    at_joint = np.all(np.isclose(plates.centre_m, [0.0, 0.0, -15.0]), axis=1)
+    assert at_joint.sum() == 2
+    assert plates.normal[at_joint] == pytest.approx(np.array([[0.0, 0.0, -1.0]] * 2), abs=1e-12)
+    area, volume = math.sqrt(2) * math.pi * grown**2, math.sqrt(2) * 2 * math.pi / 3 * grown**3
+    assert plates.pressure_area_m2[at_joint] == pytest.approx([area, 0.0], rel=1e-12)
+    assert plates.added_mass_kg[at_joint] == pytest.approx([0.0, rho * volume], rel=1e-12)
+    assert sum("end_b_plate" in m for m in document["members"]) == 1

@@ -28,9 +28,10 @@ is the member's, which HydroDyn requires within 10 % of SeaState's MCFD). Marine
 (MGDepths: MGDpth, MGThck, MGDens) is the platform's ``marine_growth`` table, and each circular
 member's MG coefficients (CdMG, CaMG, CpMG; CbMG 1) its ``growth_zone``
 (physics/marine_growth.py); the axial MG coefficients are not read (the grown pieces' tapered
-walls take the member's own). Filled members (NFillGroups: FillMList, FillFSLoc, FillDens, its
-DEFAULT the water's density) are the platform's ``fill_groups``, each filled member keeping its
-wall (PropThck) as ``wall_thickness_m`` (physics/fill.py).
+walls, where the growth tapers between two nodes, take the member's own AxCa, AxCp, AxCd).
+Filled members (NFillGroups: FillMList, FillFSLoc, FillDens, its DEFAULT the water's density)
+are the platform's ``fill_groups``, each filled member keeping its wall (PropThck) as
+``wall_thickness_m`` (physics/fill.py).
 
 Decks of the OpenFAST 3.x layouts (the deck's own water depth and density, one cross-section
 table, coefficient tables without Cb, members without MSecGeom, MSpinOrient, MHstLMod) are first
@@ -50,8 +51,9 @@ Members wholly at or below the seabed (the water depth given) are not imported a
 of the members standing on them at the seabed joint are dropped, as HydroDyn runs them
 (``_above_seabed``); a member crossing the seabed is refused. The joint axial coefficients
 (JointAxID) become end plates as HydroDyn applies them, to the end areas of the members meeting
-at a joint summed as vectors: none where they cancel, none on a pair of ends in line, and one
-plate carrying the sums (``joint_area_m2``, ``joint_volume_m3``) where two or more ends are left.
+at a joint summed as vectors (of the grown radii under marine growth): none where they cancel,
+none on a pair of ends in line, and one plate carrying the sums (``joint_area_m2``,
+``joint_volume_m3``) where two or more ends are left.
 
 A potential-flow deck (PotMod 1) is imported as HydroDyn runs it for one WAMIT body at the
 reference point: PotFile (resolved relative to the deck, as HydroDyn resolves it), WAMITULEN,
@@ -82,7 +84,8 @@ from typing import Any
 import numpy as np
 
 from fowt_hydro_sim.io.hydrodyn_layouts import current_layout
-from fowt_hydro_sim.physics.config import ConfigError, platform_from_dict
+from fowt_hydro_sim.physics.config import ConfigError, MarineGrowthLevel, platform_from_dict
+from fowt_hydro_sim.physics.marine_growth import thickness_and_density
 
 # (field, the field it follows, value): lines older layouts lack, in the order to add them
 _ADDED_LINES = (("ExctnDisp", "ExctnMod", "0"), ("ExctnCutOff", "ExctnDisp", "10"), ("PtfmYMod", "ExctnCutOff", "0"),
@@ -325,6 +328,7 @@ def _member(hd: dict, index: int, source: str) -> dict:
         size["hydrostatics_by_section"] = True
     if hd["NMGDepths"] > 0 and circular:  # the coefficients of its nodes with growth (MG columns)
         size["growth_zone"] = _growth_zone(hd, index, source)
+        size["taper_axial"] = taper_axial  # the axial terms of the growth's taper between its nodes
     out = {"name": f"member{member}", "section": "circular" if circular else "rectangular", **size,
            "end_a_m": ends[0], "end_b_m": ends[1], "strip_length_m": float(hd["MDivSize"][index]),
            "zones": [{"name": "all", **coefficients}]}
@@ -342,9 +346,11 @@ def _member(hd: dict, index: int, source: str) -> dict:
 _CANCEL = 1e-4
 
 
-def _end_vectors(members: list[dict], ends: list[tuple[int, int]], joint: int) -> list[tuple[int, str, np.ndarray]]:
+def _end_vectors(members: list[dict], ends: list[tuple[int, int]], joint: int,
+                 growth_m: float = 0.0) -> list[tuple[int, str, np.ndarray]]:
     """Each member end at ``joint``: (member index, plate key, [pi r^2 n, 2 pi r^3 n / 3]) with n
-    the end's outward normal (HydroDyn's terms of An and Vn); NaN for a rectangular end."""
+    the end's outward normal and r the end's radius grown by the marine growth's thickness at
+    the joint, ``growth_m`` (HydroDyn's terms of An and Vn, on RMG); NaN for a rectangular end."""
     vectors = []
     for i, (a, b) in enumerate(ends):
         for end, sign, key in ((a, -1.0, "end_a_plate"), (b, 1.0, "end_b_plate")):
@@ -353,7 +359,7 @@ def _end_vectors(members: list[dict], ends: list[tuple[int, int]], joint: int) -
             axis = np.subtract(members[i]["end_b_m"], members[i]["end_a_m"])
             normal = sign * axis / np.linalg.norm(axis)
             radius = (members[i]["diameter_b_m" if sign > 0 and "diameter_b_m" in members[i] else "diameter_m"]
-                      if "diameter_m" in members[i] else math.nan) / 2
+                      if "diameter_m" in members[i] else math.nan) / 2 + growth_m
             vectors.append((i, key, np.array([math.pi * radius**2 * normal, 2 * math.pi / 3 * radius**3 * normal])))
     return vectors
 
@@ -379,8 +385,8 @@ def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: s
     has no plates; elsewhere each pair of ends that cancels (in line, one diameter) loses its
     plates, one end left keeps its own plate (its vectors are the joint's), and of two or
     more ends left one plate carries the joint's sums (``joint_area_m2``, ``joint_volume_m3``)
-    and the others none (per end if one of them is drag only, PropPot, or the deck has marine
-    growth: the sums are of the bare radii, HydroDyn's of the grown ones). A joint on the seabed
+    and the others none (per end if one of them is drag only, PropPot). Under marine growth the
+    radii are the grown ones, R + t at the joint's height (HydroDyn's RMG). A joint on the seabed
     whose areas do not cancel is refused. A member that crosses the seabed is refused too
     (HydroDyn loads the part above it only; the model's strips are whole members). ConfigError
     in one line naming the member or joint."""
@@ -395,8 +401,9 @@ def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: s
             raise ConfigError(f"{source}: member {hd['MemberID'][i]} crosses the seabed (z = {seabed:g} m): not "
                               "supported (split it into members meeting at the seabed)")
     on_seabed = {joint for i in buried for joint in ends[i] if abs(height[joint] - seabed) < 1e-6}
+    table = tuple(MarineGrowthLevel(**row) for row in _marine_growth(hd, source).get("marine_growth", []))
     for joint in sorted({joint for pair in ends for joint in pair}):
-        vectors = _end_vectors(members, ends, joint)
+        vectors = _end_vectors(members, ends, joint, float(thickness_and_density(table, [height[joint]])[0][0]))
         if _cancel([v for _, _, v in vectors]):  # HydroDyn's joint end effects act on the sums: none here
             dropped = vectors
         else:
@@ -413,8 +420,7 @@ def _above_seabed(hd: dict, members: list[dict], water_depth_m: float, source: s
                     left.remove(partner)
                     dropped += [first, partner]
             i, key, _ = kept[0] if kept else (0, "", None)
-            if len(kept) > 1 and key in members[i] and not hd["NMGDepths"] \
-                    and not any(members[k].get("drag_only") for k, _, _ in kept):
+            if len(kept) > 1 and key in members[i] and not any(members[k].get("drag_only") for k, _, _ in kept):
                 total = np.sum([v for _, _, v in vectors], axis=0)  # HydroDyn's An and Vn: one plate carries them
                 members[i][key].update(joint_area_m2=total[0].tolist(), joint_volume_m3=total[1].tolist())
                 dropped += kept[1:]

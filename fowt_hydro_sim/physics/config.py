@@ -949,6 +949,8 @@ def platform_document(platform: Platform) -> dict:
         taper_axial = {"ca": m.taper_axial.ca, "cp": m.taper_axial.cp, "cd": m.taper_axial.cd}
         if m.tapered and m.section == "circular":
             size.update(diameter_b_m=m.diameter_b_m, taper_axial=taper_axial)
+        elif m.growth_zone is not None and m.section == "circular":  # the growth's tapers take it
+            size.update(taper_axial=taper_axial)
         elif m.tapered:
             size.update({k: getattr(m, k) for k in ("width_b_m", "height_b_m") if getattr(m, k) is not None},
                         taper_axial=taper_axial)

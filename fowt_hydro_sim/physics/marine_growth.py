@@ -3,16 +3,22 @@ marine-growth loads of CalcOutput), from the platform's ``marine_growth`` table 
 MGDepths: height z, thickness t, density rho_mg by row, highest first).
 
 * Thickness and density at a height z: linear between the two rows around z, none outside the
-  table (SetNodeMG). HydroDyn takes them at its nodes, so its grown radius goes from bare to
-  grown over the element that holds a table end; here the member is cut at the table's rows
-  and the growth steps there (a difference of the order of the thickness over one element).
+  table (SetNodeMG), taken at the member's nodes as HydroDyn places them (ceil(L / MDivSize)
+  equal elements, MDivSize the member's strip length), the grown radius R + t linear between
+  them (HydroDyn's RMG): over the element that holds a table end it tapers from bare to grown,
+  and that taper carries the tapered wall's axial terms (pressure, added mass AxCa, drag: the
+  member's ``taper_axial``), as HydroDyn's dRdl_mg terms. A member is cut at the nodes where
+  its thickness changes slope.
 * The grown outer radius R + t replaces R in every load HydroDyn gives it to: drag, added
   mass, fluid inertia, and the hydrostatics (the buoyancy of the growth layer included, as
-  HydroDyn's RMG in its buoyancy), the tapered wall's axial terms on d(R + t)/dl. A member is
-  cut where the table's rows cross it; each piece is a (tapered) circular member of diameters
-  D + 2 t at its ends, and takes the member's ``growth_zone`` coefficients (HydroDyn's CdMG,
-  CaMG, CpMG ...) where it carries growth, its own zones elsewhere.
-* The growth's mass, rho_mg times the layer's volume, is carried by the body: its weight
+  HydroDyn's RMG in its buoyancy), the tapered wall's axial terms on d(R + t)/dl. Each piece
+  is a (tapered) circular member of diameters D + 2 t at its ends, and takes the member's
+  ``growth_zone`` coefficients (HydroDyn's CdMG, CaMG, CpMG ...) where it carries growth (the
+  taper from bare to grown included: HydroDyn's coefficients there are per node), its own
+  zones elsewhere.
+* The growth's mass, rho_mg times the layer's volume (each element of the density at its
+  lower node, as HydroDyn lumps it), and at each joint with end effects rho_mg t |An| (HydroDyn's
+  Mass_MG_End, |An| the area of the joint's summed ends), is carried by the body: its weight
   -m g at the layer's centroid and its rigid-body inertia (HydroDyn's F_WMG and F_IMG: the
   growth moves with the member) belong to the hydrostatic load component (its row holds
   the weight, and the reaction -M a of the growth's mass matrix), as they belong to
@@ -49,21 +55,20 @@ def thickness_and_density(table: tuple[MarineGrowthLevel, ...], z_m: np.ndarray)
     return np.where(inside, t, 0.0), np.where(inside, rho, 0.0)
 
 
-def _cut_fractions(member: Member, table: tuple[MarineGrowthLevel, ...]) -> np.ndarray:
-    za, zb = member.end_a_m[2], member.end_b_m[2]
-    cuts = [0.0, 1.0]
-    if abs(zb - za) > 1e-12:
-        cuts += [(r.z_m - za) / (zb - za) for r in table]
-    cuts = np.unique(np.clip(cuts, 0.0, 1.0))
-    return cuts[np.concatenate([[True], np.diff(cuts) > 1e-12])]
+def _nodes(member: Member, table: tuple[MarineGrowthLevel, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The member's nodes as HydroDyn places them, ceil(L / MDivSize) equal elements (MDivSize: the
+    member's strip length): their fractions along the member from end a, and the growth's
+    thickness and density at each (SetNodeMG)."""
+    a, b = np.array(member.end_a_m), np.array(member.end_b_m)
+    n = max(1, math.ceil(float(np.linalg.norm(b - a)) / member.strip_length_m - 1e-9))
+    fractions = np.linspace(0.0, 1.0, n + 1)
+    thickness, density = thickness_and_density(table, a[2] + fractions * (b[2] - a[2]))
+    return fractions, thickness, density
 
 
 def _grows(member: Member, table: tuple[MarineGrowthLevel, ...]) -> bool:
-    """Whether the growth reaches the member anywhere (at its cuts or between them)."""
-    cuts = _cut_fractions(member, table)
-    fractions = np.concatenate([cuts, (cuts[:-1] + cuts[1:]) / 2])
-    z = member.end_a_m[2] + fractions * (member.end_b_m[2] - member.end_a_m[2])
-    return bool(np.any(thickness_and_density(table, z)[0] > 0))
+    """Whether the growth reaches any of the member's nodes."""
+    return bool(np.any(_nodes(member, table)[1] > 0))
 
 
 def grown_platform(platform: Platform) -> Platform:
@@ -86,19 +91,19 @@ def grown_platform(platform: Platform) -> Platform:
 
 
 def _pieces(member: Member, table: tuple[MarineGrowthLevel, ...]) -> list[Member]:
+    """The member cut where its nodal thickness changes slope: each piece's grown radius is
+    linear, R + t between the nodes' thicknesses, as HydroDyn's RMG is between its nodes."""
     a, b = np.array(member.end_a_m), np.array(member.end_b_m)
-    cuts = _cut_fractions(member, table)
+    fractions, thickness, _ = _nodes(member, table)
+    bends = np.abs(np.diff(thickness, 2)) > 1e-12  # at the inner nodes
+    cuts = np.concatenate([[0], 1 + np.flatnonzero(bends), [fractions.size - 1]])
     pieces = []
-    heights = np.array([r.z_m for r in table])[::-1]
-    thickness = np.array([r.thickness_m for r in table])[::-1]
-    for k, (s0, s1) in enumerate(zip(cuts[:-1], cuts[1:])):
-        mid = thickness_and_density(table, [a[2] + (s0 + s1) / 2 * (b[2] - a[2])])[0][0]
-        # inside the table the growth is linear between its rows; outside none (a step at its ends)
-        ends = [a[2] + s0 * (b[2] - a[2]), a[2] + s1 * (b[2] - a[2])]
-        t0, t1 = np.interp(ends, heights, thickness) if mid > 0 else (0.0, 0.0)
+    for k, (i, j) in enumerate(zip(cuts[:-1], cuts[1:])):
+        s0, s1, t0, t1 = fractions[i], fractions[j], thickness[i], thickness[j]
         d0, d1 = member.diameter_at(s0) + 2 * t0, member.diameter_at(s1) + 2 * t1
         tapered = abs(d1 - d0) > 1e-12
-        zones = (member.growth_zone,) if mid > 0 and member.growth_zone is not None else member.zones
+        grown = max(t0, t1) > 0
+        zones = (member.growth_zone,) if grown and member.growth_zone is not None else member.zones
         pieces.append(dataclasses.replace(
             member, name=f"{member.name}:{k + 1}", end_a_m=tuple(a + s0 * (b - a)), end_b_m=tuple(a + s1 * (b - a)),
             width_m=d0, height_m=d0, diameter_b_m=d1 if tapered else None, zones=zones,
@@ -108,11 +113,31 @@ def _pieces(member: Member, table: tuple[MarineGrowthLevel, ...]) -> list[Member
     return pieces
 
 
+def _end_mass(member: Member, plate: EndPlate | None, end: np.ndarray, fraction: float,
+              table: tuple[MarineGrowthLevel, ...]) -> float:
+    """The growth's mass at a member end that carries a plate (HydroDyn's joint mass
+    MGdens tMG |An|, ``Mass_MG_End``): the growth's density and thickness at the end times the
+    area of the joint's summed ends (``joint_area_m2``) or of the end's own grown section."""
+    if plate is None:
+        return 0.0
+    t, rho = (float(v[0]) for v in thickness_and_density(table, [end[2]]))
+    if plate.joint_area_m2 is not None:
+        area = float(np.linalg.norm(plate.joint_area_m2))
+    else:
+        area = math.pi * (member.diameter_at(fraction) / 2 + t) ** 2
+    return rho * t * area
+
+
 def growth_mass(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
     """The growth's mass [kg], centroid (body frame) [m] and inertia about it [kg m^2] of the
-    platform's members as given (not yet grown): the layer between R and R + t, of density
-    rho_mg(z), integrated along each member (the table's rows cut it where its integrand
-    changes form)."""
+    platform's members as given (not yet grown): the layer between R and R + t, t linear between
+    the member's nodes, integrated element by element, each element of the density at its lower
+    node (HydroDyn's MarineGrowthPartSegmentCyl takes MGDensity(i) for both halves of element i,
+    its node i the lower), and at each member end with a plate (a joint's end effects) the
+    joint's growth mass MGdens tMG |An| as a point mass (HydroDyn's Mass_MG_End; its small
+    rotational inertia, I_MG_End, left out). A joint whose ends cancel has no plate and HydroDyn's
+    |An| vanishes there; one whose axial coefficients are all 0 has no plate either, and its growth
+    end mass is then not carried."""
     table = platform.marine_growth
     total, first, second = 0.0, np.zeros(3), np.zeros((3, 3))
     for member in platform.members:
@@ -121,11 +146,13 @@ def growth_mass(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
         a, b = np.array(member.end_a_m), np.array(member.end_b_m)
         length = float(np.linalg.norm(b - a))
         axis = (b - a) / length
-        cuts = _cut_fractions(member, table)
-        for s0, s1 in zip(cuts[:-1], cuts[1:]):
+        fractions, thickness, density = _nodes(member, table)
+        for i in range(fractions.size - 1):
+            s0, s1 = fractions[i], fractions[i + 1]
             s = s0 + _NODES * (s1 - s0)
             points = a + np.outer(s, b - a)
-            t, rho = thickness_and_density(table, points[:, 2])
+            t = thickness[i] + (thickness[i + 1] - thickness[i]) * _NODES
+            rho = density[i] if a[2] <= b[2] else density[i + 1]
             r_in = np.array([member.diameter_at(x) / 2 for x in s])
             r_out = r_in + t
             dm = rho * math.pi * (r_out**2 - r_in**2) * _WEIGHTS * (s1 - s0) * length  # per node's share
@@ -135,6 +162,11 @@ def growth_mass(platform: Platform) -> tuple[float, np.ndarray, np.ndarray]:
             ring = dm * (r_out**2 + r_in**2) / 4
             local = np.sum(ring) * (np.eye(3) - np.outer(axis, axis)) + 2 * np.sum(ring) * np.outer(axis, axis)
             second += local + sum(m * (p @ p * np.eye(3) - np.outer(p, p)) for m, p in zip(dm, points))
+        for plate, end, fraction in ((member.end_a_plate, a, 0.0), (member.end_b_plate, b, 1.0)):
+            mass = _end_mass(member, plate, end, fraction, table)
+            total += mass
+            first += mass * end
+            second += mass * (end @ end * np.eye(3) - np.outer(end, end))
     if total <= 0:
         return 0.0, np.zeros(3), np.zeros((3, 3))
     centroid = first / total

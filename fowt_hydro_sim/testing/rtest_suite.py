@@ -26,6 +26,7 @@ import yaml
 from fowt_hydro_sim.cli import main
 from fowt_hydro_sim.physics.waves import seastate
 from fowt_hydro_sim.physics.waves.components import read_comp_file
+from fowt_hydro_sim.physics.waves.grid import SeaStateGrid
 from fowt_hydro_sim.testing import REPO
 from fowt_hydro_sim.testing.references import read_hydrodyn_out
 
@@ -200,7 +201,13 @@ def run_case(case: Case, folder: Path) -> Result:
             result.errors[channel] = float(np.sqrt(np.mean((ours - theirs) ** 2)) / rms)
     if "Wave1Elev" in reference and comp is not None:
         waves_read = read_comp_file(comp, direct_sum=True)
-        eta = waves_read.elevation(0.0, 0.0, time_s, float(driver["WtrDpth"]), float(driver["Gravity"]))
+        depth_m, gravity = float(driver["WtrDpth"]), float(driver["Gravity"])
+        if case.seastate_grid is None:
+            eta = waves_read.elevation(0.0, 0.0, time_s, depth_m, gravity)
+        else:  # HydroDyn's Wave1Elev: SeaState's elevation at (0, 0), a grid node, linear in time on WaveDT
+            step_s = SeaStateGrid.from_seastate_file(case.seastate_grid).dt_s
+            nodes_s = np.arange(0.0, time_s.max() + 2 * step_s, step_s)
+            eta = np.interp(time_s, nodes_s, waves_read.elevation(0.0, 0.0, nodes_s, depth_m, gravity))
         result.elevation_error_m = float(np.max(np.abs(eta - reference["Wave1Elev"])))
     return result
 
