@@ -45,7 +45,7 @@ class TurbineOnPlatform:
     it is given at each platform output time: ``answer`` advances it there; ``hub_wrench``
     is then the wrench on the platform (frame ``hub``: the platform's hub point, body axes):
     the rotor's, and the wind's drag on the tower when the turbine has a tower table
-    (``turbine.tower``), and ``channels`` its state. ``thrust_height_m`` is the thrust
+    (``turbine.tower_aerodyn``), and ``channels`` its state. ``thrust_height_m`` is the thrust
     point's height above the platform's reference point; ``fixed`` ignores the platform's motion."""
 
     def __init__(self, turbine: TurbineDescription, coefficients: RotorCoefficients, model: TurbineModel,
