@@ -273,6 +273,30 @@ def test_displaced_kinematics_of_an_offset_body_are_those_of_the_body_built_ther
     assert np.max(np.abs(loads["undisplaced"] - reference)[:, :2] / scale[:2]) > 0.1
 
 
+def test_displaced_kinematics_keep_the_undisplaced_depth_without_stretching():
+    """HydroDyn's WaveDisp 1 moves the kinematics points horizontally, and vertically only
+    with wave stretching (Morison.f90: "intentionally using the undisplaced Z position"): a
+    column heaved 2 m down and pitched gets, without stretching, the wave loads of the
+    undisplaced depths at its displaced x; with vertical stretching, those of its displaced
+    points."""
+    from fowt_hydro_sim.physics.waves.components import WaveComponents
+    waves = WaveComponents(np.array([0.08, 0.1]), np.array([1.0, 1.5]), np.array([0.3, 1.1]),
+                           np.array([0.0, 0.0]), 100.0)
+    t = np.round(np.arange(0.0, 10.0, 0.1), 10)
+    still = np.zeros((t.size, 6))
+    heaved = np.tile([0.0, 0.0, -2.0, 0.0, 0.0, 0.0], (t.size, 1))
+    inertia = {}
+    for kinematics, stretching in (("displaced", "none"), ("undisplaced", "none"), ("displaced", "vertical")):
+        model = PlatformModel(_offset_column((0.0, 0.0)), waves, wave_table_dt_s=0.1,
+                              options=dataclasses.replace(HYDRODYN, kinematics=kinematics, stretching=stretching))
+        loads = model.prescribed_motion_loads(t, heaved, still, still)
+        inertia[kinematics, stretching] = loads[:, ROW["inertia"], 0]
+    scale = np.abs(inertia["displaced", "none"]).max()
+    assert np.abs(inertia["displaced", "none"] - inertia["undisplaced", "none"]).max() < 1e-12 * scale
+    difference = np.abs(inertia["displaced", "vertical"] - inertia["displaced", "none"]).max()
+    assert difference > 1e-3 * scale
+
+
 def test_displaced_kinematics_are_refused_for_time_stepping():
     model = PlatformModel(_offset_column((0.0, 0.0)), options=dataclasses.replace(HYDRODYN, kinematics="displaced"))
     with pytest.raises(ValueError, match="prescribed motion only"):

@@ -356,8 +356,8 @@ class HydroOptions:
                   "circular ones; prescribed motion only: fowt-sim loads)", choices=HYDROSTATICS)
     kinematics: str = setting(
         "undisplaced", "where the fluid kinematics are taken: at the undisplaced strip points (HydroDyn's "
-                       "WaveDisp 0) or at their displaced positions (WaveDisp 1, no stretching; prescribed "
-                       "motion only: fowt-sim loads)", choices=KINEMATICS)
+                       "WaveDisp 0) or at their displaced positions (WaveDisp 1: their depth displaced only "
+                       "with stretching, as HydroDyn; prescribed motion only: fowt-sim loads)", choices=KINEMATICS)
     stretching: str = setting(
         "none", "wave stretching of the Morison loads: none (strips wetted up to z = 0, HydroDyn's WaveStMod 0) "
                 "or vertical (each strip and end plate wetted up to the instantaneous elevation eta at its x, "

@@ -689,10 +689,11 @@ class PlatformModel:
     def _moving_table(self, time_s: np.ndarray, motion: np.ndarray) -> WaveTable:
         """A kinematics table whose row i holds, at time t_i = i dt, the kinematics at the
         points' positions at t_i: what the kernel's table look-up then returns at t_i. The
-        points are displaced (x + R p; WaveDisp 1) or not, as ``options.kinematics`` says; a
-        point's z is at most 0 or, with Wheeler stretching, at most the elevation eta over
-        it and taken at d (z - eta) / (d + eta), or, with extrapolation stretching, at most
-        max(eta, 0) and above z = 0 extrapolated from there. The times must be multiples of one step."""
+        points are displaced (x + R p; WaveDisp 1; its z only with stretching, as HydroDyn's
+        Morison.f90 takes it) or not, as ``options.kinematics`` says; a point's z is at most 0
+        or, with Wheeler stretching, at most the elevation eta over it and taken at
+        d (z - eta) / (d + eta), or, with extrapolation stretching, at most max(eta, 0) and
+        above z = 0 extrapolated from there. The times must be multiples of one step."""
         step = float(time_s[1] - time_s[0]) if time_s.size > 1 else 1.0
         rows = np.round(time_s / step).astype(np.int64)
         if time_s.size < 2 or step <= 0 or np.max(np.abs(rows * step - time_s)) > 1e-6 * step or rows[0] < 0:
@@ -702,6 +703,8 @@ class PlatformModel:
         if self.options.kinematics == "displaced":
             rotation = rotation_matrices(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
             world = motion[:, None, 0:3] + np.einsum("ijn,pj->npi", rotation, points)
+            if self.options.stretching == "none":  # HydroDyn: the undisplaced z without stretching
+                world[:, :, 2] = points[None, :, 2]
         else:
             world = np.repeat(points[None], time_s.size, axis=0)
         env = self.platform.environment
