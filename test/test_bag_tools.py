@@ -275,10 +275,11 @@ def test_record_what_play_publishes(source: Path, tmp_path: Path):
     assert bag.topics[ELEVATION].type == POINT_TYPE and bag.topics[CLOCK].type == "rosgraph_msgs/msg/Clock"
     for topic in (ELEVATION, WRENCH):  # byte for byte the source's, in order
         assert [d for _, _, d in bag.messages([topic])] == [d for _, d in source_messages(source, topic)], topic
-    # log time = the latest /clock (simulation time): at most one step behind the stamp
+    # log time = the latest /clock (simulation time): within one step of the stamp (DDS keeps no
+    # order across topics: under load the next /clock may come in before the message it follows)
     recorded = [(t, data) for _, t, data in bag.messages([ELEVATION])]
     lag = np.array([stamp - t for (t, _), (stamp, _) in zip(recorded, source_messages(source, ELEVATION))])
-    assert np.all((lag >= 0) & (lag <= nanoseconds(DT_S))), lag
+    assert np.all(np.abs(lag) <= nanoseconds(DT_S)), lag
     assert np.mean(lag == 0) > 0.8
     assert bag.config["recorder"]["topics"] == [ELEVATION, WRENCH, CLOCK]
     assert f"{ELEVATION} {N_ELEVATION}" in output  # the per-topic summary
