@@ -13,3 +13,10 @@ class InputError(ValueError):
 
 class ConfigError(InputError):
     """A configuration file or value that cannot be used; the message names the field."""
+
+
+class ClusterError(RuntimeError):
+    """The Dask cluster lost runs under way (a worker died or stalled, the scheduler forgot
+    a task): no fault of the input. ``fowt-sim`` ends the command with one line (exit 1);
+    the commands that keep their results as they go (``sweep``, ``diagnose-benchmark``)
+    resume when run again into the same folder."""

@@ -254,3 +254,36 @@ def test_ctrl_c_ends_a_sweep_with_one_line_and_no_process_left(tmp_path: Path):
         time.sleep(0.2)
     else:
         pytest.fail("worker processes outlived the interrupted sweep")
+
+
+@pytest.mark.slow
+@pytest.mark.dask
+def test_a_cluster_that_loses_a_run_ends_the_sweep_in_one_line(tmp_path: Path):
+    """A sweep on an existing scheduler whose worker process is killed mid-run (the
+    scheduler allowed no failure): exit 1 and one line naming the lost run, no traceback or
+    Dask warning."""
+    import dask
+    from dask.distributed import Client, LocalCluster
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
+            LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
+                         scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"}) as cluster, \
+            Client(cluster) as client:
+        process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "sweep", "--seeds", "1",
+                                    "--duration", "20000", "--scheduler", cluster.scheduler_address,
+                                    "-o", str(tmp_path / "s")], cwd=REPO, stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.PIPE, text=True, start_new_session=True)
+        try:
+            deadline = time.monotonic() + 180
+            while not client.processing().get(next(iter(client.scheduler_info()["workers"])), ()):
+                assert time.monotonic() < deadline and process.poll() is None, process.stderr.read()
+                time.sleep(0.2)  # the run is on the worker
+            (worker_pid,) = client.run(os.getpid).values()
+            os.kill(worker_pid, signal.SIGKILL)
+            _, stderr = process.communicate(timeout=120)
+        finally:
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGKILL)
+    assert process.returncode == 1, stderr
+    assert dask_noise(stderr) == [] and "Traceback" not in stderr, stderr
+    (line,) = [line for line in stderr.splitlines() if line.startswith("fowt-sim")]
+    assert line.startswith("fowt-sim sweep: error: the Dask cluster lost runs under way (") and "resumes" in line

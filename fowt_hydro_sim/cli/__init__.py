@@ -18,7 +18,7 @@ import logging
 import sys
 import traceback
 
-from fowt_hydro_sim.errors import InputError
+from fowt_hydro_sim.errors import ClusterError, InputError
 
 # each subcommand and the module (fowt_hydro_sim.cli.<module>) whose add_parsers defines it
 COMMAND_MODULES = {
@@ -192,6 +192,11 @@ def main(argv: list[str] | None = None) -> int:
             traceback.print_exc()
         sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
         return 2
+    except ClusterError as exc:  # not the input's fault: the cluster lost runs
+        if args.verbose:
+            traceback.print_exc()
+        sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
+        return 1
     except KeyboardInterrupt:
         sys.stderr.write(f"fowt-sim {args.command}: interrupted\n")
         return 130

@@ -8,7 +8,8 @@ down (the client, then each worker, given ``WORKER_EXIT_S`` to exit, then the cl
 Dask's own shutdown messages kept off the terminal. The worker processes log only what is
 critical: a run's exception reaches the user through its result, a worker that dies through
 this process's nanny (a worker interrupted mid-run would otherwise print the tracebacks of
-its broken connections)."""
+its broken connections). Runs the cluster loses (cancelled, forgotten, or their worker killed
+too often) end the work with a ``ClusterError``: one line, not Dask's traceback."""
 from __future__ import annotations
 
 import asyncio
@@ -19,7 +20,7 @@ import threading
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 
-from fowt_hydro_sim.errors import InputError
+from fowt_hydro_sim.errors import ClusterError, InputError
 
 WORKER_EXIT_S = 30.0  # a worker process asked to close is killed only after 0.8 x this
 INTERRUPTED_EXIT_S = 5.0  # the same after Ctrl-C: a worker busy with a run is not waited for
@@ -88,11 +89,27 @@ def _close_local(client, cluster, interrupted: bool) -> None:
 
 
 @contextmanager
+def _lost_runs_as_cluster_error() -> Iterator[None]:
+    """Dask's errors for runs it lost (a cancelled or forgotten future, a worker killed too
+    often) raised as one ``ClusterError`` naming the reason."""
+    from concurrent.futures import CancelledError
+
+    from distributed.scheduler import KilledWorker
+    try:
+        yield
+    except (CancelledError, KilledWorker) as exc:
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise ClusterError(f"the Dask cluster lost runs under way ({reason}); a sweep or diagnose-benchmark "
+                           "resumes when run again into the same folder") from None
+
+
+@contextmanager
 def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator:
     """A ``dask.distributed.Client``: of the cluster at ``scheduler``, else of a local cluster
     of ``workers`` single-threaded processes (default: one per core) on 127.0.0.1, shut down
     cleanly and quietly on leaving (also on Ctrl-C, which only this process receives).
-    InputError if Dask (the ``cluster`` extra) is not installed."""
+    InputError if Dask (the ``cluster`` extra) is not installed; ClusterError if the cluster
+    loses runs."""
     try:
         from dask.distributed import Client, LocalCluster
     except ImportError:
@@ -103,7 +120,8 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
     if scheduler:
         client = Client(scheduler)
         try:
-            yield client
+            with _lost_runs_as_cluster_error():
+                yield client
         except KeyboardInterrupt:
             interrupted = True
             raise
@@ -119,7 +137,8 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
                                    scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"})
             # (the scheduler's HTTP server on loopback, no dashboard)
             client = Client(cluster)
-        yield client
+        with _lost_runs_as_cluster_error():
+            yield client
     except KeyboardInterrupt:
         interrupted = True
         raise
