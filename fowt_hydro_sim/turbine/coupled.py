@@ -31,7 +31,7 @@ from fowt_hydro_sim.turbine.description import TurbineDescription, load_turbine
 from fowt_hydro_sim.turbine.performance import RotorCoefficients, read_table
 from fowt_hydro_sim.turbine.rosco import Rosco, entry_name
 from fowt_hydro_sim.turbine.rotor import HubMotion, TurbineModel, aero_loads, hub_motion, steady_operating_point
-from fowt_hydro_sim.turbine.tower import TowerPoints, tower_drag, tower_points
+from fowt_hydro_sim.turbine.tower import TowerPoints, tower_drag
 from fowt_hydro_sim.turbine.wind import Wind
 
 STAMP_TOLERANCE_S = 1e-9  # platform times closer than this are the same time
@@ -55,9 +55,7 @@ class TurbineOnPlatform:
         self.thrust_height_m = thrust_height_m or float(self.hub_point_m[2])
         self.fixed = fixed
         self.last: HubMotion | None = None  # the hub's motion at the last time answered
-        table = turbine.tower_table()
-        self.tower: TowerPoints | None = (None if table is None else
-                                          tower_points(table, turbine.hub_height_m, turbine.wind_shear_exponent))
+        self.tower: TowerPoints | None = turbine.tower
         self.tower_load = (0.0, 0.0)  # the tower's drag [N] and its moment about the hub point [N m]
 
     @property
@@ -205,10 +203,8 @@ def steady_wind_wrench(turbine: TurbineDescription, coefficients: RotorCoefficie
     thrust, _ = aero_loads(turbine, coefficients, wind_m_s, speed, pitch)
     force = np.array([thrust, 0.0, 0.0])
     wrench = np.concatenate([force, np.cross(thrust_point_m, force)])
-    table = turbine.tower_table()
-    if table is not None:
-        points = tower_points(table, turbine.hub_height_m, turbine.wind_shear_exponent)
-        drag, moment = tower_drag(points, turbine.air_density_kg_m3, wind_m_s, 0.0, 0.0, 0.0)
+    if turbine.tower is not None:
+        drag, moment = tower_drag(turbine.tower, turbine.air_density_kg_m3, wind_m_s, 0.0, 0.0, 0.0)
         wrench += np.array([drag, 0.0, 0.0, 0.0, moment, 0.0])
     return wrench
 

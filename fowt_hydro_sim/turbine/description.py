@@ -4,6 +4,7 @@ like the platform (each field's range written once as a setting)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from importlib import resources
 from pathlib import Path
 
@@ -14,6 +15,7 @@ from fowt_hydro_sim.io.aerodyn import TowerTable, tower_table
 from fowt_hydro_sim.physics.config import ConfigError
 from fowt_hydro_sim.settings import REQUIRED, SettingError, check, described, setting
 from fowt_hydro_sim.turbine.rosco import discon_text, parse_changes
+from fowt_hydro_sim.turbine.tower import TowerPoints, tower_points
 
 ROSCO_PREFIX = "rosco:"  # a path relative to the test cases installed with the rosco wheel
 
@@ -58,7 +60,7 @@ class TurbineDescription:
             self.controller_file()  # a name the file has not, or a list of another length: refused now
         if self.tower_aerodyn:
             try:
-                self.tower_table()
+                _ = self.tower  # read once, here: a table that cannot be used is refused now
             except InputError as exc:
                 raise ConfigError(f"turbine {self.name}: tower_aerodyn: {exc}") from None
 
@@ -84,8 +86,16 @@ class TurbineDescription:
         return resolve(self.discon)
 
     def tower_table(self) -> TowerTable | None:
-        """The tower's aerodynamic table (``tower_aerodyn``); None without tower drag."""
+        """The tower's aerodynamic table (``tower_aerodyn``), read from its file; None without
+        tower drag."""
         return tower_table(resolve(self.tower_aerodyn)) if self.tower_aerodyn else None
+
+    @cached_property
+    def tower(self) -> TowerPoints | None:
+        """The quadrature of the wind's drag on the tower (``tower_table`` at this hub height
+        and shear), computed once per description; None without tower drag."""
+        table = self.tower_table()
+        return None if table is None else tower_points(table, self.hub_height_m, self.wind_shear_exponent)
 
 
 def resolve(path: str) -> Path:
