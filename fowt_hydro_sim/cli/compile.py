@@ -3,19 +3,20 @@ run (the set-up command runs it), so that a first ``simulate`` or node starts in
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 import time
+
+WARM_UPS = ("physics", "turbine")  # the packages whose warm_up.entry_points() are compiled, in order
 
 
 def compile_kernels(args: argparse.Namespace) -> int:
     from fowt_hydro_sim.physics import kernel_cache_dir
     from fowt_hydro_sim.physics.warm_up import warm_kernels
-    from fowt_hydro_sim.turbine import tower
     start = time.perf_counter()
-    timings = warm_kernels()
-    tower_start = time.perf_counter()
-    tower.warm_up()
-    timings["tower drag (coupled loop)"] = time.perf_counter() - tower_start
+    timings: dict[str, float] = {}
+    for package in WARM_UPS:
+        timings.update(warm_kernels(importlib.import_module(f"fowt_hydro_sim.{package}.warm_up").entry_points()))
     for name, seconds in timings.items():
         sys.stdout.write(f"{name:34s}{seconds:7.1f} s\n")
     sys.stdout.write(f"kernels ready in {time.perf_counter() - start:.1f} s, cached in {kernel_cache_dir()}\n")

@@ -7,12 +7,14 @@ step. Every entry point the model calls from Python (the set-up's derivative, th
 loop, the analyses' static loads, strip velocities, prescribed motion and displaced kinematics) is called here
 once with the argument types of a real run; the argument types do not depend on the
 platform, the drag model or the waves, so one warm-up serves every later run in any process.
+Each package with kernels of its own has a ``warm_up`` module with ``entry_points()``
+(``cli/compile.py`` lists them); ``warm_kernels`` calls them.
 """
 from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -48,11 +50,12 @@ def entry_points() -> dict[str, Callable[[dict], None]]:
     }
 
 
-def warm_kernels() -> dict[str, float]:
-    """Compile (or load from the cache) every kernel entry point; wall seconds per entry point."""
+def warm_kernels(points: Mapping[str, Callable[[dict], None]]) -> dict[str, float]:
+    """Compile (or load from the cache) every kernel entry point of ``points`` (a package's
+    ``entry_points()``); wall seconds per entry point."""
     made: dict = {}
     timings = {}
-    for name, call in entry_points().items():
+    for name, call in points.items():
         start = time.perf_counter()
         call(made)
         timings[name] = time.perf_counter() - start

@@ -60,8 +60,3 @@ def _drag(heights: np.ndarray, areas: np.ndarray, profile: np.ndarray, half_rho:
         moment += f * (heights[k] - about)
     return force, moment
 
-
-def warm_up() -> None:
-    """Compile (or load from the cache) the tower's kernel, as ``fowt-sim compile`` does."""
-    table = TowerTable(np.array([10.0, 100.0]), np.array([6.0, 4.0]), np.array([0.5, 0.5]))
-    tower_drag(tower_points(table, 100.0, 0.1), 1.225, 10.0, 0.0, 0.0, 0.0)
