@@ -353,7 +353,7 @@ def test_a_wrench_set_between_steps_acts_from_the_time_it_is_set():
     for k in range(40):
         compiled.set_external_wrench(wrench_at(k))
         held[:] = wrench_at(k)
-        python._input_changed = True  # noqa: SLF001 (its held force changed: the same refresh as a set wrench)
+        python.user_force_changed()
         compiled.step(2)
         python.step(2)
     assert np.abs(python.motion - compiled.motion).max() < 1e-9 * np.abs(compiled.motion).max()

@@ -144,7 +144,8 @@ class PlatformModel:
     copies, at time ``t`` [s]; it is called at every evaluation of the equations of motion (two
     per step, four per step over the first three steps) with the state of that evaluation.
     With it the model steps in a Python loop (``dynamics.integrate_stepwise``: a few times
-    slower); without it the compiled loop runs alone, unchanged. ``mooring_model``: the
+    slower; a force whose value changes between steps without the state changing calls
+    ``user_force_changed``); without it the compiled loop runs alone, unchanged. ``mooring_model``: the
     platform's mooring model (``spring``, ``moorpy``, ``moordyn``; "" = the platform's own
     choice). ``moordyn`` steps MoorDyn in Python between the compiled evaluations, as a user
     force does (``physics.mooring.moordyn_lines``). ``wave_grid``: SeaState's grid, with
@@ -423,6 +424,12 @@ class PlatformModel:
         external.set_wrench(params_of("external", self._data.component_params), wrench, frame,
                             self.platform.hub_point_m)
         self._input_changed = True  # the derivative at the current time changes with it: ``_refresh``
+
+    def user_force_changed(self) -> None:
+        """Say that the user force's value at the current time has changed without the state
+        changing (a value it holds, set between steps): the acceleration and loads read next,
+        and the next step, evaluate it again, as ``set_external_wrench`` does for its wrench."""
+        self._input_changed = True
 
     def _refresh(self) -> None:
         """Evaluate the derivative at the current time again if an input changed since (the
