@@ -454,3 +454,33 @@ def test_each_load_component_module_is_named_by_one_registry_line():
 
     modules = sorted(p.stem for p in Path(loads.__file__).parent.glob("*.py") if p.stem != "__init__")
     assert sorted(c.module for c in loads.COMPONENTS if c.module is not None) == modules
+
+
+@pytest.mark.parametrize("with_user_force", [False, True])
+def test_prescribed_motion_loads_leave_a_stepping_model_as_it_was(with_user_force: bool):
+    """Loads of a prescribed motion far ahead, asked between two steps of a model whose
+    waves come in blocks and which holds a wrench (stepped by the compiled loop, or by the
+    Python one with a user force): the run goes on bit for bit as the same run never asked."""
+    waves = synthesize(SeaState(6.0, 11.0, 2.0, seed=5), 3600.0)
+
+    def damper(t: float, position: np.ndarray, velocity: np.ndarray) -> np.ndarray:
+        return -np.array([2e5, 2e5, 1e5, 0.0, 0.0, 0.0]) * velocity - np.array([5e3, 0, 0, 0, 0, 0]) * position
+
+    models = [PlatformModel(load_platform("windmoor12"), waves, wave_block_s=60.0,
+                            user_force=damper if with_user_force else None) for _ in range(2)]
+    for model in models:
+        model.set_external_wrench(np.array([1.0e6, 0.0, 0.0, 0.0, 5.0e7, 0.0]))
+        model.step(200)
+    asked, untouched = models
+    t = np.arange(900.0, 1000.0, 0.5)
+    motion = np.zeros((t.size, 6))
+    motion[:, 0] = 3.0 * np.sin(0.05 * t)
+    loads = asked.prescribed_motion_loads(t, motion, np.gradient(motion, t, axis=0), np.zeros_like(motion))
+    assert np.abs(loads[:, ROW["user"], 0]).max() > 0 or not with_user_force
+    np.testing.assert_array_equal(asked.loads, untouched.loads)
+    np.testing.assert_array_equal(asked.acceleration, untouched.acceleration)
+    for model in models:
+        model.step(200)
+    np.testing.assert_array_equal(asked.motion, untouched.motion)
+    np.testing.assert_array_equal(asked.velocity, untouched.velocity)
+    np.testing.assert_array_equal(asked.loads, untouched.loads)
