@@ -110,9 +110,10 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                    help="out-of-catalogue scenarios, a rotor 1P pitch moment and wind thrust (independent: the "
                         "1P moment only); not with --set (default %(default)s)")
     b.add_argument("--set", dest="scenario_set", choices=SPLIT_SETS,
-                   help="with --source independent: the development or held-out scenarios fixed in "
-                        f"{SPLIT_FILE.name} (their seeds and load cases) instead of the generated list; --inject "
-                        "keeps the injected forms named (default: the generated list)")
+                   help="with --source independent: the scenarios of a set fixed in "
+                        f"{SPLIT_FILE.name} (development, or a held-out set; their seeds and load cases) "
+                        "instead of the generated list; --inject keeps the injected forms named (default: the "
+                        "generated list)")
     b.add_argument("--scenarios", nargs="+", help="with --set: only these scenarios of the set (default: all)")
     b.add_argument("--duration", type=float, default=10800.0,
                    help="seconds per measured run (default %(default)s, 3 hours)")
