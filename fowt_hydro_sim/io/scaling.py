@@ -44,8 +44,3 @@ def froude_factor(kind: str, scale: float, density_ratio: float = 1.0) -> float:
 def to_full_scale(value: float, kind: str, scale: float, density_ratio: float = 1.0) -> float:
     """A model-scale value of ``kind`` at full scale."""
     return value * froude_factor(kind, scale, density_ratio)
-
-
-def to_model_scale(value: float, kind: str, scale: float, density_ratio: float = 1.0) -> float:
-    """A full-scale value of ``kind`` at model scale (the inverse of ``to_full_scale``)."""
-    return value / froude_factor(kind, scale, density_ratio)

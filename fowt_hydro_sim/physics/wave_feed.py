@@ -98,11 +98,6 @@ class WaveFeed:
     def delay_s(self) -> float:
         return self.stream.delay_s
 
-    @property
-    def pending(self) -> bool:
-        """Resampled samples wait to be streamed."""
-        return bool(self._grid)
-
     def accept(self, time_s: float, x_m: float, y_m: float, elevation_m: float, frame_id: str) -> int:
         """Check and queue one sample (SampleError if refused); returns the grid samples it made."""
         samples = self.resampler.accept(time_s, x_m, y_m, elevation_m, frame_id, self.model.time_s)

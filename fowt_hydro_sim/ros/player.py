@@ -52,7 +52,6 @@ log = logging.getLogger("fowt_hydro_sim.player")
 
 DEPTH = 1000
 CLOCK_TOPIC = "/clock"
-CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
 # reliable topics: messages published before waiting for their acknowledgement (an acknowledgement
 # may wait for the writer's next heartbeat, 3 s with Fast DDS's defaults: the window sets the
 # pace of a replay as fast as possible then, about 170 messages/s at least)
