@@ -249,8 +249,9 @@ def test_bag_wave_source_gives_the_offline_models_motion_and_records_the_same_sa
 
 
 def recording_node(bag: Path, real_time_factor: float, run_s: float) -> subprocess.Popen:
-    """A node recording to ``bag``, running for about ``run_s`` wall seconds after its first
-    chunk reached the bag (the node is stepping, not starting up)."""
+    """A node recording to ``bag``, running for about ``run_s`` wall seconds after its second
+    chunk reached the bag: the first holds the messages of the start (t = 0), the second
+    those of a wall second of stepping, however long a loaded machine took between them."""
     process = start("node", real_time_factor=real_time_factor, record=str(bag))
     deadline = time.monotonic() + 180
 
@@ -259,9 +260,10 @@ def recording_node(bag: Path, real_time_factor: float, run_s: float) -> subproce
     while time.monotonic() < deadline and not (bag / "metadata.yaml").exists():
         time.sleep(0.2)
     time.sleep(0.5)
-    opened = size()  # header, schemas and channels
-    while time.monotonic() < deadline and size() <= opened:  # until a chunk of messages is written
-        time.sleep(0.2)
+    for _ in range(2):  # header, schemas and channels; then each chunk of messages
+        written = size()
+        while time.monotonic() < deadline and size() <= written:
+            time.sleep(0.2)
     time.sleep(run_s)
     return process
 
