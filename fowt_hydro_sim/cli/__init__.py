@@ -187,16 +187,11 @@ def main(argv: list[str] | None = None) -> int:
                         format="%(levelname)s %(name)s: %(message)s")
     try:
         return args.func(args)
-    except InputError as exc:  # ConfigError, BagError, SettingError...: the user's input
+    except (InputError, ClusterError) as exc:  # the user's input (ConfigError, BagError...), or lost runs
         if args.verbose:
             traceback.print_exc()
         sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
-        return 2
-    except ClusterError as exc:  # not the input's fault: the cluster lost runs
-        if args.verbose:
-            traceback.print_exc()
-        sys.stderr.write(f"fowt-sim {args.command}: error: {exc}\n")
-        return 1
+        return 2 if isinstance(exc, InputError) else 1
     except KeyboardInterrupt:
         sys.stderr.write(f"fowt-sim {args.command}: interrupted\n")
         return 130
