@@ -231,6 +231,7 @@ def _number(value: float) -> str:
 def effects_page() -> str:
     """The gap diagnosis's catalogue of candidate effects and their parameters."""
     from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
+    from fowt_hydro_sim.studies.diagnosis.effects.base import MATERIAL_SCALE
     header = ("parameter", "unit", "start", "fitted within", "plausible", "off at", "material departure",
               "why plausible")
     body = ["The candidate unmodelled effects the gap diagnosis (`fowt-sim diagnose`) fits, in catalogue order "
@@ -247,6 +248,9 @@ def effects_page() -> str:
         if not effect.wave_coherent:
             body += ["Its loads are quadratic in the waves: their low-frequency part is not coherent with the "
                      "elevation.", ""]
+        if effect.own_share is not None:
+            body += [f"It adds to a term the model has: a fit adding less than {MATERIAL_SCALE:.0%} of the model's "
+                     "own on the tuning runs is no finding (never named).", ""]
         body += _table(header, ((f"`{p.name}`", p.unit, _number(p.start), f"{_number(p.low)} to {_number(p.high)}",
                                  "{} to {}".format(*map(_number, p.plausible_range)), _number(p.off),
                                  _number(p.material) if p.material else "-", p.why)

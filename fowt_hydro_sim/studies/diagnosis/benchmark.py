@@ -324,6 +324,7 @@ class Score:
     baseline: dict = field(default_factory=dict)  # the independent basin's baseline terms set by the scenario
     right_scale: dict[str, float] = field(default_factory=dict)  # baseline_term: the right answer's values
     named_values: dict[str, float] | None = None  # the named effect's fitted values
+    named_as: str | None = None  # "effect" (the best fitting one) or "term" (read off the baseline mismatch)
 
 
 def footprint(with_effect: list[MeasuredRun], without: list[MeasuredRun],
@@ -342,28 +343,30 @@ def footprint(with_effect: list[MeasuredRun], without: list[MeasuredRun],
 
 
 def score_scenario(scenario: Scenario, diagnosis: Diagnosis, cells: list[tuple[str, str]], wall_s: float) -> Score:
-    """A scenario's outcome: injected, the effect (or an accepted one) named; null, nothing named
-    and nothing unexplained; out of catalogue, nothing named and "unexplained"; baseline_term,
-    the term's candidate named with each scored parameter within SCALE_TOLERANCE of its right
-    value."""
+    """A scenario's outcome, by what the diagnosis names (``Diagnosis.finding``: the best
+    fitting effect, or the model's term read off the baseline mismatch): injected, the effect
+    (or an accepted one) named; null, nothing named and nothing unexplained; out of catalogue,
+    nothing named and "unexplained"; baseline_term, the term's candidate named with each
+    scored parameter within SCALE_TOLERANCE of its right value."""
     detected = any(g.flagged.any() for g in diagnosis.tuning_before)
     flagged = {(dof, metric) for _, dof, metric in diagnosis.flagged_cells(diagnosis.tuning_before)}
-    chosen = diagnosis.candidate(diagnosis.chosen) if diagnosis.chosen else None
+    finding = diagnosis.finding_dict()
+    named = finding["effect"] if finding else None
     if scenario.kind == "injected":
-        correct = diagnosis.chosen in scenario.right_answers
+        correct = named in scenario.right_answers
     elif scenario.kind == "baseline_term":
-        correct = (chosen is not None and chosen.effect in scenario.right_answers
-                   and at_right_scale(chosen.values, scenario.right_scale))
+        correct = (finding is not None and named in scenario.right_answers
+                   and at_right_scale(finding["values"], scenario.right_scale))
     elif scenario.kind == "null":  # no effect named, nothing unexplained (a baseline mismatch may be reported)
-        correct = diagnosis.chosen is None and diagnosis.verdict in ("no significant gap", "baseline mismatch")
+        correct = named is None and diagnosis.verdict in ("no significant gap", "baseline mismatch")
     else:  # unexplained, nothing named: a baseline mismatch alone is what a null gets
-        correct = diagnosis.chosen is None and diagnosis.verdict == "unexplained"
-    return Score(scenario.name, scenario.kind, scenario.effect, detected, diagnosis.verdict, diagnosis.chosen,
+        correct = named is None and diagnosis.verdict == "unexplained"
+    return Score(scenario.name, scenario.kind, scenario.effect, detected, diagnosis.verdict, named,
                  correct, cells, (cells[0] in flagged) if cells else None,
-                 chosen.closure if chosen else None,
-                 None if not diagnosis.blind_after else diagnosis.blind_closure,
+                 finding["tuning_closure"] if finding else None, finding["blind_closure"] if finding else None,
                  diagnosis.model_runs, wall_s, [m.text() for m in diagnosis.mismatches if m.explained_by is None],
-                 dict(scenario.baseline), scenario.right_scale, dict(chosen.values) if chosen else None)
+                 dict(scenario.baseline), scenario.right_scale, dict(finding["values"]) if finding else None,
+                 finding["as"] if finding else None)
 
 
 def summary(scores: list[Score]) -> dict:
@@ -420,7 +423,8 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
         blind = [made[scenario.name, c, True] for c in scenario.blind_cases]
         evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s,
                                     MODEL_OPTIONS[source])
-        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations, progress=Progress())
+        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations, progress=Progress(),
+                             platform=platform)
         if reports is not None:
             write_report(diagnosis, reports / scenario.name.replace("#", "_"))
         cells = (footprint(tuning, [made[scenario.name, c, False] for c in scenario.tuning_cases], settings)
@@ -439,7 +443,8 @@ def score_line(score: Score) -> str:
         fitted = ", ".join(f"{k} {(score.named_values or {}).get(k, float('nan')):.2f} (right {v:.2f})"
                            for k, v in score.right_scale.items())
         closure += f"  {fitted}"
-    return (f"{score.scenario:<30} {score.verdict:<19} named {str(score.named):<26} "
+    named = f"{score.named} (term)" if score.named_as == "term" else str(score.named)
+    return (f"{score.scenario:<30} {score.verdict:<19} named {named:<33} "
             f"{'right' if score.correct else 'WRONG'}  detected {score.detected}  blind closure {closure}  "
             f"{score.wall_s:.0f} s")
 

@@ -249,6 +249,13 @@ def coherent_share(spectra_: dict[str, np.ndarray], dof: str, band_hz: tuple[flo
     return float(np.sum(spectra_[f"coherence.{dof}"][keep] * psd) / np.sum(psd)) if np.sum(psd) > 0 else math.nan
 
 
+def band_share(spectra_: dict[str, np.ndarray], dof: str, band_hz: tuple[float, float]) -> float:
+    """The band's share of the DOF's STD (``spectra``' PSD): sqrt(band variance / variance)."""
+    f, psd = spectra_["frequency_hz"], spectra_[f"psd.{dof}"]
+    total = float(np.sum(psd))
+    return math.sqrt(float(np.sum(psd[(f >= band_hz[0]) & (f <= band_hz[1])])) / total) if total > 0 else 0.0
+
+
 def band_mean(frequency_hz: np.ndarray, values: np.ndarray, band_hz: tuple[float, float]) -> float:
     keep = (frequency_hz >= band_hz[0]) & (frequency_hz <= band_hz[1])
     return float(values[keep].mean())

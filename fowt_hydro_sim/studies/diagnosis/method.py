@@ -55,8 +55,19 @@ import scipy.optimize
 import scipy.signal
 
 from fowt_hydro_sim.errors import InputError
+from fowt_hydro_sim.physics.config import Platform
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
-from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, band_mean, coherent_share, consistent, spectra
+from fowt_hydro_sim.studies.diagnosis.effects.base import MATERIAL_SCALE
+from fowt_hydro_sim.studies.diagnosis.gap import (
+    NEGLIGIBLE_BAND,
+    Gap,
+    GapSettings,
+    band_mean,
+    band_share,
+    coherent_share,
+    consistent,
+    spectra,
+)
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
 
 FLOOR = 0.25  # residual floor in tolerance units: fits closer than this are not told apart
@@ -147,12 +158,17 @@ class CandidateFit:
     fits: bool = False  # beats the plain model, closes enough, and raises no concern
     concerns: list[str] = field(default_factory=list)  # why the fit is not physically plausible
     window_s: float | None = None  # screened out: gaps, score and closure on the fit window only
+    size_concern: str = ""  # an added term too small beside the model's own to name (``share_concern``)
 
     @property
     def failed(self) -> bool:
         """Whether the fit leaves the gap larger than the plain model (a closure below
         FAILED_CLOSURE, -1 %) from every start (``fit_effect``): a fit that found no minimum, never an answer."""
         return self.closure < FAILED_CLOSURE
+
+    def value_concerns(self, effect: Effect) -> list[str]:
+        """Why its fitted values are no finding: ``range_concerns`` and its size concern."""
+        return range_concerns(effect, self.values) + ([self.size_concern] if self.size_concern else [])
 
     @property
     def screened(self) -> str:
@@ -206,6 +222,12 @@ def cell_closure(before: list[Gap], after: list[Gap], i: int) -> float:
     """Share of one cell's gap closed over the runs: 1 - sum r_after^2 / sum r_before^2."""
     den = float(sum(b.residual[i] ** 2 for b in before))
     return 1.0 - float(sum(a.residual[i] ** 2 for a in after)) / den if den > 0 else 0.0
+
+
+def cells_closure(before: list[Gap], after: list[Gap], cells: np.ndarray) -> float:
+    """Share of the gap of ``cells`` closed over the runs: 1 - sum r_after^2 / sum r_before^2."""
+    den = float(sum(np.sum(b.residual[cells] ** 2) for b in before))
+    return 1.0 - float(sum(np.sum(a.residual[cells] ** 2) for a in after)) / den if den > 0 else 0.0
 
 
 def explains(before: list[Gap], after: list[Gap], i: int) -> bool:
@@ -262,6 +284,20 @@ def range_concerns(effect: Effect, values: dict[str, float]) -> list[str]:
     return out
 
 
+def share_concern(effect: Effect, values: dict[str, float], runs: list[MeasuredRun],
+                  platform: Platform | None) -> str:
+    """For an effect that adds to a term the model has (``Effect.own_share``): why the fitted
+    addition is no finding, if its mean share of the model's own term over ``runs`` is under
+    MATERIAL_SCALE ('' otherwise, or without the platform)."""
+    if effect.own_share is None or platform is None or not runs:
+        return ""
+    share = float(np.mean([effect.own_share(values, run, platform) for run in runs]))
+    if share >= MATERIAL_SCALE:
+        return ""
+    return (f"it adds {share:.0%} to the model's own term on the tuning runs: within {MATERIAL_SCALE:.0%} of it, no "
+            "difference worth naming")
+
+
 def concerns(effect: Effect, values: dict[str, float], before: list[Gap], settings: GapSettings,
              mask: np.ndarray | None = None) -> list[str]:
     """Why a fitted effect is implausible: its values (``range_concerns``); or a gap it
@@ -309,7 +345,7 @@ def unexplained_cells(before: list[Gap], candidates: list[CandidateFit], effects
     window (``plain_gaps``): against the whole records, a cell's gap differing between the
     window and the record would read as closed by a candidate that moves nothing."""
     flagged = np.any([g.flagged for g in before], axis=0)
-    plausible = [c for c in candidates if not range_concerns(effects[c.effect], c.values) and c.closure > 0]
+    plausible = [c for c in candidates if not c.value_concerns(effects[c.effect]) and c.closure > 0]
     return np.array([bool(flagged[i]) and not any(explains(plain_gaps(c, before, window_before), c.gaps, i)
                                                   for c in plausible)
                      for i in range(flagged.size)])
@@ -489,6 +525,25 @@ class Diagnosis:
     # (DOF, metric, shares: measured, model)
     undriven: list[tuple[str, str, float, float]] = field(default_factory=list)
     window_before: list[Gap] = field(default_factory=list)  # tuning runs, plain model, in the fit window (if one)
+    reading: CandidateFit | None = None  # nothing named: the term read off the baseline mismatch (``leading_reading``)
+    reading_cells: np.ndarray | None = None  # the mismatch cells it reads
+    reading_blind_after: list[Gap] = field(default_factory=list)  # blind runs at its values, not refitted
+
+    @property
+    def finding(self) -> CandidateFit | None:
+        """What the diagnosis names: the chosen effect, else the term read off the baseline
+        mismatch (a first fit, ``reading``), else None."""
+        return self.candidate(self.chosen) if self.chosen else self.reading
+
+    @property
+    def reading_closure(self) -> tuple[float, float]:
+        """The reading's share of its cells' gap closed: tuning (its fit), blind (not refitted)."""
+        if self.reading is None:
+            return math.nan, math.nan
+        plain = plain_gaps(self.reading, self.tuning_before, self.window_before)
+        return (cells_closure(plain, self.reading.gaps, self.reading_cells),
+                cells_closure(self.blind_before, self.reading_blind_after, self.reading_cells)
+                if self.reading_blind_after else math.nan)
 
     @property
     def tuning_before(self) -> list[Gap]:
@@ -549,7 +604,21 @@ class Diagnosis:
                                                     for i, (dof, metric) in enumerate(self.settings.cells())
                                                     if any(g.flagged[i] for g in self.tuning_before)}}
                                 for c in self.first_round],
+                "finding": self.finding_dict(),
                 "model_runs": self.model_runs}
+
+    def finding_dict(self) -> dict | None:
+        """The named effect, or the term read off the mismatch, with its values and closures."""
+        if self.chosen:
+            c = self.candidate(self.chosen)
+            return {"effect": c.effect, "values": c.values, "as": "effect", "tuning_closure": c.closure,
+                    "blind_closure": None if math.isnan(self.blind_closure) else self.blind_closure}
+        if self.reading is None:
+            return None
+        tuning, blind = self.reading_closure
+        cells = [f"{dof}.{metric}" for (dof, metric), kept in zip(self.settings.cells(), self.reading_cells) if kept]
+        return {"effect": self.reading.effect, "values": self.reading.values, "as": "term", "cells": cells,
+                "tuning_closure": tuning, "blind_closure": None if math.isnan(blind) else blind}
 
 
 def peak_period_s(run: MeasuredRun) -> float:
@@ -588,15 +657,19 @@ def undriven_cells(cells: np.ndarray, before: list[Gap], measured: list[dict], m
     the measured runs holds a response the waves do not drive, beyond the model's: the
     coherent share (``gap.coherent_share``) lower than the model's by more than
     UNDRIVEN_SHARE on average over the tuning runs, in a band judged in every run (where
-    neither side has energy, coherence is noise). A transfer function of another form (a
-    wrong coefficient, strip theory against a panel method) keeps the response linear in
-    the waves; a load the model lacks and the waves do not drive (a rotor's 1P moment, wind)
-    does not. (DOF, metric, measured share, model share)."""
+    neither side has energy, coherence is noise) that holds at least NEGLIGIBLE_BAND of the
+    DOF's measured STD in every run (a band the measurement hardly has, judged only for a
+    gross ratio, holds no response worth a load of its own: heave below the wave band). A
+    transfer function of another form (a wrong coefficient, strip theory against a panel
+    method) keeps the response linear in the waves; a load the model lacks and the waves do
+    not drive (a rotor's 1P moment, wind) does not. (DOF, metric, measured share, model
+    share)."""
     out = []
     for i in np.flatnonzero(cells):
         dof, metric = settings.cells()[i]
         band = cell_band(metric, settings)
-        if band is None or not all(g.judged[i] for g in before):
+        if (band is None or not all(g.judged[i] for g in before)
+                or min(band_share(m, dof, band) for m in measured) < NEGLIGIBLE_BAND):
             continue
         share_measured = float(np.mean([coherent_share(m, dof, band) for m in measured]))
         share_model = float(np.mean([coherent_share(s, dof, band) for s in model]))
@@ -644,12 +717,14 @@ def fit_budget(effect: Effect, max_evaluations: int) -> int:
 
 def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Callable, settings: GapSettings,
              effects: dict[str, Effect] | None = None, max_evaluations: int = 4,
-             fit_window_s: float | None = FIT_WINDOW_S, progress: Work | None = None) -> Diagnosis:
+             fit_window_s: float | None = FIT_WINDOW_S, progress: Work | None = None,
+             platform: Platform | None = None) -> Diagnosis:
     """Diagnose the gap between the model and the measured runs. ``evaluate(jobs,
     description)`` runs replay jobs (``Job``, e.g. runner.replay_job) over ``tuning +
     blind`` in that order. Tuning records longer than ``fit_window_s`` are fitted on their
     first ``fit_window_s`` (None or 0: whole records). The model runs are counted in
-    ``progress`` (e.g. a runner.Progress, which logs them)."""
+    ``progress`` (e.g. a runner.Progress, which logs them). ``platform``, the model's, sizes
+    the effects that add to a term it has against its own (``share_concern``)."""
     check_runs(tuning + blind, settings)
     check_window(fit_window_s, settings)
     effects = effects or CATALOGUE
@@ -708,17 +783,18 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             expected = budget + sum(restarts_expected)
             progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
             p = len(effect.parameters)
+            size = share_concern(effect, values, tuning, platform)
             if window:
                 in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
                 if in_window < SCREEN_CLOSURE:
                     progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
                     return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, window_before), in_window,
-                                        count, window_s=window)
+                                        count, window_s=window, size_concern=size)
                 results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
                                    f"{effect.name}: whole records")
                 gaps, count = [g for g, _ in results], count + n_tuning
             return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, diagnosis.tuning_before),
-                                closure(diagnosis.tuning_before, gaps, mask), count)
+                                closure(diagnosis.tuning_before, gaps, mask), count, size_concern=size)
 
         with ThreadPoolExecutor(max_workers=len(effects)) as pool:
             fitted = list(pool.map(fit, effects.values()))
@@ -727,6 +803,19 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             judge(c, effects[c.effect], base, diagnosis.tuning_before, settings, mask)
         diagnosis.model_runs += sum(c.model_runs for c in fitted)
         return sorted(fitted, key=rank)  # plausible fits rank first, screened ones last
+
+    def confirmed(diagnosis: Diagnosis) -> Diagnosis:
+        """The diagnosis, its term reading (if any) replayed on the blind runs and kept only
+        if it closes there at least BLIND_SHARE of what it closes on the tuning runs."""
+        reading = diagnosis.reading
+        if reading is not None and blind:
+            progress.expect(len(blind), sum(whole_s[n_tuning:]))
+            after = evaluate([(reading.effect, reading.values, i, False) for i in range(n_tuning, len(runs))],
+                             f"{reading.effect}: blind runs")
+            diagnosis.model_runs += len(after)
+            confirm_reading(diagnosis, [g for g, _ in after])
+        progress.done(0, 0.0, final=True)
+        return diagnosis
 
     candidates = fit_all(None)
     # flagged cells no plausible candidate explains are the baseline's: set them aside and
@@ -756,8 +845,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                                 + (f" ({'; '.join(best.concerns)})" if best.concerns else ""))
             if first_choice:
                 progress.expect(-len(runs), -sum(whole_s))
-            progress.done(0, 0.0, final=True)
-            return with_mismatches(diagnosis, None, effects)
+            return confirmed(with_mismatches(diagnosis, None, effects))
         chosen, reason = _choose(fitting, effects, deficit, settings)
         diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
         jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
@@ -770,8 +858,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         for r, (_, s) in zip(tuning, after[:n_tuning]):
             diagnosis.spectra[r.name]["model + effect"] = s
         if not blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
-            progress.done(0, 0.0, final=True)
-            return with_mismatches(diagnosis, chosen, effects)
+            return confirmed(with_mismatches(diagnosis, chosen, effects))
         chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} of its "
                                f"tuning closure, {chosen.closure:.0%}")
         chosen.fits = False
@@ -786,7 +873,8 @@ def judge(candidate: CandidateFit, effect: Effect, base_score: float, before: li
     MIN_EVIDENCE, closes MIN_CLOSURE of the gap, raises no concern and was replayed whole."""
     c = candidate
     c.concerns = ([f"fit failed: it leaves the gap larger than the plain model (closure {c.closure:.0%}) from "
-                   "every start"] if c.failed else []) + concerns(effect, c.values, before, settings, mask)
+                   "every start"] if c.failed else []) + ([c.size_concern] if c.size_concern else []) + concerns(
+        effect, c.values, before, settings, mask)
     c.fits = (c.score < base_score - MIN_EVIDENCE and c.closure >= MIN_CLOSURE and not c.concerns
               and c.window_s is None)
 
@@ -815,9 +903,47 @@ def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effe
     if best is None:
         return None
     share, c = best
-    implausible = range_concerns(effects[c.effect], c.values)
+    implausible = c.value_concerns(effects[c.effect])
     return c, (f"{effects[c.effect].term(c.values)} ({c.effect} closes {share:.0%} of it"
                       + "".join(f"; {concern}" for concern in implausible) + ")")
+
+
+def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: list[Gap],
+                    candidates: list[CandidateFit],
+                    effects: dict[str, Effect]) -> tuple[CandidateFit | None, np.ndarray | None]:
+    """Of the terms read off the baseline mismatches no effect explains (``Mismatch.term_by``,
+    ``term_reading``), those at plausible and material values (no ``value_concerns``), the one
+    whose cells carry most of the mismatch (sum of the plain model's squared residuals
+    ``before``): (its first fit, the cells it reads); (None, None)
+    if there is none. A mismatch that a scale of one of the model's own terms closes is what
+    the diagnosis names when no effect is named: "the model's slow drift is 1.7 times too
+    weak" is a finding, and the one an engineer acts on next."""
+    found: dict[str, tuple[CandidateFit, np.ndarray]] = {}
+    for m in left:
+        c = next((c for c in candidates if c.effect == m.term_by), None)
+        if c is None or c.value_concerns(effects[c.effect]):
+            continue
+        mask = found.setdefault(c.effect, (c, np.zeros(len(cells), dtype=bool)))[1]
+        mask[cells.index((m.dof, m.metric))] = True
+    if not found:
+        return None, None
+
+    best = max(found, key=lambda name: sum(float(g.residual[i] ** 2) for g in before
+                                           for i in np.flatnonzero(found[name][1])))
+    return found[best]
+
+
+def confirm_reading(diagnosis: Diagnosis, blind_after: list[Gap]) -> Diagnosis:
+    """Keep the term reading (``Diagnosis.reading``) with its blind runs' gaps at its values
+    (not refitted) if it closes there at least BLIND_SHARE of what it closes of its cells on
+    the tuning runs, as a named effect must; otherwise it is not named, and the verdict says why."""
+    diagnosis.reading_blind_after = blind_after
+    tuning_share, blind_share = diagnosis.reading_closure
+    if blind_share < BLIND_SHARE * tuning_share:
+        diagnosis.reason += (f"; {diagnosis.reading.effect} closes {blind_share:.0%} of its cells' gap on the blind "
+                             f"runs, below {BLIND_SHARE:.0%} of its {tuning_share:.0%} on the tuning runs: not named")
+        diagnosis.reading, diagnosis.reading_cells, diagnosis.reading_blind_after = None, None, []
+    return diagnosis
 
 
 def additional_cells(before: list[Gap], after: list[Gap], mismatch: np.ndarray) -> np.ndarray:
@@ -866,6 +992,9 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
             diagnosis.chosen, diagnosis.blind_after, chosen = None, [], None
             for spectra in diagnosis.spectra.values():
                 spectra.pop("model + effect", None)
+    if chosen is None and left and not diagnosis.undriven:
+        diagnosis.reading, diagnosis.reading_cells = leading_reading(
+            left, cells, before, diagnosis.first_round or diagnosis.candidates, effects)
     if left:
         effect = (f"; additionally {chosen.effect} explains part of the gap ({diagnosis.reason})" if chosen
                   else f"; no effect explains the rest ({diagnosis.reason})")
@@ -877,6 +1006,11 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
     if diagnosis.differences:
         diagnosis.reason += ("; set aside as the baseline's, flagged in some runs only or of changing sign, no "
                              f"catalogue effect explaining them: {diagnosis.differences_text()}")
+    if diagnosis.reading is not None:
+        tuning_share, _ = diagnosis.reading_closure
+        diagnosis.reason += (f"; named: {effects[diagnosis.reading.effect].term(diagnosis.reading.values)} "
+                             f"({diagnosis.reading.effect} closes {tuning_share:.0%} of the gap of the mismatches it "
+                             "reads)")
     if diagnosis.undriven:
         undriven = ", ".join(f"{dof} {metric} (coherent share {measured:.2f} measured, {model:.2f} modelled)"
                              for dof, metric, measured, model in diagnosis.undriven)

@@ -148,9 +148,13 @@ def summary_lines(diagnosis: Diagnosis) -> list[str]:
                   + ("  (fit failed)" if c.failed else "")
                   + (f"  (screened: {c.screened})" if c.screened else "") for c in diagnosis.candidates]
     lines.append(f"verdict: {diagnosis.verdict}" + (f": {diagnosis.chosen}" if diagnosis.chosen else "")
+                 + (f", the model's term: {diagnosis.reading.effect}" if diagnosis.reading else "")
                  + f" ({diagnosis.reason})")
     if diagnosis.blind_after:
         lines.append(f"blind runs (not refitted): {100 * diagnosis.blind_closure:.0f} % of the gap closed")
+    if diagnosis.reading_blind_after:
+        lines.append(f"blind runs (not refitted): {100 * diagnosis.reading_closure[1]:.0f} % of the gap of the "
+                     "mismatches it reads closed")
     return lines
 
 
@@ -174,7 +178,8 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
     lines = ["# Sim-to-real gap diagnosis", "",
              f"Tuning runs: {', '.join(d.tuning)}. Blind runs: {', '.join(d.blind) or 'none'}. "
              f"Model runs: {d.model_runs}.", "",
-             f"**Verdict: {d.verdict}**" + (f": **{d.chosen}**" if d.chosen else "") + f". {d.reason}.", ""]
+             f"**Verdict: {d.verdict}**" + (f": **{d.chosen}**" if d.chosen else "")
+             + (f", the model's term: **{d.reading.effect}**" if d.reading else "") + f". {d.reason}.", ""]
     lines += ["## Where the gap lies", "",
               "Cells flagged: significant (the paired block test's "
               f"{100 * d.settings.confidence:g} % interval excludes zero) and beyond tolerance "

@@ -118,5 +118,5 @@ def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, setti
     with dask_client(scheduler, workers) as client:
         evaluate = cluster_evaluate(client, tuning_runs + blind_runs, platform, settings, effects, dt_s)
         diagnosis = diagnose(tuning_runs, blind_runs, evaluate, settings, effects, max_evaluations, fit_window_s,
-                             Progress())
+                             Progress(), platform)
     return summary_lines(diagnosis) + [f"report: {write_report(diagnosis, output)}"]

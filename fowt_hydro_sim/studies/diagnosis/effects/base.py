@@ -62,7 +62,12 @@ class Effect:
     either way are left out.
     ``term``: for an effect that scales (or adds to) a term the model already has, how a
     fit reads as that term's error, from the fitted values: "the model's slow drift is 2
-    times too strong" (``scaled_term``); None for an effect the model lacks."""
+    times too strong" (``scaled_term``); None for an effect the model lacks.
+    ``own_share``: for an effect that adds to a term the model already has in another form
+    (a drift of its own on top of the model's drift table), the added term's size as a share
+    of the model's own on a run, from the fitted values and the platform; a fit under
+    MATERIAL_SCALE of it on the tuning runs is no finding, as a scale of that term within
+    MATERIAL_SCALE of 1 is not (``method.share_concern``)."""
 
     name: str
     summary: str
@@ -71,6 +76,7 @@ class Effect:
     wave_coherent: bool = True
     signature: dict[str, int] = field(default_factory=dict)
     term: Callable[[dict[str, float]], str] | None = None
+    own_share: Callable[[dict[str, float], MeasuredRun, Platform], float] | None = None
 
     def values(self, which: str = "start") -> dict[str, float]:
         """Every parameter's ``start``, ``low``, ``high`` or ``off`` value, by name."""

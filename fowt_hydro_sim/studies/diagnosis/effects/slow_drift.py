@@ -13,6 +13,8 @@ from dataclasses import replace
 
 import numpy as np
 
+from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.physics.loads import drift
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, IndependentInjection, Parameter
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
@@ -47,6 +49,22 @@ def drift_force(elevation_m: np.ndarray, step_s: float, coefficient_n_m2: float,
     return out
 
 
+def own_share(values: dict[str, float], run: MeasuredRun, platform: Platform) -> float:
+    """The added mean drift force on a run's sea as a share of the model's own (its Newman
+    drift from ``Platform.drift_coefficients_n_m2``, ``physics/loads/drift.py``): the
+    added drift is the table D(w) = (C / 2) (w / W_REF)^n, so the share is
+    sum a_j^2 (C / 2) (w_j / W_REF)^n / sum a_j^2 D_model(w_j) over the elevation's
+    components. Infinite for a model without a drift table."""
+    eta = np.asarray(run.elevation_m, dtype=float)
+    power = np.abs(np.fft.rfft(eta - eta.mean()))[1:] ** 2
+    omega = 2.0 * np.pi * np.fft.rfftfreq(eta.size, run.elevation_step_s)[1:]
+    added = 0.5 * values["drift_coefficient_n_m2"] * (np.minimum(omega, W_MAX_RAD_S) / W_REF_RAD_S) ** values.get(
+        "frequency_exponent", 0.0)
+    own = float(np.sum(power * drift.coefficients(platform.drift_coefficients_n_m2, omega))
+                if platform.drift_coefficients_n_m2 else 0.0)
+    return float(np.sum(power * added)) / own if own > 0 else math.inf
+
+
 def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
     force = drift_force(run.elevation_m, run.elevation_step_s, values["drift_coefficient_n_m2"], run.heading_deg,
                         exponent=values.get("frequency_exponent", 0.0))
@@ -63,7 +81,7 @@ EFFECT = Effect(
                why="a floating hull's mean-drift coefficient rises through the wave band, at most about as w^4 "
                    "(a small body in long waves), and falls only past a resonance")),
     apply, wave_coherent=False,
-    signature={"surge.std.low_frequency": +1, "surge.offset": +1})
+    signature={"surge.std.low_frequency": +1, "surge.offset": +1}, own_share=own_share)
 
 # the benchmark's twin injects it at these values (one scenario each)
 TWIN_INJECTIONS = ({"drift_coefficient_n_m2": 1.0e5}, {"drift_coefficient_n_m2": 3.0e5})
