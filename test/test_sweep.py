@@ -49,7 +49,7 @@ def dask_noise(stderr: str) -> list[str]:
     """The lines of a command's stderr that are neither its progress bar, its own INFO log
     nor its one-line error or interruption: Dask's warnings, tracebacks."""
     lines = [line.strip() for line in stderr.replace("\r", "\n").splitlines()]
-    own = ("sweep:", "INFO fowt_hydro_sim", "fowt-sim sweep: ")
+    own = ("sweep:", "measured runs:", "INFO fowt_hydro_sim", "fowt-sim sweep: ", "fowt-sim diagnose-benchmark: ")
     return [line for line in lines if line and not line.startswith(own)]
 
 
@@ -220,20 +220,27 @@ def test_sweep_from_a_file_and_bad_input_in_one_line(tmp_path: Path):
 @pytest.mark.serial
 @pytest.mark.slow
 @pytest.mark.dask
-def test_ctrl_c_ends_a_sweep_with_one_line_and_no_process_left(tmp_path: Path):
+@pytest.mark.parametrize("command, under_way", [
+    (["sweep", "--seeds", "1", "2", "--duration", "20000"], r"sweep: +0%"),
+    (["diagnose-benchmark", "--inject", "slow_drift", "--strengths", "1", "--nulls", "0", "--out-of-catalogue", "0",
+      "--duration", "1200"], r"diagnosis: \d+/\d+ model runs"),
+], ids=["sweep", "diagnose-benchmark"])
+def test_ctrl_c_ends_a_cluster_command_with_one_line_and_no_process_left(tmp_path: Path, command: list[str],
+                                                                         under_way: str):
     """Ctrl-C (SIGINT to the terminal's process group: the command and its workers) while
-    runs are under way: "interrupted", exit 130, no Dask warning or CancelledError, and
-    every process of the group gone."""
-    process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", "sweep", "--seeds", "1", "2",
-                                "--duration", "20000", "--workers", "2", "-o", str(tmp_path / "s")], cwd=REPO,
+    runs are under way: "interrupted", exit 130, no Dask warning, CancelledError or worker's
+    traceback, and every process of the group gone. (A worker busy in Python code when the
+    signal comes, as a diagnosis's often is, printed its event loop's KeyboardInterrupt.)"""
+    process = subprocess.Popen([sys.executable, "-m", "fowt_hydro_sim.cli", *command, "--workers", "2",
+                                "-o", str(tmp_path / "s")], cwd=REPO,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     stderr: list[str] = []
     reader = threading.Thread(target=lambda: stderr.extend(iter(lambda: process.stderr.read(1), "")), daemon=True)
     reader.start()
     try:
         deadline = time.monotonic() + 180
-        while not re.search(r"sweep: +0%", "".join(stderr)) and time.monotonic() < deadline and process.poll() is None:
-            time.sleep(0.2)  # the progress bar: the cluster is up, the runs under way
+        while not re.search(under_way, "".join(stderr)) and time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.2)  # a progress line: the cluster is up, the runs under way
         assert process.poll() is None, "".join(stderr)
         time.sleep(3.0)
         os.killpg(process.pid, signal.SIGINT)
@@ -243,8 +250,9 @@ def test_ctrl_c_ends_a_sweep_with_one_line_and_no_process_left(tmp_path: Path):
             os.killpg(process.pid, signal.SIGKILL)
     reader.join(timeout=10)
     text = "".join(stderr)
-    assert dask_noise(text) == [] and "CancelledError" not in text, text
-    assert [line for line in text.splitlines() if line.startswith("fowt-sim")] == ["fowt-sim sweep: interrupted"]
+    assert dask_noise(text) == [] and "CancelledError" not in text and "Traceback" not in text, text
+    assert [line for line in text.splitlines() if line.startswith("fowt-sim")] == [
+        f"fowt-sim {command[0]}: interrupted"]
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:
         try:

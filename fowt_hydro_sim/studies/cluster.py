@@ -2,8 +2,8 @@
 default, or an existing cluster by its scheduler address, with no code change; a progress
 bar on stderr (the results in order, or each as soon as it is ready).
 
-A local cluster's worker processes start with SIGINT blocked: Ctrl-C (which the terminal
-sends to the whole process group) is handled by this process alone, which shuts the cluster
+A local cluster's worker processes ignore SIGINT (``dask_setup``, run in each as it starts):
+Ctrl-C (which the terminal sends to the whole process group) is handled by this process alone, which shuts the cluster
 down (the client, then each worker, given ``WORKER_EXIT_S`` to exit, then the cluster) with
 Dask's own shutdown messages kept off the terminal. The worker processes log only what is
 critical: a run's exception reaches the user through its result, a worker that dies through
@@ -42,9 +42,9 @@ def _sigint_ignored() -> Iterator[None]:
 
 @contextmanager
 def _sigint_held() -> Iterator[None]:
-    """SIGINT blocked meanwhile in the main thread: the threads and processes it starts
-    inherit it blocked (worker processes never see Ctrl-C), and a Ctrl-C meanwhile is not
-    lost but raised (KeyboardInterrupt) on leaving."""
+    """SIGINT blocked meanwhile in the main thread: the threads it starts inherit it blocked
+    (Ctrl-C reaches the main thread, not the cluster's event loop), and a Ctrl-C meanwhile is
+    not lost but raised (KeyboardInterrupt) on leaving."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -53,6 +53,15 @@ def _sigint_held() -> Iterator[None]:
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+@contextmanager
+def dask_setup(worker) -> None:
+    """Run by each local worker process as it starts (Dask's ``preload``): SIGINT ignored
+    there, so that Ctrl-C reaches only the command, which shuts the cluster down. (A worker
+    process resets the signal mask it is spawned with, and its event loop turns a SIGINT into
+    a KeyboardInterrupt with the traceback of every coroutine it cancels.)"""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 @contextmanager
@@ -131,9 +140,9 @@ def dask_client(scheduler: str | None = None, workers: int | None = None) -> Ite
         return
     cluster = client = None
     try:
-        with _sigint_held():  # the cluster's thread and worker processes start with SIGINT blocked
+        with _sigint_held():  # the cluster's thread starts with SIGINT blocked, its workers ignore it
             cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                                   host="127.0.0.1", silence_logs=logging.CRITICAL,
+                                   host="127.0.0.1", silence_logs=logging.CRITICAL, preload=[__name__],
                                    scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"})
             # (the scheduler's HTTP server on loopback, no dashboard)
             client = Client(cluster)

@@ -796,8 +796,11 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, diagnosis.tuning_before),
                                 closure(diagnosis.tuning_before, gaps, mask), count, size_concern=size)
 
-        with ThreadPoolExecutor(max_workers=len(effects)) as pool:
+        pool = ThreadPoolExecutor(max_workers=len(effects))
+        try:
             fitted = list(pool.map(fit, effects.values()))
+        finally:  # interrupted (Ctrl-C), the fits under way are not waited for: their runs end with the cluster
+            pool.shutdown(wait=False, cancel_futures=True)
         base = score(diagnosis.tuning_before, 0, mask, diagnosis.tuning_before)
         for c in fitted:
             judge(c, effects[c.effect], base, diagnosis.tuning_before, settings, mask)
