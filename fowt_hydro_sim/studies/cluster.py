@@ -3,13 +3,14 @@ default, or an existing cluster by its scheduler address, with no code change; a
 bar on stderr (the results in order, or each as soon as it is ready).
 
 A local cluster's worker processes ignore SIGINT (``dask_setup``, run in each as it starts):
-Ctrl-C (which the terminal sends to the whole process group) is handled by this process alone, which shuts the cluster
-down (the client, then each worker, given ``WORKER_EXIT_S`` to exit, then the cluster) with
-Dask's own shutdown messages kept off the terminal. The worker processes log only what is
-critical: a run's exception reaches the user through its result, a worker that dies through
-this process's nanny (a worker interrupted mid-run would otherwise print the tracebacks of
-its broken connections). Runs the cluster loses (cancelled, forgotten, or their worker killed
-too often) end the work with a ``ClusterError``: one line, not Dask's traceback."""
+Ctrl-C (which the terminal sends to the whole process group) is handled by this process
+alone, which shuts the cluster down (the client, then each worker, given ``WORKER_EXIT_S``
+to exit, then the cluster) with Dask's own shutdown messages kept off the terminal. The
+worker processes log only what is critical: a run's exception reaches the user through its
+result, a worker that dies through this process's nanny (a worker interrupted mid-run would
+otherwise print the tracebacks of its broken connections). Runs the cluster loses
+(cancelled, forgotten, or their worker killed too often) end the work with a
+``ClusterError``: one line, not Dask's traceback."""
 from __future__ import annotations
 
 import asyncio
@@ -55,7 +56,6 @@ def _sigint_held() -> Iterator[None]:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
-@contextmanager
 def dask_setup(worker) -> None:
     """Run by each local worker process as it starts (Dask's ``preload``): SIGINT ignored
     there, so that Ctrl-C reaches only the command, which shuts the cluster down. (A worker
