@@ -287,3 +287,20 @@ def test_an_undriven_response_needs_a_band_the_measurement_has():
         assert abs(method.band_share(measured[0], "surge", (0.005, 0.05)) - share) < 0.01
         found = method.undriven_cells(cells, before, measured, [spectra(0.4, 0.5) for _ in RUNS], SETTINGS)
         assert bool(found) is undriven, (share, found)
+
+
+def test_the_report_says_how_far_the_term_read_closes_its_cells():
+    """The report of a diagnosis that names a term read off the mismatch gives it in the
+    verdict and its closures over the cells it reads, tuning and blind."""
+    from fowt_hydro_sim.studies.diagnosis.report import markdown, summary_lines
+
+    before = gaps({"std.low_frequency": -0.4})
+    drift = candidate("model_slow_drift", {"drift_scale": 1.6}, gaps({"std.low_frequency": -0.02}), 0.3)
+    d = diagnosis(before, [drift], None)
+    d.baseline, d.blind = before + [gap("lc6.1", {"std.low_frequency": -0.4})], ["lc6.1"]
+    d = method.confirm_reading(method.with_mismatches(d, None, CATALOGUE), [gap("lc6.1", {"std.low_frequency": -0.12})])
+    text = markdown(d, [])
+    assert "the model's term: **model_slow_drift**" in text, text
+    assert "over the mismatch's cells it reads (surge std.low_frequency)" in text, text
+    assert "| tuning (fitted) | 100 % |" in text and "| blind (not refitted) | 91 % |" in text, text
+    assert any(line.startswith("blind runs (not refitted): 91 %") for line in summary_lines(d)), summary_lines(d)

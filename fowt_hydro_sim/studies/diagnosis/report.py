@@ -239,6 +239,17 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
                 lines.append(f"| {before.run} | {dof} | {metric} | {_value_text(metric, before.value[i])} | "
                              f"{_value_text(metric, after.value[i])} |")
         lines.append("")
+    if d.reading is not None:
+        tuning, blind = d.reading_closure
+        cells_read = ", ".join(f"{dof} {metric}" for (dof, metric), kept in zip(cells, d.reading_cells) if kept)
+        lines += ["## How far the term read off the mismatch closes it", "",
+                  f"{d.reading.effect} at its first fit's values ("
+                  + ", ".join(f"{k} = {v:.4g}" for k, v in d.reading.values.items())
+                  + f"), over the mismatch's cells it reads ({cells_read}):", "",
+                  "| runs | closure |", "|---|---|", f"| tuning (fitted) | {100 * tuning:.0f} % |"]
+        if d.reading_blind_after:
+            lines.append(f"| blind (not refitted) | {100 * blind:.0f} % |")
+        lines.append("")
     lines += ["## Figures", ""] + [f"![{name}]({name})" for name in figures] + [""]
     return "\n".join(lines)
 
