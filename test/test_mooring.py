@@ -104,17 +104,23 @@ def test_a_run_chooses_the_mooring_and_refuses_an_unknown_one():
 
 
 @pytest.mark.slow
-def test_the_paper_springs_move_the_platform_as_before_bit_for_bit():
+def test_the_paper_springs_move_the_platform_as_before_to_round_off():
     """The reference: windmoor12 in lc5.3 from an offset, written by the code before the
-    mooring choice existed (test/data/mooring/PROVENANCE.md)."""
+    mooring choice existed (test/data/mooring/PROVENANCE.md). Equal to 1e-12 of each record's
+    largest value: another numpy or numba moves the last bits (the sway, roll and yaw that
+    symmetry keeps at 1e-17, the surge at 4e-16 of its value); the default and the named
+    spring mooring give the same run bit for bit."""
     reference = np.load(DATA / "windmoor12_spring_lc5.3_20s.npz")
     waves = synthesize(load_case("lc5.3").sea_state, 3600.0)
+    runs = []
     for choice in ("", "spring"):
         model = PlatformModel(load_platform("windmoor12"), waves, mooring_model=choice)
         model.reset(motion=np.array([2.0, 0, 0, 0, 0.01, 0]))
-        result = model.run(20.0, 0.25)
-        assert np.array_equal(result.motion, reference["motion"])
-        assert np.array_equal(result.load("mooring"), reference["mooring"])
+        runs.append(model.run(20.0, 0.25))
+    for key, value in (("motion", runs[0].motion), ("mooring", runs[0].load("mooring"))):
+        np.testing.assert_allclose(value, reference[key], rtol=0, atol=1e-12 * np.abs(reference[key]).max())
+    assert np.array_equal(runs[0].motion, runs[1].motion)
+    assert np.array_equal(runs[0].load("mooring"), runs[1].load("mooring"))
 
 
 # ---------------------------------------------------------------------- moorpy
