@@ -218,16 +218,16 @@ def closure(before: list[Gap], after: list[Gap], mask: np.ndarray | None = None)
     return 0.0 if math.isnan(share) else share
 
 
-def cell_closure(before: list[Gap], after: list[Gap], i: int) -> float:
-    """Share of one cell's gap closed over the runs: 1 - sum r_after^2 / sum r_before^2."""
-    den = float(sum(b.residual[i] ** 2 for b in before))
-    return 1.0 - float(sum(a.residual[i] ** 2 for a in after)) / den if den > 0 else 0.0
-
-
-def cells_closure(before: list[Gap], after: list[Gap], cells: np.ndarray) -> float:
-    """Share of the gap of ``cells`` closed over the runs: 1 - sum r_after^2 / sum r_before^2."""
+def cells_closure(before: list[Gap], after: list[Gap], cells: np.ndarray | int) -> float:
+    """Share of the gap of ``cells`` (a mask or one index) closed over the runs:
+    1 - sum r_after^2 / sum r_before^2."""
     den = float(sum(np.sum(b.residual[cells] ** 2) for b in before))
     return 1.0 - float(sum(np.sum(a.residual[cells] ** 2) for a in after)) / den if den > 0 else 0.0
+
+
+def cell_closure(before: list[Gap], after: list[Gap], i: int) -> float:
+    """Share of one cell's gap closed over the runs (``cells_closure`` of cell ``i``)."""
+    return cells_closure(before, after, i)
 
 
 def explains(before: list[Gap], after: list[Gap], i: int) -> bool:
