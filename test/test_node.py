@@ -357,19 +357,23 @@ def test_a_second_ctrl_c_during_the_clean_up_does_not_cut_it(tmp_path, second_s:
     """Ctrl-C at a terminal reaches every process of the group, and a parent that stops its
     children (closed-loop) sends its own: a second SIGINT while the node closes its bag. The node
     still exits 0 with its bag closed and readable. Before, it could abort mid-clean-up (exit
-    -6, or -2) about one time in four."""
-    listener = Listener({"/clock": Clock})
-    node = start("node", real_time_factor=0.0, duration_s=600.0, drag_model="constant", record=str(tmp_path / "bag"))
+    -6, or -2) about one time in four. The node waits for the listener before stepping: unpaced,
+    its 600 s take under a second, less than discovery can take on a loaded machine."""
+    listener = Listener({"/clock": Clock, "/platform/pose": PoseStamped})
+    node = start("node", real_time_factor=0.0, duration_s=600.0, drag_model="constant", record=str(tmp_path / "bag"),
+                 wait_for_subscribers=1)
     try:
-        assert listener.wait_for(lambda: any(adapt.seconds(m.clock) > 1.0 for m in listener.messages["/clock"]),
-                                 60.0)
-        node.send_signal(signal.SIGINT)
-        time.sleep(second_s)
-        if node.poll() is None:
+        stepping = listener.wait_for(lambda: any(adapt.seconds(m.clock) > 1.0 for m in listener.messages["/clock"]),
+                                     60.0)
+        if stepping:
             node.send_signal(signal.SIGINT)
+            time.sleep(second_s)
+            if node.poll() is None:
+                node.send_signal(signal.SIGINT)
     finally:
         output = finish(node, 60)
         listener.close()
+    assert stepping, ("no clock past 1 s", output[-2000:])
     assert node.returncode == 0 and "stepping ended" in output, (node.returncode, output[-2000:])
     assert Bag(tmp_path / "bag").motion().time_s[-1] > 1.0
 
