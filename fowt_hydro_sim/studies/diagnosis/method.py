@@ -546,6 +546,13 @@ class Diagnosis:
                 if self.reading_blind_after else math.nan)
 
     @property
+    def reading_cell_names(self) -> list[tuple[str, str]]:
+        """(DOF, metric) of each mismatch cell the reading reads ([] without a reading)."""
+        if self.reading_cells is None:
+            return []
+        return [cell for cell, kept in zip(self.settings.cells(), self.reading_cells) if kept]
+
+    @property
     def tuning_before(self) -> list[Gap]:
         return self.baseline[:len(self.tuning)]
 
@@ -616,7 +623,7 @@ class Diagnosis:
         if self.reading is None:
             return None
         tuning, blind = self.reading_closure
-        cells = [f"{dof}.{metric}" for (dof, metric), kept in zip(self.settings.cells(), self.reading_cells) if kept]
+        cells = [f"{dof}.{metric}" for dof, metric in self.reading_cell_names]
         return {"effect": self.reading.effect, "values": self.reading.values, "as": "term", "cells": cells,
                 "tuning_closure": tuning, "blind_closure": None if math.isnan(blind) else blind}
 

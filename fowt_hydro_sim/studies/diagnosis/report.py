@@ -241,7 +241,7 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
         lines.append("")
     if d.reading is not None:
         tuning, blind = d.reading_closure
-        cells_read = ", ".join(f"{dof} {metric}" for (dof, metric), kept in zip(cells, d.reading_cells) if kept)
+        cells_read = ", ".join(f"{dof} {metric}" for dof, metric in d.reading_cell_names)
         lines += ["## How far the term read off the mismatch closes it", "",
                   f"{d.reading.effect} at its first fit's values ("
                   + ", ".join(f"{k} = {v:.4g}" for k, v in d.reading.values.items())
