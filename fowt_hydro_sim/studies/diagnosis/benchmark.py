@@ -134,7 +134,7 @@ class BaselineTerm(NamedTuple):
 
 BASELINE_TERMS = {
     "drift_scale": BaselineTerm("drift_scale", "model_slow_drift", ("drift_scale",)),
-    "cd_factor": BaselineTerm("cd_factor", "model_drag", ("wave_cd_scale", "low_frequency_cd_scale")),
+    "cd_factor": BaselineTerm("cd_factor", "model_drag", ("cd_scale",)),
 }
 
 
