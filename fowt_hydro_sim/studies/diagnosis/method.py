@@ -48,7 +48,7 @@ import math
 import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.optimize
@@ -816,16 +816,23 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
 
     def confirmed(diagnosis: Diagnosis) -> Diagnosis:
         """The diagnosis, its term reading (if any) replayed on the blind runs and kept only
-        if it closes there at least BLIND_SHARE of what it closes on the tuning runs."""
+        if it closes there at least BLIND_SHARE of what it closes on the tuning runs, both
+        over whole records: a reading screened out in the fit window is replayed on the
+        tuning runs' whole records too (``whole_records``)."""
         reading = diagnosis.reading
         if reading is not None and blind:
-            progress.expect(len(blind), sum(whole_s[n_tuning:]))
-            after = evaluate([(reading.effect, reading.values, i, False) for i in range(n_tuning, len(runs))],
-                             f"{reading.effect}: blind runs")
+            replayed = range(len(runs)) if reading.window_s is not None else range(n_tuning, len(runs))
+            progress.expect(len(replayed), sum(whole_s[i] for i in replayed))
+            after = [g for g, _ in evaluate([(reading.effect, reading.values, i, False) for i in replayed],
+                                            f"{reading.effect}: whole records")]
             diagnosis.model_runs += len(after)
-            confirm_reading(diagnosis, [g for g, _ in after])
+            if reading.window_s is not None:
+                diagnosis.reading = whole_records(reading, after[:n_tuning], diagnosis.tuning_before,
+                                                  len(effects[reading.effect].parameters))
+                after = after[n_tuning:]
+            confirm_reading(diagnosis, after)
         progress.done(0, 0.0, final=True)
-        return diagnosis
+        return state_reading(diagnosis, effects)
 
     candidates = fit_all(None)
     # flagged cells no plausible candidate explains are the baseline's: set them aside and
@@ -943,6 +950,25 @@ def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: 
     return found[best]
 
 
+def state_reading(diagnosis: Diagnosis, effects: dict[str, Effect]) -> Diagnosis:
+    """The verdict's last words on the term reading kept (if any): the term's error it
+    names, and the share of its cells' gap it closes on the tuning runs."""
+    if diagnosis.reading is not None:
+        tuning_share, _ = diagnosis.reading_closure
+        diagnosis.reason += (f"; named: {effects[diagnosis.reading.effect].term(diagnosis.reading.values)} "
+                             f"({diagnosis.reading.effect} closes {tuning_share:.0%} of the gap of the mismatches it "
+                             "reads)")
+    return diagnosis
+
+
+def whole_records(candidate: CandidateFit, gaps: list[Gap], before: list[Gap], n_parameters: int) -> CandidateFit:
+    """A candidate fitted on every cell and screened out in the fit window (its gaps, score
+    and closure the window's) with its tuning gaps over the whole records, ``gaps`` (the
+    plain model's: ``before``)."""
+    return replace(candidate, gaps=gaps, score=score(gaps, n_parameters, None, before),
+                   closure=closure(before, gaps), model_runs=candidate.model_runs + len(gaps), window_s=None)
+
+
 def confirm_reading(diagnosis: Diagnosis, blind_after: list[Gap]) -> Diagnosis:
     """Keep the term reading (``Diagnosis.reading``) with its blind runs' gaps at its values
     (not refitted) if it closes there at least BLIND_SHARE of what it closes of its cells on
@@ -1016,11 +1042,6 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
     if diagnosis.differences:
         diagnosis.reason += ("; set aside as the baseline's, flagged in some runs only or of changing sign, no "
                              f"catalogue effect explaining them: {diagnosis.differences_text()}")
-    if diagnosis.reading is not None:
-        tuning_share, _ = diagnosis.reading_closure
-        diagnosis.reason += (f"; named: {effects[diagnosis.reading.effect].term(diagnosis.reading.values)} "
-                             f"({diagnosis.reading.effect} closes {tuning_share:.0%} of the gap of the mismatches it "
-                             "reads)")
     if diagnosis.undriven:
         undriven = ", ".join(f"{dof} {metric} (coherent share {measured:.2f} measured, {model:.2f} modelled)"
                              for dof, metric, measured, model in diagnosis.undriven)
