@@ -243,7 +243,7 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
         tuning, blind = d.reading_closure
         cells_read = ", ".join(f"{dof} {metric}" for dof, metric in d.reading_cell_names)
         lines += ["## How far the term read off the mismatch closes it", "",
-                  f"{d.reading.effect} at its first fit's values ("
+                  f"{d.reading.effect} fitted on those cells ("
                   + ", ".join(f"{k} = {v:.4g}" for k, v in d.reading.values.items())
                   + f"), over the mismatch's cells it reads ({cells_read}):", "",
                   "| runs | closure |", "|---|---|", f"| tuning (fitted) | {100 * tuning:.0f} % |"]
