@@ -568,6 +568,7 @@ def test_a_term_read_off_a_mismatch_is_fitted_on_the_cells_it_reads():
     at its right scale, 1.3, and is what the diagnosis names; where the drag would open a gap
     in a matching cell, the drift reads the mismatch better, and nothing is named (the
     mismatch is within the model's own uncertainty)."""
+    from fowt_hydro_sim.studies.diagnosis.report import markdown
     diagnosis, settings = _drag_or_drift_world(drag_opens_wave_cell=False)
     first_drag = next(c for c in diagnosis.first_round or diagnosis.candidates if c.effect == "model_drag")
     assert first_drag.values["cd_scale"] < 1.1, first_drag.values  # the first fit, pulled off
@@ -577,6 +578,9 @@ def test_a_term_read_off_a_mismatch_is_fitted_on_the_cells_it_reads():
     assert diagnosis.finding is not None and diagnosis.finding.effect == "model_drag", diagnosis.reason
     assert diagnosis.finding.values["cd_scale"] == pytest.approx(1.3, abs=0.03)
     assert "named: the model's drag is 1.3 times too weak" in diagnosis.reason, diagnosis.reason
+    text = markdown(diagnosis, [])
+    table = text.split("## The model's terms fitted on the mismatch")[1]
+    assert table.index("| model_drag | cd_scale = 1.") < table.index("| model_slow_drift |"), table
 
     diagnosis, _ = _drag_or_drift_world(drag_opens_wave_cell=True)
     assert diagnosis.finding is None and "named:" not in diagnosis.reason, diagnosis.reason
