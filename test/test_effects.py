@@ -650,14 +650,14 @@ def test_a_candidate_screened_in_the_fit_window_is_compared_with_the_plain_model
     that window keeps the window's gaps: at its off value, moving nothing, it closes none of
     the cell against the window's plain model, and the cell is set aside as the baseline's;
     against the whole records it would seem to close 75 % of it and keep the cell in."""
-    from fowt_hydro_sim.studies.diagnosis.method import CandidateFit, cell_closure, unexplained_cells
+    from fowt_hydro_sim.studies.diagnosis.method import CandidateFit, cells_closure, unexplained_cells
     settings = GapSettings()
     cell = ("pitch", "std.low_frequency")
     i = settings.cells().index(cell)
     before = [_gap(settings, run, {cell: -0.3}) for run in "abc"]
     window = [_gap(settings, run, {cell: -0.15}) for run in "abc"]
     screened = CandidateFit("added_mass_error", {"added_mass_scale": 1.0}, window, 0.0, 0.1, 6, window_s=1800.0)
-    assert cell_closure(before, screened.gaps, i) == pytest.approx(0.75)
+    assert cells_closure(before, screened.gaps, i) == pytest.approx(0.75)
     assert unexplained_cells(before, [screened], CATALOGUE, window)[i]
     closing = CandidateFit("added_mass_error", {"added_mass_scale": 0.9}, [_gap(settings, run, {}) for run in "abc"],
                            0.0, 1.0, 6)

@@ -233,18 +233,13 @@ def cells_closure(before: list[Gap], after: list[Gap], cells: np.ndarray | int) 
     return 1.0 - float(sum(np.sum(a.residual[cells] ** 2) for a in after)) / den if den > 0 else 0.0
 
 
-def cell_closure(before: list[Gap], after: list[Gap], i: int) -> float:
-    """Share of one cell's gap closed over the runs (``cells_closure`` of cell ``i``)."""
-    return cells_closure(before, after, i)
-
-
 def explains(before: list[Gap], after: list[Gap], i: int) -> bool:
     """Whether an effect explains a baseline mismatch cell: it closes at least MIN_CLOSURE of
     the cell's gap over the tuning runs. (Not "within tolerance in every run": an effect of
     the catalogue's form, e.g. a constant drift coefficient, cannot match a real effect's
     dependence on the sea state (a frequency-dependent drift) to 5 % in each of several sea
     states, yet it is what takes a 4x gap to a 20 % one.)"""
-    return cell_closure(before, after, i) >= MIN_CLOSURE
+    return cells_closure(before, after, i) >= MIN_CLOSURE
 
 
 def window_closure(flagged: list[Gap], before: list[Gap], after: list[Gap], mask: np.ndarray | None = None) -> float:
@@ -627,7 +622,7 @@ class Diagnosis:
                 "blind_after": [g.as_dict(self.settings) for g in self.blind_after],
                 "candidates": [c.as_dict(self.settings) for c in self.candidates],
                 "first_round": [{key: value for key, value in c.as_dict(self.settings).items() if key != "gaps"}
-                                | {"cell_closure": {f"{dof}.{metric}": cell_closure(
+                                | {"cell_closure": {f"{dof}.{metric}": cells_closure(
                                     plain_gaps(c, self.tuning_before, self.window_before), c.gaps, i)
                                                     for i, (dof, metric) in enumerate(self.settings.cells())
                                                     if any(g.flagged[i] for g in self.tuning_before)}}
@@ -971,8 +966,8 @@ def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effe
         if effect is None or effect.term is None or c.failed:
             continue
         plain = plain_gaps(c, before, window_before)
-        if explains(plain, c.gaps, i) and (best is None or cell_closure(plain, c.gaps, i) > best[0]):
-            best = cell_closure(plain, c.gaps, i), c
+        if explains(plain, c.gaps, i) and (best is None or cells_closure(plain, c.gaps, i) > best[0]):
+            best = cells_closure(plain, c.gaps, i), c
     if best is None:
         return None
     share, c = best
@@ -996,7 +991,7 @@ def term_cells(left: list[Mismatch], cells: list[tuple[str, str]], before: list[
         i = cells.index((m.dof, m.metric))
         out[i] = any(effects.get(c.effect) is not None and effects[c.effect].term is not None and not c.failed
                      and not implausible(effects[c.effect], c.values)
-                     and cell_closure(plain_gaps(c, before, window_before), c.gaps, i) >= TERM_CELL_CLOSURE
+                     and cells_closure(plain_gaps(c, before, window_before), c.gaps, i) >= TERM_CELL_CLOSURE
                      for c in candidates)
     return out
 
