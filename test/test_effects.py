@@ -19,7 +19,6 @@ from fowt_hydro_sim.physics.config import load_platform
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import band_split, scaled_added_mass
-from fowt_hydro_sim.studies.diagnosis import method
 from fowt_hydro_sim.studies.diagnosis.effects import (
     CATALOGUE,
     EFFECT_MODULES,
@@ -532,60 +531,6 @@ def test_a_mismatch_an_effect_takes_most_of_the_way_is_explained_by_it():
     explained = {(m.dof, m.metric): m.explained_by for m in diagnosis.mismatches}
     assert explained == {surge: "slow_drift", offset: "slow_drift", heave: None}
     assert "heave std.wave: model below" in diagnosis.reason and "surge std.low_frequency" not in diagnosis.reason
-
-
-def _drag_or_drift_world(drag_opens_wave_cell: bool):
-    """Three tuning runs whose measurement has the model's drag x1.3: the model's surge
-    low-frequency STD 15 % high in every run, which a drag scale of 1.3 closes; a pitch
-    low-frequency difference of changing sign (the baseline's) that more drag moves the wrong
-    way, so a drag fitted on every cell is pulled off the surge mismatch; the drift closes
-    the surge mismatch at 0.9 (too near 1 to name), moving the matching surge offset a
-    little. With ``drag_opens_wave_cell`` the drag also moves the matching surge wave-band
-    STD, opening a gap there."""
-    settings = GapSettings(transient_s=0.0)
-    runs, spectra = _tuning_runs(settings)
-    surge_lf, offset, surge_wave = ("surge", "std.low_frequency"), ("surge", "offset"), ("surge", "std.wave")
-    pitch_lf, heave = ("pitch", "std.low_frequency"), ("heave", "std.wave")
-
-    def evaluate(jobs, description=""):
-        out = []
-        for name, values, index, with_spectra in jobs:
-            x = values["cd_scale"] - 1.0 if name == "model_drag" else 0.0
-            y = values["drift_scale"] - 1.0 if name == "model_slow_drift" else 0.0
-            cells = {surge_lf: 0.15 - 0.5 * x + 1.5 * y, offset: 1.0 * y,
-                     pitch_lf: (-0.3, -0.25, 0.1)[index] - 0.6 * x, heave: -0.15,
-                     surge_wave: -0.6 * x if drag_opens_wave_cell else 0.0}
-            out.append((_gap(settings, runs[index].name, cells), spectra[index] if with_spectra else None))
-        return out
-    effects = {n: CATALOGUE[n] for n in ("model_drag", "model_slow_drift")}
-    return method.diagnose(runs, [], evaluate, settings, effects, max_evaluations=6), settings
-
-
-def test_a_term_read_off_a_mismatch_is_fitted_on_the_cells_it_reads():
-    """Fitted on every cell, the drag is pulled off the surge mismatch by the pitch
-    difference, and the drift that closes it is too near 1 to name: the first fits name
-    nothing. Fitted again on the surge mismatch and the matching cells, the drag closes it
-    at its right scale, 1.3, and is what the diagnosis names; where the drag would open a gap
-    in a matching cell, the drift reads the mismatch better, and nothing is named (the
-    mismatch is within the model's own uncertainty)."""
-    from fowt_hydro_sim.studies.diagnosis.report import markdown
-    diagnosis, settings = _drag_or_drift_world(drag_opens_wave_cell=False)
-    first_drag = next(c for c in diagnosis.first_round or diagnosis.candidates if c.effect == "model_drag")
-    assert first_drag.values["cd_scale"] < 1.1, first_drag.values  # the first fit, pulled off
-    surge_lf = settings.cells().index(("surge", "std.low_frequency"))
-    assert np.flatnonzero(diagnosis.reading_cells).tolist() == [surge_lf]  # not the heave nothing explains
-    assert {c.effect for c in diagnosis.term_fits} == {"model_drag", "model_slow_drift"}
-    assert diagnosis.finding is not None and diagnosis.finding.effect == "model_drag", diagnosis.reason
-    assert diagnosis.finding.values["cd_scale"] == pytest.approx(1.3, abs=0.03)
-    assert "named: the model's drag is 1.3 times too weak" in diagnosis.reason, diagnosis.reason
-    text = markdown(diagnosis, [])
-    table = text.split("## The model's terms fitted on the mismatch")[1]
-    assert table.index("| model_drag | cd_scale = 1.") < table.index("| model_slow_drift |"), table
-
-    diagnosis, _ = _drag_or_drift_world(drag_opens_wave_cell=True)
-    assert diagnosis.finding is None and "named:" not in diagnosis.reason, diagnosis.reason
-    drift = next(c for c in diagnosis.term_fits if c.effect == "model_slow_drift")
-    assert drift.values["drift_scale"] == pytest.approx(0.9, abs=0.03)
 
 
 def test_a_difference_no_effect_moves_is_set_aside_and_the_effect_that_closes_the_rest_named():

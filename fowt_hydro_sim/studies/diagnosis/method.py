@@ -27,10 +27,7 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    With a baseline mismatch left, an effect is named "additionally" only if it explains a
    flagged cell outside the mismatch's (``additional_cells``), and a mismatch that a scale
    of one of the model's own terms explains is read as that term's error
-   (``term_reading``: "the model's slow drift is 10 times too strong"). With nothing named,
-   the model's terms are fitted again on the mismatch cells a term explains plausibly
-   (``term_cells``), and the best of them at a material scale is the finding
-   (``best_reading``), kept if it holds on the blind runs (``confirm_reading``).
+   (``term_reading``: "the model's slow drift is 10 times too strong").
    A fit worse than the plain model is restarted from other points, and reported as failed
    if it stays so; lag-type parameters are fitted on a grid (``fit_effect``).
 
@@ -85,7 +82,6 @@ BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disq
 FIT_WINDOW_S = 1800.0  # longer tuning records are fitted on their first FIT_WINDOW_S, then replayed whole
 SCREEN_CLOSURE = 0.25  # closing less than this in the fit window: not replayed at full length
 FAILED_CLOSURE = -0.01  # a fit closing less than this is worse than the plain model beyond round-off: failed
-TERM_CELL_CLOSURE = 0.25  # a term's first fit closing this much of a mismatch cell plausibly: a term may explain it
 
 Job = tuple  # (effect name or None, parameter values, run index, with spectra[, duration [s]: a part of the record])
 
@@ -194,26 +190,22 @@ def moved(before: Gap, after: Gap, cells: np.ndarray) -> np.ndarray:
     return (after.value - before.value)[cells] / after.tolerance[cells]
 
 
-def residuals(gaps: list[Gap], mask: np.ndarray | None = None, before: list[Gap] | None = None,
-              charged: bool = True) -> np.ndarray:
+def residuals(gaps: list[Gap], mask: np.ndarray | None = None, before: list[Gap] | None = None) -> np.ndarray:
     """The residuals a fit minimises, over the runs: the gap in tolerance units in the cells
     of ``mask`` (default all) and, in the cells set aside as the baseline's (outside
     ``mask``), how far the effect moves the model from the plain model (``before``): an
     effect is charged for moving cells it cannot explain. (An added-mass error that closes a
     surge frequency gap while it shifts the set-aside heave and pitch frequencies is not a
-    mooring stiffness that closes it and leaves them.) Not ``charged``, the cells outside
-    ``mask`` count for nothing (a term reading's fit, ``reading_fit_cells``)."""
+    mooring stiffness that closes it and leaves them.)"""
     if mask is None:
         return np.concatenate([g.residual for g in gaps])
-    if not charged:
-        return np.concatenate([g.residual[mask] for g in gaps])
     return np.concatenate([np.concatenate([a.residual[mask], moved(b, a, ~mask)]) for b, a in zip(before, gaps)])
 
 
 def score(gaps: list[Gap], n_parameters: int, mask: np.ndarray | None = None,
-          before: list[Gap] | None = None, charged: bool = True) -> float:
+          before: list[Gap] | None = None) -> float:
     """BIC of a model's residuals (``residuals``): n ln(mean r^2 + floor^2) + p ln n."""
-    r = residuals(gaps, mask, before, charged)
+    r = residuals(gaps, mask, before)
     return float(r.size * math.log(np.mean(r ** 2) + FLOOR ** 2) + n_parameters * math.log(r.size))
 
 
@@ -267,14 +259,11 @@ def at_edge(p: Parameter, value: float) -> bool:
 
 
 def range_concerns(effect: Effect, values: dict[str, float]) -> list[str]:
-    """Why fitted values are implausible (``implausible``) or too small to name
-    (``immaterial``)."""
-    return implausible(effect, values) + immaterial(effect, values)
-
-
-def implausible(effect: Effect, values: dict[str, float]) -> list[str]:
     """Why fitted values are implausible: a parameter outside the range a real platform's
-    lies in, or at the edge of the fit's bounds (it absorbs something else)."""
+    lies in, or at the edge of the fit's bounds (it absorbs something else); or a scale of
+    one of the model's terms whose every material parameter (``Parameter.material``) lies
+    closer to its off value than is worth naming (the term is right, as far as the
+    diagnosis can tell)."""
     out = []
     for p in effect.parameters:
         value, (low, high) = values[p.name], p.plausible_range
@@ -282,19 +271,12 @@ def implausible(effect: Effect, values: dict[str, float]) -> list[str]:
             out.append(f"{p.name} = {value:.4g} lies outside its plausible {low:g} to {high:g} ({p.why})")
         elif at_edge(p, value):
             out.append(f"{p.name} = {value:.4g} sits at the edge of the fitted range {p.low:g} to {p.high:g}")
-    return out
-
-
-def immaterial(effect: Effect, values: dict[str, float]) -> list[str]:
-    """Why a scale of one of the model's terms is no finding: its every material parameter
-    (``Parameter.material``) lies closer to its off value than is worth naming (the term is
-    right, as far as the diagnosis can tell)."""
     material = [p for p in effect.parameters if p.material]
     if material and all(abs(values[p.name] - p.off) < p.material for p in material):
-        return [", ".join(f"{p.name} = {values[p.name]:.4g}" for p in material)
-                + f": within {material[0].material:g} of the model's own {material[0].off:g}, no difference "
-                  "worth naming"]
-    return []
+        out.append(", ".join(f"{p.name} = {values[p.name]:.4g}" for p in material)
+                   + f": within {material[0].material:g} of the model's own {material[0].off:g}, no difference "
+                     "worth naming")
+    return out
 
 
 def share_concern(effect: Effect, values: dict[str, float], runs: list[MeasuredRun],
@@ -409,12 +391,11 @@ def restarts(u0: np.ndarray, bounds: tuple[np.ndarray, np.ndarray]) -> list[np.n
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
                description: str = "", mask: np.ndarray | None = None,
                window_s: float | None = None, before: list[Gap] | None = None,
-               restarted: Callable[[], None] | None = None,
-               charged: bool = True) -> tuple[dict[str, float], list[Gap], int]:
+               restarted: Callable[[], None] | None = None) -> tuple[dict[str, float], list[Gap], int]:
     """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all; the
     cells outside it charge the effect for moving them from the plain model's gaps
-    ``before``, see ``residuals``; not ``charged``, they count for nothing), on the runs'
-    first ``window_s`` (default: whole records): (values, gaps at them, model runs).
+    ``before``, see ``residuals``), on the runs' first ``window_s`` (default: whole
+    records): (values, gaps at them, model runs).
 
     Bounded least squares from the parameters' ``start``; a fit that ends with a larger
     sum of squares than the plain model's (``before``), or a negative closure against it,
@@ -441,18 +422,17 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
         return [cache[u.tobytes()] for u in us]
 
     def residual(u: np.ndarray) -> np.ndarray:
-        return residuals(gaps_at([u])[0], mask, before, charged)
+        return residuals(gaps_at([u])[0], mask, before)
 
     def jacobian(u: np.ndarray) -> np.ndarray:
         steps = [np.clip(u + FD_STEP * e, *bounds) for e in np.eye(len(u))]
         steps = [s if np.any(s != u) else u - FD_STEP * e for s, e in zip(steps, np.eye(len(u)))]
         base, *shifted = gaps_at([u, *steps])
-        r0 = residuals(base, mask, before, charged)
-        return np.column_stack([(residuals(gs, mask, before, charged) - r0) / (s - u).sum()
-                                for gs, s in zip(shifted, steps)])
+        r0 = residuals(base, mask, before)
+        return np.column_stack([(residuals(gs, mask, before) - r0) / (s - u).sum() for gs, s in zip(shifted, steps)])
 
     def cost(key: bytes) -> float:
-        return float(np.sum(residuals(cache[key], mask, before, charged) ** 2))
+        return float(np.sum(residuals(cache[key], mask, before) ** 2))
 
     if grid_fitted(effect):
         gaps_at([(point - off) / scale for point in grid(effect)])
@@ -464,9 +444,9 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
             (a fit back at the off value, the plain model itself, is not)."""
             if before is None:
                 return False
-            plain = float(np.sum(residuals(before, mask, before, charged) ** 2))
+            plain = float(np.sum(residuals(before, mask, before) ** 2))
             return (cost(key) > (1.0 - FAILED_CLOSURE) * plain
-                    or (charged and window_closure(before, before, cache[key], mask) < FAILED_CLOSURE))
+                    or window_closure(before, before, cache[key], mask) < FAILED_CLOSURE)
 
         for k, start in enumerate([u0, *restarts(u0, bounds)]):
             if k and restarted is not None:
@@ -540,9 +520,8 @@ class Diagnosis:
     # (DOF, metric, shares: measured, model)
     undriven: list[tuple[str, str, float, float]] = field(default_factory=list)
     window_before: list[Gap] = field(default_factory=list)  # tuning runs, plain model, in the fit window (if one)
-    reading: CandidateFit | None = None  # nothing named: the term read off the baseline mismatch (``best_reading``)
-    reading_cells: np.ndarray | None = None  # the mismatch cells a term reading reads (``term_cells``)
-    term_fits: list[CandidateFit] = field(default_factory=list)  # the model's terms fitted on those cells
+    reading: CandidateFit | None = None  # nothing named: the term read off the baseline mismatch (``leading_reading``)
+    reading_cells: np.ndarray | None = None  # the mismatch cells it reads
     reading_blind_after: list[Gap] = field(default_factory=list)  # blind runs at its values, not refitted
 
     @property
@@ -627,10 +606,6 @@ class Diagnosis:
                                                     for i, (dof, metric) in enumerate(self.settings.cells())
                                                     if any(g.flagged[i] for g in self.tuning_before)}}
                                 for c in self.first_round],
-                "term_fits": [{key: value for key, value in c.as_dict(self.settings).items() if key != "gaps"}
-                              | {"cells_closure": cells_closure(plain_gaps(c, self.tuning_before, self.window_before),
-                                                                c.gaps, self.reading_cells)}
-                              for c in self.term_fits if self.reading_cells is not None],
                 "finding": self.finding_dict(),
                 "model_runs": self.model_runs}
 
@@ -795,81 +770,50 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     diagnosis.model_runs += len(window_before)
     diagnosis.window_before = window_before
 
-    def fit(effect: Effect, mask: np.ndarray | None, screen: float = SCREEN_CLOSURE,
-            charged: bool = True) -> CandidateFit:
-        """One candidate fitted on the tuning runs' cells of ``mask`` (the others ``charged``
-        for being moved, or not: ``residuals``): in the fit window (if one), then replayed
-        whole if it closes at least ``screen`` there. Its closure is over the flagged cells
-        (``closure``), or, not charged, over the cells of ``mask`` (``cells_closure``)."""
-        budget = fit_budget(effect, max_evaluations)
-        restarts_expected = []
+    def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
+        def fit(effect: Effect) -> CandidateFit:
+            budget = fit_budget(effect, max_evaluations)
+            restarts_expected = []
 
-        def restarted() -> None:  # a restart may take a fit's budget again
-            restarts_expected.append(budget)
-            progress.expect(budget * n_tuning, budget * sum(fit_run_s))
+            def restarted() -> None:  # a restart may take a fit's budget again
+                restarts_expected.append(budget)
+                progress.expect(budget * n_tuning, budget * sum(fit_run_s))
 
-        values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
-                                         mask, window, window_before if window else diagnosis.tuning_before,
-                                         restarted, charged)
-        expected = budget + sum(restarts_expected)
-        progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
-        p = len(effect.parameters)
-        size = share_concern(effect, values, tuning, platform)
-        if window:
-            in_window = (window_closure(diagnosis.tuning_before, window_before, gaps, mask) if charged
-                         else cells_closure(window_before, gaps, mask))
-            if in_window < screen:
-                progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
-                return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, window_before, charged), in_window,
-                                    count, window_s=window, size_concern=size)
-            results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
-                               f"{effect.name}: whole records")
-            gaps, count = [g for g, _ in results], count + n_tuning
-        return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, diagnosis.tuning_before, charged),
-                            closure(diagnosis.tuning_before, gaps, mask) if charged
-                            else cells_closure(diagnosis.tuning_before, gaps, mask), count, size_concern=size)
+            values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
+                                             mask, window, window_before if window else diagnosis.tuning_before,
+                                             restarted)
+            expected = budget + sum(restarts_expected)
+            progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
+            p = len(effect.parameters)
+            size = share_concern(effect, values, tuning, platform)
+            if window:
+                in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
+                if in_window < SCREEN_CLOSURE:
+                    progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
+                    return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, window_before), in_window,
+                                        count, window_s=window, size_concern=size)
+                results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
+                                   f"{effect.name}: whole records")
+                gaps, count = [g for g, _ in results], count + n_tuning
+            return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, diagnosis.tuning_before),
+                                closure(diagnosis.tuning_before, gaps, mask), count, size_concern=size)
 
-    def fit_each(chosen: list[Effect], mask: np.ndarray | None, screen: float = SCREEN_CLOSURE,
-                 charged: bool = True) -> list[CandidateFit]:
-        """``fit`` of each effect, each in its own thread so that all their runs are in flight together."""
-        pool = ThreadPoolExecutor(max_workers=max(1, len(chosen)))
+        pool = ThreadPoolExecutor(max_workers=len(effects))
         try:
-            return list(pool.map(lambda effect: fit(effect, mask, screen, charged), chosen))
+            fitted = list(pool.map(fit, effects.values()))
         finally:  # interrupted (Ctrl-C), the fits under way are not waited for: their runs end with the cluster
             pool.shutdown(wait=False, cancel_futures=True)
-
-    def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
-        fitted = fit_each(list(effects.values()), mask)
         base = score(diagnosis.tuning_before, 0, mask, diagnosis.tuning_before)
         for c in fitted:
             judge(c, effects[c.effect], base, diagnosis.tuning_before, settings, mask)
         diagnosis.model_runs += sum(c.model_runs for c in fitted)
         return sorted(fitted, key=rank)  # plausible fits rank first, screened ones last
 
-    def refit_reading(diagnosis: Diagnosis) -> None:
-        """Every one of the model's terms fitted on the cells a term reading reads
-        (``term_cells``) and the matching cells (``reading_fit_cells``), in the fit window
-        (none replayed whole: the reading chosen is, below); the reading is the best of them
-        (``best_reading``). Fitted on every cell, a term's scale is pulled off the cells it
-        explains by cells it does not (a drag that a pitch difference of the baseline pulls
-        the wrong way for the surge mismatch)."""
-        mask = diagnosis.reading_cells
-        chosen = [effect for effect in effects.values() if effect.term is not None]
-        budget = sum(fit_budget(e, max_evaluations) for e in chosen)
-        progress.expect(budget * n_tuning + (len(chosen) * n_tuning if window else 0),
-                        budget * sum(fit_run_s) + (len(chosen) * sum(whole_s[:n_tuning]) if window else 0.0))
-        diagnosis.term_fits = fit_each(chosen, reading_fit_cells(mask, diagnosis.tuning_before), math.inf, False)
-        diagnosis.model_runs += sum(c.model_runs for c in diagnosis.term_fits)
-        diagnosis.reading = best_reading(mask, diagnosis.term_fits, effects, diagnosis.tuning_before, window_before)
-
     def confirmed(diagnosis: Diagnosis) -> Diagnosis:
-        """The diagnosis, its term reading (if any) fitted again on the cells it reads
-        (``refit_reading``), replayed on the blind runs and kept only if it explains its
-        cells over the tuning runs and closes on the blind runs at least BLIND_SHARE of what
-        it closes on the tuning runs, both over whole records: a reading fitted in the fit
-        window is replayed on the tuning runs' whole records too (``whole_records``)."""
-        if diagnosis.reading_cells is not None:
-            refit_reading(diagnosis)
+        """The diagnosis, its term reading (if any) replayed on the blind runs and kept only
+        if it closes there at least BLIND_SHARE of what it closes on the tuning runs, both
+        over whole records: a reading screened out in the fit window is replayed on the
+        tuning runs' whole records too (``whole_records``)."""
         reading = diagnosis.reading
         if reading is not None and blind:
             replayed = range(len(runs)) if reading.window_s is not None else range(n_tuning, len(runs))
@@ -976,60 +920,29 @@ def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effe
                       + "".join(f"; {concern}" for concern in implausible) + ")")
 
 
-def term_cells(left: list[Mismatch], cells: list[tuple[str, str]], before: list[Gap],
-               candidates: list[CandidateFit], effects: dict[str, Effect], window_before: list[Gap]) -> np.ndarray:
-    """The cells a term reading reads: of the baseline mismatches no effect explains
-    (``left``), those that a scale of one of the model's own terms, fitted on every cell,
-    takes at least TERM_CELL_CLOSURE of the way at plausible values (no ``implausible``
-    concern; a scale too near 1 to name counts: the cell may then be within the model's own
-    uncertainty). A first fit pulled by other cells may close a cell only part of the way
-    (``refit_reading`` fits it on the cells). Mismatches no term moves plausibly (a response
-    of another form) are left out of the reading: fitted with them, a term's scale would be
-    pulled off the cells it can explain."""
-    out = np.zeros(len(cells), dtype=bool)
+def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: list[Gap],
+                    candidates: list[CandidateFit],
+                    effects: dict[str, Effect]) -> tuple[CandidateFit | None, np.ndarray | None]:
+    """Of the terms read off the baseline mismatches no effect explains (``Mismatch.term_by``,
+    ``term_reading``), those at plausible and material values (no ``value_concerns``), the one
+    whose cells carry most of the mismatch (sum of the plain model's squared residuals
+    ``before``): (its first fit, the cells it reads); (None, None)
+    if there is none. A mismatch that a scale of one of the model's own terms closes is what
+    the diagnosis names when no effect is named: "the model's slow drift is 1.7 times too
+    weak" is a finding, and the one an engineer acts on next."""
+    found: dict[str, tuple[CandidateFit, np.ndarray]] = {}
     for m in left:
-        i = cells.index((m.dof, m.metric))
-        out[i] = any(effects.get(c.effect) is not None and effects[c.effect].term is not None and not c.failed
-                     and not implausible(effects[c.effect], c.values)
-                     and cells_closure(plain_gaps(c, before, window_before), c.gaps, i) >= TERM_CELL_CLOSURE
-                     for c in candidates)
-    return out
+        c = next((c for c in candidates if c.effect == m.term_by), None)
+        if c is None or c.value_concerns(effects[c.effect]):
+            continue
+        mask = found.setdefault(c.effect, (c, np.zeros(len(cells), dtype=bool)))[1]
+        mask[cells.index((m.dof, m.metric))] = True
+    if not found:
+        return None, None
 
-
-def reading_fit_cells(read: np.ndarray, before: list[Gap]) -> np.ndarray:
-    """The cells a term reading is fitted and scored on: the mismatch cells it reads
-    (``term_cells``, ``read``) and every cell flagged in no tuning run (``before``), where
-    the model matches the measurement: a term that opens a gap there pays for it. The other
-    flagged cells, differences of the baseline no term explains, count for nothing: fitted
-    or charged for being moved, they would pull a term's scale off the cells it explains."""
-    return read | ~np.any([g.flagged for g in before], axis=0)
-
-
-def reading_score(c: CandidateFit, read: np.ndarray, n_parameters: int, before: list[Gap]) -> float:
-    """A term candidate's score on the cells a reading is fitted on (``reading_fit_cells``)."""
-    return score(c.gaps, n_parameters, reading_fit_cells(read, before), charged=False)
-
-
-def best_reading(mask: np.ndarray, candidates: list[CandidateFit], effects: dict[str, Effect], before: list[Gap],
-                 window_before: list[Gap]) -> CandidateFit | None:
-    """The term read off the cells ``mask`` (``term_cells``): of the candidates that scale a
-    term the model has and whose fit did not fail, the best-scoring (``reading_score``: the
-    cells' gap and the matching cells', each parameter charged); None if it does not
-    explain the cells (their ``cells_closure`` below
-    MIN_CLOSURE) or its values are implausible or too near the model's own to name
-    (``range_concerns``: then the mismatch is within the model's own uncertainty). A
-    mismatch that a scale of one of the model's own terms closes is what the diagnosis names
-    when no effect is named: "the model's slow drift is 1.7 times too weak" is a finding,
-    and the one an engineer acts on next."""
-    terms = [c for c in candidates if effects.get(c.effect) is not None and effects[c.effect].term is not None
-             and not c.failed]
-    if not mask.any() or not terms:
-        return None
-    best = min(terms, key=lambda c: reading_score(c, mask, len(effects[c.effect].parameters), before))
-    if (cells_closure(plain_gaps(best, before, window_before), best.gaps, mask) < MIN_CLOSURE
-            or best.value_concerns(effects[best.effect])):
-        return None
-    return best
+    best = max(found, key=lambda name: sum(float(g.residual[i] ** 2) for g in before
+                                           for i in np.flatnonzero(found[name][1])))
+    return found[best]
 
 
 def state_reading(diagnosis: Diagnosis, effects: dict[str, Effect]) -> Diagnosis:
@@ -1053,20 +966,14 @@ def whole_records(candidate: CandidateFit, gaps: list[Gap], before: list[Gap], n
 
 def confirm_reading(diagnosis: Diagnosis, blind_after: list[Gap]) -> Diagnosis:
     """Keep the term reading (``Diagnosis.reading``) with its blind runs' gaps at its values
-    (not refitted) if it explains its cells over the tuning runs' whole records (closes
-    MIN_CLOSURE of their gap) and closes on the blind runs at least BLIND_SHARE of what it
-    closes on the tuning runs, as a named effect must; otherwise it is not named, and the
-    verdict says why."""
+    (not refitted) if it closes there at least BLIND_SHARE of what it closes of its cells on
+    the tuning runs, as a named effect must; otherwise it is not named, and the verdict says why."""
     diagnosis.reading_blind_after = blind_after
     tuning_share, blind_share = diagnosis.reading_closure
-    if tuning_share < MIN_CLOSURE:
-        diagnosis.reason += (f"; {diagnosis.reading.effect} closes {tuning_share:.0%} of its cells' gap over the "
-                             f"tuning runs' whole records, less than {MIN_CLOSURE:.0%}: not named")
-        diagnosis.reading, diagnosis.reading_blind_after = None, []
-    elif blind_share < BLIND_SHARE * tuning_share:
+    if blind_share < BLIND_SHARE * tuning_share:
         diagnosis.reason += (f"; {diagnosis.reading.effect} closes {blind_share:.0%} of its cells' gap on the blind "
                              f"runs, below {BLIND_SHARE:.0%} of its {tuning_share:.0%} on the tuning runs: not named")
-        diagnosis.reading, diagnosis.reading_blind_after = None, []
+        diagnosis.reading, diagnosis.reading_cells, diagnosis.reading_blind_after = None, None, []
     return diagnosis
 
 
@@ -1117,11 +1024,8 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
             for spectra in diagnosis.spectra.values():
                 spectra.pop("model + effect", None)
     if chosen is None and left and not diagnosis.undriven:
-        first = diagnosis.first_round or diagnosis.candidates
-        read = term_cells(left, cells, before, first, effects, diagnosis.window_before)
-        if read.any():
-            diagnosis.reading_cells = read
-            diagnosis.reading = best_reading(read, first, effects, before, diagnosis.window_before)
+        diagnosis.reading, diagnosis.reading_cells = leading_reading(
+            left, cells, before, diagnosis.first_round or diagnosis.candidates, effects)
     if left:
         effect = (f"; additionally {chosen.effect} explains part of the gap ({diagnosis.reason})" if chosen
                   else f"; no effect explains the rest ({diagnosis.reason})")

@@ -11,13 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from fowt_hydro_sim.studies.diagnosis.gap import GROSS_RATIO, Gap
-from fowt_hydro_sim.studies.diagnosis.method import (
-    COHERENCE_DEFICIT,
-    Diagnosis,
-    cells_closure,
-    plain_gaps,
-    reading_score,
-)
+from fowt_hydro_sim.studies.diagnosis.method import COHERENCE_DEFICIT, Diagnosis
 
 SPECTRA_F_MAX_HZ = 0.3  # the figures' and JSON's frequency range
 
@@ -249,25 +243,12 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
         tuning, blind = d.reading_closure
         cells_read = ", ".join(f"{dof} {metric}" for dof, metric in d.reading_cell_names)
         lines += ["## How far the term read off the mismatch closes it", "",
-                  f"{d.reading.effect} fitted on those cells ("
+                  f"{d.reading.effect} at its first fit's values ("
                   + ", ".join(f"{k} = {v:.4g}" for k, v in d.reading.values.items())
                   + f"), over the mismatch's cells it reads ({cells_read}):", "",
                   "| runs | closure |", "|---|---|", f"| tuning (fitted) | {100 * tuning:.0f} % |"]
         if d.reading_blind_after:
             lines.append(f"| blind (not refitted) | {100 * blind:.0f} % |")
-        lines.append("")
-    if d.term_fits and d.reading_cells is not None:
-        cells_read = ", ".join(f"{dof} {metric}" for dof, metric in d.reading_cell_names)
-        lines += ["## The model's terms fitted on the mismatch", "",
-                  f"Each of the model's terms fitted on the mismatch's cells a term may explain ({cells_read}) and "
-                  "the matching cells, best score first:", "",
-                  "| term | values | closure of those cells | score |", "|---|---|---|---|"]
-        scored = sorted(((reading_score(c, d.reading_cells, len(c.values), d.tuning_before), c) for c in d.term_fits),
-                        key=lambda pair: pair[0])
-        for value, c in scored:
-            share = cells_closure(plain_gaps(c, d.tuning_before, d.window_before), c.gaps, d.reading_cells)
-            lines.append(f"| {c.effect} | " + ", ".join(f"{k} = {v:.4g}" for k, v in c.values.items())
-                         + f" | {100 * share:.0f} % | {value:.1f} |")
         lines.append("")
     lines += ["## Figures", ""] + [f"![{name}]({name})" for name in figures] + [""]
     return "\n".join(lines)
