@@ -3,7 +3,8 @@ mismatch that a scale of one of the model's own terms closes is read as that ter
 a fit that leaves the gap larger than the plain model is restarted, and a fit that still
 does is reported as failed; a lag-type parameter (a wave-probe delay) is found by a grid;
 an effect named "additionally" to a baseline mismatch must explain cells outside it; a term
-reading holds on the blind runs against its whole-record closure."""
+reading holds on the blind runs against its whole-record closure, and the other terms that read
+its cells as well are said."""
 from __future__ import annotations
 
 import numpy as np
@@ -213,6 +214,23 @@ def test_a_plausible_term_reading_is_what_the_diagnosis_names():
                                            "pitch_damping_ratio": 0.0}, gaps({"std.low_frequency": -0.03}), 0.9)
     d = method.with_mismatches(diagnosis(before, [damping, drift], damping), damping, CATALOGUE)
     assert d.finding is damping and d.reading is None and d.finding_dict()["as"] == "effect"
+
+
+def test_other_terms_that_read_the_same_cells_are_said():
+    """The surge low-frequency STD read as the model's slow drift 1.35 times too weak; the
+    model's drag at 0.62 explains the same cell (the STD fixes only drift_scale^2 /
+    cd_scale): the verdict names the drift and says the drag reads it as well. A drag
+    within 0.2 of 1 is no reading, and is not said."""
+    before = gaps({"std.low_frequency": -0.4})
+    drift = candidate("model_slow_drift", {"drift_scale": 1.35}, gaps({"std.low_frequency": -0.02}), 0.3)
+    for cd, said in ((0.62, True), (0.9, False)):
+        drag = candidate("model_drag", {"cd_scale": cd}, gaps({"std.low_frequency": -0.05}), 0.3)
+        d = method.state_reading(method.with_mismatches(diagnosis(before, [drift, drag], None), None, CATALOGUE),
+                                 CATALOGUE)
+        assert d.finding is drift, d.reason
+        assert ("; read as well, at plausible values, as: the model's drag is 1.61 times too strong (model_drag "
+                "explains surge std.low_frequency): these runs do not tell them apart" in d.reason) is said, d.reason
+        assert [c.effect for c, _ in method.other_readings(d, CATALOGUE)] == (["model_drag"] if said else [])
 
 
 def test_a_term_reading_that_does_not_hold_on_the_blind_runs_is_not_named():

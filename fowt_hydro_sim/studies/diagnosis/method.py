@@ -945,14 +945,43 @@ def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: 
     return found[best]
 
 
+def other_readings(diagnosis: Diagnosis, effects: dict[str, Effect]) -> list[tuple[CandidateFit, list[int]]]:
+    """The other terms that read the named term reading's cells as well: each other
+    candidate scaling one of the model's terms, whose first fit did not fail and lies at
+    plausible and material values (no ``value_concerns``), with the reading's cells it
+    explains (``explains``). A drag 1.6 times too strong and a slow drift 1.27 times too weak
+    move the low-frequency STDs alike (they fix only drift_scale^2 / cd_scale): the verdict
+    says so rather than let the first name stand alone."""
+    if diagnosis.reading is None or diagnosis.reading_cells is None:
+        return []
+    out = []
+    for c in diagnosis.first_round or diagnosis.candidates:
+        effect = effects.get(c.effect)
+        if (effect is None or effect.term is None or c.effect == diagnosis.reading.effect or c.failed
+                or c.value_concerns(effect)):
+            continue
+        plain = plain_gaps(c, diagnosis.tuning_before, diagnosis.window_before)
+        cells = [i for i in np.flatnonzero(diagnosis.reading_cells) if explains(plain, c.gaps, i)]
+        if cells:
+            out.append((c, cells))
+    return out
+
+
 def state_reading(diagnosis: Diagnosis, effects: dict[str, Effect]) -> Diagnosis:
     """The verdict's last words on the term reading kept (if any): the term's error it
-    names, and the share of its cells' gap it closes on the tuning runs."""
+    names, the share of its cells' gap it closes on the tuning runs, and the other terms
+    that read its cells as well (``other_readings``)."""
     if diagnosis.reading is not None:
         tuning_share, _ = diagnosis.reading_closure
         diagnosis.reason += (f"; named: {effects[diagnosis.reading.effect].term(diagnosis.reading.values)} "
                              f"({diagnosis.reading.effect} closes {tuning_share:.0%} of the gap of the mismatches it "
                              "reads)")
+        cells = diagnosis.settings.cells()
+        others = [f"{effects[c.effect].term(c.values)} ({c.effect} explains "
+                  + ", ".join(" ".join(cells[i]) for i in read) + ")" for c, read in other_readings(diagnosis, effects)]
+        if others:
+            diagnosis.reason += ("; read as well, at plausible values, as: " + "; ".join(others)
+                                 + ": these runs do not tell them apart")
     return diagnosis
 
 
