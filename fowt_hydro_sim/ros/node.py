@@ -11,7 +11,9 @@ the next batch is computed), while the executor serves the subscriptions.
 Wave samples on the topic (wave_source topic): paced, wave_timeout_s wall seconds without a
 sample mean still water. As fast as possible the node waits for its first sample, and then
 as long as a publisher of the topic is on the graph (its samples may be held back by flow
-control while the node is busy); with none left, still water after wave_timeout_s.
+control while the node is busy); with none left, still water after wave_timeout_s. Silence
+counts only while the executor runs: samples a publisher has sent and gone, queued in the
+node while a loaded machine keeps its executor from taking them, are not silence.
 
 Exit codes of ``fowt-sim node``: 0 the run is complete (duration_s stepped) or was stopped by
 the user (Ctrl-C, SIGTERM); 1 the run was cut short or is incomplete because of an error (the
@@ -85,6 +87,8 @@ MOTION_LIMITS = np.array([2000.0, 2000.0, 200.0, 1.2, 1.2, 50.0])  # beyond: the
 DELIVERY_TIMEOUT_S = 5.0  # at the end of a run: wall seconds at most for subscribers to acknowledge every output
 WARNING_INTERVAL_S = 5.0  # refused inputs of one kind: at most one warning line per this many wall seconds
 WAITING_INTERVAL_S = 10.0  # waiting for wave samples: one line per this many wall seconds
+QUIET_TICK_S = 0.1  # the wave topic's executor check: a timer of this period
+QUIET_TICKS = 3  # that many ticks in a row without an elevation sample: nothing is left in the node's queue
 
 
 class WarningLimiter:
@@ -234,6 +238,7 @@ class SimulatorNode(Node):
             self._said_waiting = time.monotonic()
             self._still_water = False
             self._samples_received = False
+            self._quiet_ticks = 0
         if s.wave_source == "bag":
             bag = Bag(s.wave_bag)
             bag.check_type(topics.ELEVATION)
@@ -293,6 +298,14 @@ class SimulatorNode(Node):
         if self.settings.wave_source == "topic":  # room for a record replayed faster than it is read
             samples = QoSProfile(depth=100_000, reliability=ReliabilityPolicy.RELIABLE)
             self.create_subscription(PointStamped, topics.ELEVATION, self._on_elevation, samples, raw=True)
+            self.create_timer(QUIET_TICK_S, self._quiet_tick)
+
+    def _quiet_tick(self) -> None:
+        """A tick of the executor that serves the wave topic: counted until the next sample.
+        Ticks come only while the executor runs, so samples queued in the node while it is too
+        busy to take them (a loaded machine) never count as silence (``_topic_silent``)."""
+        with self._lock:
+            self._quiet_ticks += 1
 
     def _on_set_parameters(self, changes) -> SetParametersResult:
         for p in changes:
@@ -351,6 +364,7 @@ class SimulatorNode(Node):
                                       f"interpolated")
         self._last_sample_wall = time.monotonic()
         self._samples_received = True
+        self._quiet_ticks = 0
         if self._still_water and made:
             self.get_logger().info("wave elevation samples again: leaving still water")
             self._still_water = False
@@ -398,14 +412,15 @@ class SimulatorNode(Node):
 
     def _topic_silent(self) -> bool:
         """Whether the wave topic counts as silent (the caller goes on in still water): no sample
-        for wave_timeout_s wall seconds, and, as fast as possible, a first sample received and
-        no publisher left. Said once; silent after samples before the waves of duration_s are
-        known, the run is incomplete."""
+        for wave_timeout_s wall seconds while the executor kept running (QUIET_TICKS ticks
+        without a sample, ``_quiet_tick``), and, as fast as possible, a first sample received
+        and no publisher left. Said once; silent after samples before the waves of duration_s
+        are known, the run is incomplete."""
         s, now = self.settings, time.monotonic()
         silent = now - self._last_sample_wall
         if self._still_water:
             return True
-        if silent <= s.wave_timeout_s:
+        if silent <= s.wave_timeout_s or self._quiet_ticks < QUIET_TICKS:
             return False
         publishers = self.count_publishers(topics.ELEVATION)
         if self._rtf == 0 and (publishers or not self._samples_received):
