@@ -548,6 +548,12 @@ class Diagnosis:
         return [cell for cell, kept in zip(self.settings.cells(), self.reading_cells) if kept]
 
     @property
+    def first_fits(self) -> list[CandidateFit]:
+        """The candidates' fits on every cell: the first round if they were fitted again
+        without some cells, else the candidates."""
+        return self.first_round or self.candidates
+
+    @property
     def tuning_before(self) -> list[Gap]:
         return self.baseline[:len(self.tuning)]
 
@@ -897,6 +903,13 @@ def rank(c: CandidateFit) -> tuple:
     return bool(c.concerns), c.window_s is not None, c.score
 
 
+def scales_a_term(c: CandidateFit, effects: dict[str, Effect]) -> bool:
+    """Whether a fit is of a candidate scaling one of the model's own terms (``Effect.term``)
+    and did not fail."""
+    effect = effects.get(c.effect)
+    return effect is not None and effect.term is not None and not c.failed
+
+
 def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effect], before: list[Gap],
                  window_before: list[Gap]) -> tuple[CandidateFit, str] | None:
     """Of the candidates that scale a term the model has (``Effect.term``) and whose fit did
@@ -906,8 +919,7 @@ def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effe
     drift_scale = 0.1 lies outside its plausible 0.5 to 2 (...))"). None if none does."""
     best: tuple[float, CandidateFit] | None = None
     for c in candidates:
-        effect = effects.get(c.effect)
-        if effect is None or effect.term is None or c.failed:
+        if not scales_a_term(c, effects):
             continue
         plain = plain_gaps(c, before, window_before)
         if explains(plain, c.gaps, i) and (best is None or cells_closure(plain, c.gaps, i) > best[0]):
@@ -955,10 +967,9 @@ def other_readings(diagnosis: Diagnosis, effects: dict[str, Effect]) -> list[tup
     if diagnosis.reading is None or diagnosis.reading_cells is None:
         return []
     out = []
-    for c in diagnosis.first_round or diagnosis.candidates:
-        effect = effects.get(c.effect)
-        if (effect is None or effect.term is None or c.effect == diagnosis.reading.effect or c.failed
-                or c.value_concerns(effect)):
+    for c in diagnosis.first_fits:
+        if (not scales_a_term(c, effects) or c.effect == diagnosis.reading.effect
+                or c.value_concerns(effects[c.effect])):
             continue
         plain = plain_gaps(c, diagnosis.tuning_before, diagnosis.window_before)
         cells = [i for i in np.flatnonzero(diagnosis.reading_cells) if explains(plain, c.gaps, i)]
@@ -1040,8 +1051,8 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
                 m.term_values = chosen.values
     left = [m for m in diagnosis.mismatches if m.explained_by is None]
     for m in left:
-        reading = term_reading(cells.index((m.dof, m.metric)), diagnosis.first_round or diagnosis.candidates,
-                               effects, before, diagnosis.window_before)
+        reading = term_reading(cells.index((m.dof, m.metric)), diagnosis.first_fits, effects, before,
+                               diagnosis.window_before)
         if reading:
             m.term, m.term_by, m.term_values = reading[1], reading[0].effect, reading[0].values
     if left and chosen is not None:
@@ -1054,7 +1065,7 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
                 spectra.pop("model + effect", None)
     if chosen is None and left and not diagnosis.undriven:
         diagnosis.reading, diagnosis.reading_cells = leading_reading(
-            left, cells, before, diagnosis.first_round or diagnosis.candidates, effects)
+            left, cells, before, diagnosis.first_fits, effects)
     if left:
         effect = (f"; additionally {chosen.effect} explains part of the gap ({diagnosis.reason})" if chosen
                   else f"; no effect explains the rest ({diagnosis.reason})")
