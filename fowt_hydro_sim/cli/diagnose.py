@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from fowt_hydro_sim.cli import options
@@ -36,11 +37,26 @@ def _common(args: argparse.Namespace):
             _effects(args.effects), run["dt_s"])
 
 
+def _decays(given: list[str] | None, dofs: list[str]) -> list[tuple[str, str]]:
+    """--decay's DOF=BAG pairs; ConfigError naming a malformed one or a DOF not diagnosed."""
+    out = []
+    for item in given or []:
+        dof, sep, path = item.partition("=")
+        if not sep or not path:
+            raise ConfigError(f"--decay: need DOF=BAG (e.g. surge=bags/surge_decay), got {item!r}")
+        if dof not in dofs:
+            raise ConfigError(f"--decay {item}: {dof!r} is not a DOF of the gap (--dofs: {', '.join(dofs)})")
+        out.append((dof, path))
+    return out
+
+
 def diagnose_command(args: argparse.Namespace) -> int:
     from fowt_hydro_sim.studies.diagnosis.runner import diagnose_bags
     platform, settings, effects, dt_s = _common(args)
-    lines = diagnose_bags(args.measured, args.blind or [], platform, settings, effects, args.output, args.heading,
-                          args.max_evaluations, dt_s, args.scheduler, args.workers, args.fit_window)
+    decays = _decays(args.decay, args.dofs)
+    lines = diagnose_bags(args.measured, args.blind or [], platform, replace(settings, decays=bool(decays)), effects,
+                          args.output, args.heading, args.max_evaluations, dt_s, args.scheduler, args.workers,
+                          args.fit_window, decays)
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
 
@@ -52,6 +68,9 @@ def benchmark_command(args: argparse.Namespace) -> int:
     if args.scenario_set and given:
         raise ConfigError(f"{', '.join(given)}: the scenarios of a --set are fixed in its file (--inject and "
                           "--scenarios choose among them)")
+    if args.no_decays and args.source != "independent":
+        raise ConfigError("--no-decays: only the independent source has free decays (--source independent)")
+    settings = replace(settings, decays=args.source == "independent" and not args.no_decays)
     lines = benchmark(platform, settings, effects, Path(args.output), args.inject, args.strengths, args.nulls,
                       args.out_of_catalogue, args.duration, args.max_evaluations, dt_s,
                       args.scheduler, args.workers,
@@ -83,6 +102,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                                    "'unexplained') and check it on blind runs without refitting.")
     p.add_argument("--measured", nargs="+", required=True, help="tuning bags (/waves/elevation, /platform/pose)")
     p.add_argument("--blind", nargs="+", help="blind bags: the chosen effect is checked on them, not refitted")
+    p.add_argument("--decay", nargs="+", metavar="DOF=BAG",
+                   help="free-decay bags (/platform/pose; calm water), each with the DOF it decays in, e.g. "
+                        "surge=bags/surge_decay: their periods and damping join the tuning runs' gap")
     p.add_argument("--heading", type=float, default=0.0, help="wave direction of the records [deg] (default 0)")
     _add_common(p)
     p.add_argument("--fit-window", type=float, default=FIT_WINDOW_S,
@@ -115,6 +137,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                         "instead of the generated list; --inject keeps the injected forms named (default: the "
                         "generated list)")
     b.add_argument("--scenarios", nargs="+", help="with --set: only these scenarios of the set (default: all)")
+    b.add_argument("--no-decays", action="store_true",
+                   help="independent source: leave out the basin's free decays in surge and pitch (default: "
+                        "each scenario has them as tuning runs)")
     b.add_argument("--duration", type=float, default=10800.0,
                    help="seconds per measured run (default %(default)s, 3 hours)")
     options.add(b, SeaState, ("seed",), defaults={"seed": None},

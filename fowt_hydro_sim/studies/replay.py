@@ -33,7 +33,9 @@ _tables: OrderedDict[bytes, KinematicsTable] = OrderedDict()
 @dataclass(frozen=True)
 class MeasuredRun:
     """What a measured bag holds: the elevation record and the platform's 6-DOF motion
-    (optionally the acceleration and mooring loads, which the replay does not need)."""
+    (optionally the acceleration and mooring loads, which the replay does not need).
+    ``decay_dof``: a free decay in calm water of that DOF (its elevation is the calm
+    water's, or zero where the bag has none)."""
 
     name: str
     elevation_time_s: np.ndarray
@@ -42,6 +44,7 @@ class MeasuredRun:
     motion_time_s: np.ndarray
     motion: np.ndarray
     heading_deg: float = 0.0  # the waves' direction of travel (long-crested)
+    decay_dof: str | None = None
 
     @property
     def hs_m(self) -> float:
@@ -53,17 +56,24 @@ class MeasuredRun:
         return float(self.elevation_time_s[1] - self.elevation_time_s[0])
 
 
-def measured_run(path: str | Path, heading_deg: float = 0.0) -> MeasuredRun:
+def measured_run(path: str | Path, heading_deg: float = 0.0, decay_dof: str | None = None) -> MeasuredRun:
     """Read a measured run from a bag (contract: /waves/elevation and /platform/pose); the
-    elevation is resampled onto a uniform grid at its median step."""
+    elevation is resampled onto a uniform grid at its median step. A free decay
+    (``decay_dof``) needs no elevation: without one it is calm water, zero on the motion's clock."""
     from fowt_hydro_sim.rosbag.reader import Bag
+    from msg_adapters import topics as contract
     bag = Bag(path)
-    elevation, motion = bag.elevation(), bag.motion()
+    motion = bag.motion()
+    calm = contract.ELEVATION not in bag.topics or not bag.topics[contract.ELEVATION].message_count
+    if decay_dof is not None and calm:
+        return MeasuredRun(Path(path).name, motion.time_s, np.zeros(motion.time_s.size), (0.0, 0.0), motion.time_s,
+                           motion.values, heading_deg, decay_dof)
+    elevation = bag.elevation()
     step = float(np.median(np.diff(elevation.time_s)))
     grid = np.arange(elevation.time_s[0], elevation.time_s[-1] + 0.5 * step, step)
     eta = np.interp(grid, elevation.time_s, elevation.values[:, 2])
     return MeasuredRun(Path(path).name, grid, eta, (float(elevation.values[0, 0]), float(elevation.values[0, 1])),
-                       motion.time_s, motion.values, heading_deg)
+                       motion.time_s, motion.values, heading_deg, decay_dof)
 
 
 @dataclass(frozen=True)

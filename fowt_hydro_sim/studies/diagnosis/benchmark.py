@@ -120,6 +120,7 @@ SPLIT_SETS = ("development", "held-out", "held-out-2", "held-out-3", "held-out-4
 KINDS = ("injected", "null", "out_of_catalogue", "baseline_term")
 SCALE_TOLERANCE = 0.25  # a baseline-term scenario: the fitted scale within 25 % of the right one
 RUN_SETTINGS_FILE = "benchmark_settings.json"  # what a resumed benchmark must share with the scores on disk
+DECAY_CASE = "decay "  # a free decay's "case": "decay surge"
 
 
 class BaselineTerm(NamedTuple):
@@ -398,6 +399,11 @@ def summary(scores: list[Score]) -> dict:
 def _truth_task(job: tuple[Scenario, str, bool], platform: Platform, duration_s: float, source: str = "twin",
                 cache: Path | None = None) -> MeasuredRun:
     scenario, case, with_effect = job
+    if case.startswith(DECAY_CASE):
+        dof = case.removeprefix(DECAY_CASE)
+        offset, decay_s = {name: (offset, length) for name, offset, length in basin.DECAYS}[dof]
+        return basin.decay_run(f"{scenario.name}/{case}", dof, offset, scenario.effect, scenario.values,
+                               scenario.seed, platform, decay_s, cache, scenario.terms)
     if source == "independent":
         return basin_run(f"{scenario.name}/{case}", scenario.effect, scenario.values, scenario.seed, case, platform,
                          duration_s, with_effect, cache=cache, terms=scenario.terms)
@@ -412,14 +418,16 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     the effect; independent: the Cummins/BEM simulator, cached in ``cache``), diagnose each
     with the plain model (``MODEL_OPTIONS[source]``), score it; ``report(score)`` is called as each
     scenario ends; each diagnosis's report is written to ``reports/SCENARIO`` if given."""
-    jobs = truth_jobs(chosen)
+    jobs = truth_jobs(chosen, settings.decays)
     made = dict(zip([(s.name, c, w) for s, c, w in jobs],
                     map_with_progress(client, _truth_task, jobs, "measured runs", platform=platform,
                                       duration_s=duration_s, source=source, cache=cache)))
     scores = []
     for scenario in chosen:
         start = time.perf_counter()
-        tuning = [made[scenario.name, c, True] for c in scenario.tuning_cases]
+        waves = [made[scenario.name, c, True] for c in scenario.tuning_cases]
+        decays = [made[scenario.name, c, True] for c in decay_cases(settings.decays)]
+        tuning = waves + decays
         blind = [made[scenario.name, c, True] for c in scenario.blind_cases]
         evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s,
                                     MODEL_OPTIONS[source])
@@ -427,7 +435,7 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
                              platform=platform)
         if reports is not None:
             write_report(diagnosis, reports / scenario.name.replace("#", "_"))
-        cells = (footprint(tuning, [made[scenario.name, c, False] for c in scenario.tuning_cases], settings)
+        cells = (footprint(waves, [made[scenario.name, c, False] for c in scenario.tuning_cases], settings)
                  if scenario.kind == "injected" else [])
         scores.append(score_scenario(scenario, diagnosis, cells, time.perf_counter() - start))
         if report:
@@ -481,11 +489,16 @@ def chosen_scenarios(source: str, inject: list[str] | None = None, strengths: in
     return chosen, f"scenario set: twin ({len(chosen)} scenarios)"
 
 
-def truth_jobs(chosen: list[Scenario]) -> list[tuple[Scenario, str, bool]]:
+def decay_cases(decays: bool) -> list[str]:
+    """The "cases" of the independent basin's free decays (``basin.DECAYS``), if asked."""
+    return [f"{DECAY_CASE}{dof}" for dof, _, _ in basin.DECAYS] if decays else []
+
+
+def truth_jobs(chosen: list[Scenario], decays: bool = False) -> list[tuple[Scenario, str, bool]]:
     """The measured runs a benchmark makes: (scenario, load case, with the effect) for each
-    scenario's tuning and blind cases, and its tuning cases without the effect (injected
-    scenarios: the footprint)."""
-    jobs = [(s, c, True) for s in chosen for c in s.tuning_cases + s.blind_cases]
+    scenario's tuning and blind cases, its free decays (``decays``: a tuning run each) and
+    its tuning cases without the effect (injected scenarios: the footprint)."""
+    jobs = [(s, c, True) for s in chosen for c in s.tuning_cases + s.blind_cases + tuple(decay_cases(decays))]
     return jobs + [(s, c, False) for s in chosen if s.kind == "injected" for c in s.tuning_cases]
 
 

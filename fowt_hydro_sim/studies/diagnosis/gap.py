@@ -7,7 +7,10 @@ Metrics per DOF (values are model against measured):
 - ``frequency.BAND``: mean frequency error in the band, sqrt(m2/m0) model / measured - 1
   (a shifted resonance: stiffness or inertia);
 - ``offset``: mean offset, (model - measured) / the measured STD;
-- ``lag``: time lag [s] of the model's wave-band response behind the measured one.
+- ``lag``: time lag [s] of the model's wave-band response behind the measured one;
+- with ``GapSettings.decays``, the cells of free-decay runs (decay.py): ``decay_period``,
+  the decay's mean half-period error, and ``decay_damping``, its damping ratio error (model
+  / measured - 1), judged only in a decay of that DOF (and the wave cells only in wave runs).
 
 Because both runs see the same waves, sampling noise largely cancels in their ratio: the
 record is cut into blocks, the metric's log ratio (or difference) is taken per block,
@@ -33,7 +36,9 @@ from fowt_hydro_sim.studies.psd import BANDS_HZ
 
 GRID_STEP_S = 0.25
 MAX_LAG_S = 10.0
-TOLERANCES = {"std": 0.05, "frequency": 0.03, "offset": 0.2, "lag": 0.25}  # materiality, per metric kind
+TOLERANCES = {"std": 0.05, "frequency": 0.03, "offset": 0.2, "lag": 0.25,  # materiality, per metric kind
+              "decay_period": 0.03, "decay_damping": 0.10}
+DECAY_METRICS = ("decay_period", "decay_damping")
 COHERENCE_SEGMENT_S = 300.0
 MIN_BLOCK_S = 180.0  # a block spans nearly two surge periods: shorter blocks are not independent
 NEGLIGIBLE_BAND = 0.15  # share of the DOF's STD below which a band's cells are not judged (on both sides)
@@ -48,10 +53,17 @@ class GapSettings:
     blocks: int = 8  # at most; fewer for records too short for blocks of MIN_BLOCK_S
     confidence: float = 0.90
     tolerances: dict[str, float] = field(default_factory=lambda: dict(TOLERANCES))
+    decays: bool = False  # the free-decay cells too (the diagnosis has decay runs)
 
     def metrics(self) -> list[str]:
         return ([f"std.{b}" for b in self.bands_hz] + [f"frequency.{b}" for b in self.bands_hz]
-                + ["offset", "lag"])
+                + ["offset", "lag"] + (list(DECAY_METRICS) if self.decays else []))
+
+    def covered(self, decay_dof: str | None) -> np.ndarray:
+        """The cells a run measures: a wave run's every wave cell, a decay's its DOF's decay cells."""
+        if decay_dof is None:
+            return np.array([metric not in DECAY_METRICS for _, metric in self.cells()])
+        return np.array([dof == decay_dof and metric in DECAY_METRICS for dof, metric in self.cells()])
 
     def cells(self) -> list[tuple[str, str]]:
         """(DOF, metric) of every cell, in the order of ``gap`` arrays."""
@@ -65,13 +77,20 @@ class GapSettings:
 class Gap:
     """One run's gap cells (``GapSettings.cells`` order): value, confidence interval,
     tolerance (infinite for a cell not judged); and the residual value / tolerance that
-    fits minimise."""
+    fits minimise. ``covers``: the cells the run measures (``GapSettings.covered``; None:
+    every cell); the others are not judged. ``decay_dof``: the DOF of a free-decay run."""
 
     run: str
     value: np.ndarray
     low: np.ndarray
     high: np.ndarray
     tolerance: np.ndarray
+    covers: np.ndarray | None = None
+    decay_dof: str | None = None
+
+    @property
+    def covered(self) -> np.ndarray:
+        return np.ones(self.value.size, dtype=bool) if self.covers is None else self.covers
 
     @property
     def significant(self) -> np.ndarray:
@@ -108,22 +127,30 @@ class Gap:
 
 
 def consistent(gaps: list[Gap]) -> np.ndarray:
-    """Cells the model misses the same way in every run (at least two): judged in every run,
-    flagged in at least one, of one sign in every run, and, pooled over the runs (the mean
-    value, its interval's half-width sqrt(sum h_i^2) / n from the runs' independent
+    """Cells the model misses the same way in every run that measures them (``Gap.covers``;
+    at least two for a wave cell, a decay's own cycles are its repeats): judged in every
+    such run, flagged in at least one, of one sign in every one, and, pooled over them (the
+    mean value, its interval's half-width sqrt(sum h_i^2) / n from the runs' independent
     intervals), significant and beyond tolerance. A cell flagged in each run is consistent;
     so is one flagged in some runs whose other runs agree in sign but are too short or too
     noisy to be significant alone (a 1200 s record gives five blocks per interval)."""
-    if len(gaps) < 2:
-        return np.zeros(gaps[0].value.size if gaps else 0, dtype=bool)
-    value = np.array([g.value for g in gaps])
-    half = np.array([(g.high - g.low) / 2.0 for g in gaps])
-    judged = np.all([g.judged for g in gaps], axis=0)
-    flagged = np.any([g.flagged for g in gaps], axis=0)
-    one_sign = np.abs(np.sign(value).sum(axis=0)) == len(gaps)
-    mean = value.mean(axis=0)
-    pooled_half = np.sqrt((half ** 2).sum(axis=0)) / len(gaps)
-    return judged & flagged & one_sign & (np.abs(mean) > pooled_half) & (np.abs(mean) > gaps[0].tolerance)
+    if not gaps:
+        return np.zeros(0, dtype=bool)
+    covers = np.array([g.covered for g in gaps])
+    n = covers.sum(axis=0)
+    value = np.where(covers, [g.value for g in gaps], 0.0)
+    half = np.where(covers, [(g.high - g.low) / 2.0 for g in gaps], 0.0)
+    judged = np.all([g.judged | ~c for g, c in zip(gaps, covers)], axis=0)
+    flagged = np.any([g.flagged & c for g, c in zip(gaps, covers)], axis=0)
+    one_sign = np.abs(np.sign(value).sum(axis=0)) == n
+    runs = np.maximum(n, 1)
+    mean = value.sum(axis=0) / runs
+    pooled_half = np.sqrt((half ** 2).sum(axis=0)) / runs
+    decay = np.array([g.decay_dof is not None for g in gaps])
+    needed = np.where(np.any(covers & decay[:, None], axis=0), 1, 2)  # a decay's cells: one run
+    tolerance = np.min([np.where(c, g.tolerance, np.inf) for g, c in zip(gaps, covers)], axis=0)
+    return ((n >= needed) & judged & flagged & one_sign & (np.abs(mean) > pooled_half)
+            & (np.abs(mean) > tolerance))
 
 
 def common_grid(measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndarray, np.ndarray],
@@ -198,7 +225,8 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         scale = float(m.std()) or 1.0
         passed = {name: (band_passed(m, band), band_passed(s, band)) for name, band in settings.bands_hz.items()}
         band_judged = [judged_band(mb, sb, m, s) for mb, sb in passed.values()]
-        judged += band_judged * 2 + [True, True]
+        decay_cells = len(DECAY_METRICS) if settings.decays else 0  # measured by decay runs, not here
+        judged += band_judged * 2 + [True, True] + [False] * decay_cells
         for mb, sb in passed.values():  # std.BAND
             per_block = np.array([0.5 * math.log(sb[b].var() / mb[b].var()) for b in blocks])
             _, half = _interval(per_block, settings.confidence)
@@ -216,10 +244,11 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         per_block = np.array([block_lag_s(sb[b], mb[b]) for b in blocks])  # lag
         centre, half = _interval(per_block, settings.confidence)
         rows.append((centre, centre - half, centre + half))
+        rows += [(0.0, 0.0, 0.0)] * decay_cells
     value, low, high = (np.array(column) for column in zip(*rows))
     tolerance = np.array([settings.tolerance(metric) if ok else np.inf
                           for (_, metric), ok in zip(settings.cells(), judged)])
-    return Gap(name, value, low, high, tolerance)
+    return Gap(name, value, low, high, tolerance, settings.covered(None) if settings.decays else None)
 
 
 def spectra(elevation: tuple[np.ndarray, np.ndarray], motion: tuple[np.ndarray, np.ndarray],

@@ -56,6 +56,7 @@ import scipy.signal
 
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import Platform
+from fowt_hydro_sim.studies.diagnosis.decay import check_decay
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect, Parameter
 from fowt_hydro_sim.studies.diagnosis.effects.base import MATERIAL_SCALE
 from fowt_hydro_sim.studies.diagnosis.gap import (
@@ -91,9 +92,24 @@ def record_s(run: MeasuredRun) -> float:
     return float(run.motion_time_s[-1] - run.elevation_time_s[0])
 
 
+def model_s(run: MeasuredRun, duration_s: float | None = None) -> float:
+    """Model seconds a replay of the run takes: the pre-roll and the record (or its first
+    ``duration_s``); a decay, its record, whole."""
+    if run.decay_dof is not None:
+        return record_s(run)
+    return PREROLL_S + (duration_s if duration_s is not None else record_s(run))
+
+
+def wave_runs(runs: list[MeasuredRun]) -> list[int]:
+    """The indices of the runs in waves (not free decays)."""
+    return [i for i, r in enumerate(runs) if r.decay_dof is None]
+
+
 def fit_window(runs: list[MeasuredRun], window_s: float | None) -> float | None:
-    """The fit window if every run is longer than it, else None (fit on whole records)."""
-    return window_s if window_s and all(record_s(r) > window_s for r in runs) else None
+    """The fit window if every run in waves is longer than it, else None (fit on whole
+    records); decays are replayed whole."""
+    waves = [runs[i] for i in wave_runs(runs)]
+    return window_s if window_s and all(record_s(r) > window_s for r in waves) else None
 
 
 class Work:
@@ -140,8 +156,7 @@ def job_duration_s(job: Job) -> float | None:
 
 def job_s(job: Job, runs: list[MeasuredRun]) -> float:
     """Model seconds a job replays, pre-roll included."""
-    duration_s = job_duration_s(job)
-    return PREROLL_S + (duration_s if duration_s is not None else record_s(runs[job[2]]))
+    return model_s(runs[job[2]], job_duration_s(job))
 
 
 # ---------------------------------------------------------------------- fitting one candidate
@@ -487,11 +502,13 @@ class Mismatch:
 
     def text(self) -> str:
         lo, hi = min(self.values), max(self.values)
-        ratio = self.metric.startswith(("std.", "frequency."))
+        ratio = self.metric.startswith(("std.", "frequency.", "decay_"))
         size = (f"{1 + lo:.2g}x to {1 + hi:.2g}x the measured" if ratio else f"{lo:+.3g} to {hi:+.3g}")
+        scaling = (f"; change per m of Hs {self.slope(self.hs_m):+.3g}, per s of Tp {self.slope(self.tp_s):+.3g}"
+                   if self.hs_m else "")
+        runs = "free decay" if self.metric.startswith("decay_") else "run"
         return (f"{self.dof} {self.metric}: model {'above' if self.sign > 0 else 'below'} the measurement in every "
-                f"run ({size}; change per m of Hs {self.slope(self.hs_m):+.3g}, "
-                f"per s of Tp {self.slope(self.tp_s):+.3g})"
+                f"{runs} ({size}{scaling})"
                 + (f", explained by {self.explained_by}" + (f": {self.term}" if self.term else "")
                    if self.explained_by else f": {self.term}" if self.term
                    else ", not explained by any catalogue effect"))
@@ -637,10 +654,16 @@ def peak_period_s(run: MeasuredRun) -> float:
 
 
 def baseline_mismatches(tuning: list[MeasuredRun], gaps: list[Gap], settings: GapSettings) -> list[Mismatch]:
-    """Cells the plain model misses the same way in every tuning run (``gap.consistent``)."""
-    hs, tp = [r.hs_m for r in tuning], [peak_period_s(r) for r in tuning]
-    return [Mismatch(*settings.cells()[i], [float(g.value[i]) for g in gaps], hs, tp)
-            for i in np.flatnonzero(consistent(gaps))]
+    """Cells the plain model misses the same way in every tuning run that measures them
+    (``gap.consistent``), with their values in those runs and, for a run in waves, its sea
+    state (Hs, Tp)."""
+    sea = {i: (tuning[i].hs_m, peak_period_s(tuning[i])) for i in wave_runs(tuning)}
+    out = []
+    for i in np.flatnonzero(consistent(gaps)):
+        runs = [k for k, g in enumerate(gaps) if g.covered[i]]
+        out.append(Mismatch(*settings.cells()[i], [float(gaps[k].value[i]) for k in runs],
+                            [sea[k][0] for k in runs if k in sea], [sea[k][1] for k in runs if k in sea]))
+    return out
 
 
 def coherence_deficit(measured: list[dict], model: list[dict], dof: str, band_hz: tuple[float, float]) -> float:
@@ -692,10 +715,18 @@ def measured_spectra(run: MeasuredRun, settings: GapSettings) -> dict:
 
 def check_runs(runs: list[MeasuredRun], settings: GapSettings) -> None:
     """InputError naming a run that cannot be diagnosed: too short for the transient, or
-    motion outside its elevation record."""
-    if not runs:
-        raise InputError("diagnosis: no measured run")
+    motion outside its elevation record; a decay with too few cycles (``decay.check_decay``)."""
+    if not wave_runs(runs):
+        raise InputError("diagnosis: no measured run in waves")
+    if any(r.decay_dof is not None for r in runs) and not settings.decays:
+        raise ValueError("diagnosis: decay runs need the gap settings' decay cells (GapSettings(decays=True))")
     for run in runs:
+        if run.decay_dof is not None:
+            check_decay(run.name, run.motion_time_s, run.motion, run.decay_dof)
+            if run.decay_dof not in settings.dofs:
+                raise InputError(f"decay {run.name}: {run.decay_dof} is not among the DOFs diagnosed "
+                                 f"({', '.join(settings.dofs)})")
+            continue
         span = float(run.motion_time_s[-1] - run.motion_time_s[0]) if run.motion_time_s.size else 0.0
         if span < settings.transient_s + 300.0:
             raise InputError(f"run {run.name}: {span:.0f} s of motion; the diagnosis needs the "
@@ -732,7 +763,12 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     blind`` in that order. Tuning records longer than ``fit_window_s`` are fitted on their
     first ``fit_window_s`` (None or 0: whole records). The model runs are counted in
     ``progress`` (e.g. a runner.Progress, which logs them). ``platform``, the model's, sizes
-    the effects that add to a term it has against its own (``share_concern``)."""
+    the effects that add to a term it has against its own (``share_concern``). Free decays
+    (``MeasuredRun.decay_dof``; ``settings.decays``) are tuning runs: their cells join every
+    fit; the spectra, the sea-state concerns and the fit window are the wave runs'."""
+    blind_decays = [r.name for r in blind if r.decay_dof is not None]
+    if blind_decays:
+        raise InputError(f"decay {blind_decays[0]}: free decays are tuning runs, not blind ones")
     check_runs(tuning + blind, settings)
     check_window(fit_window_s, settings)
     effects = effects or CATALOGUE
@@ -741,8 +777,9 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     window = fit_window(tuning, fit_window_s)
     progress = progress if progress is not None else Work()
     evaluate = tracked(evaluate, runs, progress)
-    whole_s = [PREROLL_S + record_s(r) for r in runs]
-    fit_run_s = [PREROLL_S + (window if window else record_s(r)) for r in tuning]
+    whole_s = [model_s(r) for r in runs]
+    fit_run_s = [model_s(r, window) for r in tuning]
+    waves = wave_runs(tuning)
 
     def expect_fits(sign: int = 1) -> None:
         """Every candidate's most runs: its fit's points, then its whole records."""
@@ -753,16 +790,16 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     # the plain model, the fit window's plain model, the fits, and the chosen effect on every run
     progress.expect(2 * len(runs) + (n_tuning if window else 0), 2 * sum(whole_s) + (sum(fit_run_s) if window else 0.0))
     expect_fits()
-    first = evaluate([(None, {}, i, i < n_tuning) for i in range(len(runs))], "plain model")
+    first = evaluate([(None, {}, i, i in waves) for i in range(len(runs))], "plain model")
     baseline = [g for g, _ in first]
-    measured = [measured_spectra(r, settings) for r in tuning]
-    model_spectra = [s for _, s in first[:n_tuning]]
+    measured = [measured_spectra(tuning[i], settings) for i in waves]
+    model_spectra = [first[i][1] for i in waves]
     lf = settings.bands_hz.get("low_frequency", min(settings.bands_hz.values()))
     deficit = coherence_deficit(measured, model_spectra, settings.dofs[0], lf)
     diagnosis = Diagnosis(settings, [r.name for r in tuning], [r.name for r in blind], baseline, [],
                           "no significant gap", None, "", baseline_score=score(baseline[:n_tuning], 0),
                           coherence_deficit=deficit, model_runs=len(runs))
-    diagnosis.spectra = {r.name: {"measured": m, "model": s} for r, m, s in zip(tuning, measured, model_spectra)}
+    diagnosis.spectra = {tuning[i].name: {"measured": m, "model": s} for i, m, s in zip(waves, measured, model_spectra)}
     diagnosis.mismatches = baseline_mismatches(tuning, diagnosis.tuning_before, settings)
     if not any(g.flagged.any() for g in diagnosis.tuning_before):
         diagnosis.reason = "no cell of the tuning runs is both significant and beyond its tolerance"
@@ -791,7 +828,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             expected = budget + sum(restarts_expected)
             progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
             p = len(effect.parameters)
-            size = share_concern(effect, values, tuning, platform)
+            size = share_concern(effect, values, [tuning[i] for i in waves], platform)
             if window:
                 in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
                 if in_window < SCREEN_CLOSURE:
@@ -842,7 +879,8 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     if unexplained.any():
         remaining = ~unexplained
         diagnosis.fit_cells, diagnosis.first_round = remaining, candidates
-        diagnosis.undriven = undriven_cells(unexplained, diagnosis.tuning_before, measured, model_spectra, settings)
+        diagnosis.undriven = undriven_cells(unexplained, [diagnosis.tuning_before[i] for i in waves], measured,
+                                            model_spectra, settings)
         diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining, diagnosis.tuning_before)
         if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
             expect_fits()
@@ -866,15 +904,15 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             return confirmed(with_mismatches(diagnosis, None, effects))
         chosen, reason = _choose(fitting, effects, deficit, settings)
         diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
-        jobs = [(chosen.effect, chosen.values, i, i < n_tuning) for i in range(len(runs))]
+        jobs = [(chosen.effect, chosen.values, i, i in waves) for i in range(len(runs))]
         if not first_choice:
             progress.expect(len(runs), sum(whole_s))
         first_choice = False
         after = evaluate(jobs, f"{chosen.effect}: all runs")
         diagnosis.model_runs += len(jobs)
         diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
-        for r, (_, s) in zip(tuning, after[:n_tuning]):
-            diagnosis.spectra[r.name]["model + effect"] = s
+        for i in waves:
+            diagnosis.spectra[tuning[i].name]["model + effect"] = after[i][1]
         if not blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
             return confirmed(with_mismatches(diagnosis, chosen, effects))
         chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} of its "

@@ -12,6 +12,7 @@ from collections.abc import Callable
 
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.studies.cluster import dask_client, scatter
+from fowt_hydro_sim.studies.diagnosis.decay import decay_gap, replay_decay
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, Effect
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, gap, spectra
 from fowt_hydro_sim.studies.diagnosis.method import (
@@ -37,13 +38,17 @@ def replay_job(job: Job, runs: list[MeasuredRun], platform: Platform, settings: 
                options: HydroOptions | None = None) -> tuple[Gap, dict | None]:
     """One model run (a cluster task): run ``index`` replayed by the plain model (with
     ``options``) or with an effect at the given values (over the whole record, or its first
-    ``duration`` seconds); its gap, and its spectra if asked."""
+    ``duration`` seconds; a decay over its whole record); its gap, and its spectra if asked
+    (none for a decay)."""
     name, values, index, with_spectra = job[:4]
     duration_s = job_duration_s(job)
     run = runs[index]
     variant = Variant(platform, options=options)
     if name is not None:
         variant = (effects or CATALOGUE)[name].apply(variant, run, values)
+    if run.decay_dof is not None:
+        time_s, motion = replay_decay(variant, run, dt_s)
+        return decay_gap(run.name, (run.motion_time_s, run.motion), (time_s, motion), run.decay_dof, settings), None
     time_s, motion = replay(variant, run, dt_s, duration_s)
     result = gap(run.name, (run.motion_time_s, run.motion), (time_s, motion), settings)
     if not with_spectra:
@@ -108,10 +113,12 @@ class Progress(Work):
 def diagnose_bags(tuning: list[str], blind: list[str], platform: Platform, settings: GapSettings,
                   effects: dict[str, Effect], output: str, heading_deg: float = 0.0, max_evaluations: int = 4,
                   dt_s: float = REPLAY_DT_S, scheduler: str | None = None, workers: int | None = None,
-                  fit_window_s: float | None = FIT_WINDOW_S) -> list[str]:
+                  fit_window_s: float | None = FIT_WINDOW_S, decays: list[tuple[str, str]] | None = None) -> list[str]:
     """``fowt-sim diagnose``: measured bags diagnosed on a Dask cluster, the report written to
-    ``output``; returns the summary's lines."""
-    tuning_runs = [measured_run(p, heading_deg) for p in tuning]
+    ``output``; returns the summary's lines. ``decays``: (DOF, bag) of free decays, tuning
+    runs too (``settings.decays`` must be set)."""
+    tuning_runs = ([measured_run(p, heading_deg) for p in tuning]
+                   + [measured_run(p, heading_deg, decay_dof=dof) for dof, p in decays or []])
     blind_runs = [measured_run(p, heading_deg) for p in blind]
     check_runs(tuning_runs + blind_runs, settings)  # before any cluster starts
     check_window(fit_window_s, settings)

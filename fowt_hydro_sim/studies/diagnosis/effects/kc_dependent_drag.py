@@ -1,6 +1,7 @@
 """Drag that depends on the sea state: every Cd scaled by (KC / KC_ref)^exponent, with the
 run's Keulegan-Carpenter number at the surface KC = pi Hs / D (D the widest circular
-member, at least ``KC_FLOOR``) and KC_ref = 1."""
+member, at least ``KC_FLOOR``) and KC_ref = 1. A free decay (calm water) keeps the platform's
+Cds: the form says how they change with the sea, not with the body's own motion."""
 from __future__ import annotations
 
 import math
@@ -20,6 +21,8 @@ def keulegan_carpenter(hs_m: float, platform: Platform) -> float:
 
 
 def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
+    if run.decay_dof is not None:
+        return variant
     factor = (keulegan_carpenter(run.hs_m, variant.platform) / KC_REFERENCE) ** values["kc_exponent"]
     return replace(variant, platform=scaled_drag(variant.platform, factor))
 

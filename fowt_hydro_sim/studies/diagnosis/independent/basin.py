@@ -2,18 +2,21 @@
 sea, with the scenario's baseline differences (random ones drawn from its seed, and terms the
 model has too set as scenario values: the drift's strength, the drag's Cd factor), its
 injected effect (in a form the diagnosis catalogue does not use), a pre-roll and 1 % sensor
-noise; each run cached on disk, keyed by everything that makes it."""
+noise; and the campaign's free decays (``DECAYS``, calm water, rotor parked); each run cached
+on disk, keyed by everything that makes it."""
 from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import asdict, dataclass
+import math
+from dataclasses import asdict, dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 from fowt_hydro_sim.physics.config import Platform, load_case
+from fowt_hydro_sim.physics.model import DOF_NAMES
 from fowt_hydro_sim.studies.diagnosis.independent import bem, cummins, drift, drift_study
 from fowt_hydro_sim.studies.diagnosis.independent.catenary import ChainLines, surge_curve
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
@@ -37,6 +40,12 @@ INJECTED_DRIFT: cummins.Table = ((0.3, 1.0e4), (0.5, 6.0e4), (0.8, 1.5e5), (1.2,
 # the baseline differences' spread: Cd scale, Ca scale (uniform +-), strip lengths drawn from
 BASELINE_SPREAD = {"cd": 0.10, "ca": 0.05}
 STRIP_LENGTHS_M = (None, 0.5, 2.0)
+# the campaign's free decays: DOF, initial offset [m, rad], record [s] (about ten surge and
+# pitch cycles). Surge and pitch: the DOFs whose slow motion the diagnosis reads, where the
+# damping and the slow drift must be told apart. (The two simulators' heave periods differ by
+# about 15 %, 16.6 s against 14.4 s: a BEM hull's heave added mass against strips', a
+# structural difference no term of the model reads.)
+DECAYS = (("surge", 10.0, 1000.0), ("pitch", math.radians(4.0), 300.0))
 
 
 @dataclass(frozen=True)
@@ -147,3 +156,31 @@ def basin_run(name: str, form: str | None, values: dict[str, float], seed: int, 
         np.savez_compressed(path, elevation_time_s=run.elevation_time_s, elevation_m=eta,
                             motion_time_s=run.motion_time_s, motion=motion)
     return MeasuredRun(name, run.elevation_time_s, eta, (0.0, 0.0), run.motion_time_s, motion)
+
+
+def decay_run(name: str, dof: str, offset: float, form: str | None, values: dict[str, float], seed: int,
+              platform: Platform, duration_s: float, cache: Path | None = None,
+              terms: BaselineTerms = BaselineTerms()) -> MeasuredRun:
+    """A "measured" free decay of the independent simulator: released at rest from ``offset``
+    in ``dof`` in calm water, with the scenario's baseline ``terms`` and injected effect (but
+    no harmonic load: the rotor is parked), 1 % sensor noise on the motion; the elevation is
+    the calm water's, zero."""
+    key = run_key(form, values, seed, f"decay {dof} {offset!r}", duration_s, True, BASELINE_DRIFT, platform, terms)
+    path = cache / f"{key}.npz" if cache else None
+    if path is not None and path.exists():
+        stored = np.load(path)
+        time_s = stored["motion_time_s"]
+        return MeasuredRun(name, time_s, np.zeros(time_s.size), (0.0, 0.0), time_s, stored["motion"], decay_dof=dof)
+    initial = np.zeros(6)
+    initial[DOF_NAMES.index(dof)] = offset
+    injected = replace(effects(form, values, platform), harmonic_load=())
+    trajectory = cummins.integrate(platform, _database(), None, duration_s, DT_S, baseline(seed, BASELINE_DRIFT, terms),
+                                   injected, initial=initial)
+    time_s = np.arange(0.0, duration_s + 1e-9, cummins.MOTION_STEP_S)
+    motion = np.stack([np.interp(time_s, trajectory.time_s, trajectory.position[:, i]) for i in range(6)], axis=1)
+    rng = np.random.default_rng(seed + DOF_NAMES.index(dof))
+    motion = motion + rng.normal(0.0, 1.0, motion.shape) * SENSOR_NOISE * motion.std(axis=0)
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(path, motion_time_s=time_s, motion=motion)
+    return MeasuredRun(name, time_s, np.zeros(time_s.size), (0.0, 0.0), time_s, motion, decay_dof=dof)

@@ -1,0 +1,176 @@
+"""Free decays as diagnosis runs: the half-cycle analysis against a damped oscillator's closed
+form; the decay cells of a model against a measured decay; a decay's cells consistent on
+their own; the independent simulator's and the model's decays against the closed form of an
+added linear damping; bad decay input in one line."""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from fowt_hydro_sim.errors import InputError
+from fowt_hydro_sim.physics.config import Platform, load_platform
+from fowt_hydro_sim.physics.platform_edits import scaled_drag
+from fowt_hydro_sim.studies.diagnosis.decay import check_decay, decay_gap, half_cycles, replay_decay
+from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
+from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, consistent
+from fowt_hydro_sim.studies.diagnosis.independent import basin, cummins
+from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
+
+SETTINGS = GapSettings(decays=True)
+STEP_S = 0.25
+
+
+def oscillator(zeta: float, period_s: float, amplitude: float, duration_s: float, hold_s: float = 0.0
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """A linear oscillator released at rest from ``amplitude`` after a hold: its closed-form decay."""
+    t = np.arange(0.0, duration_s, STEP_S)
+    w = 2.0 * math.pi / period_s
+    wd = w * math.sqrt(1.0 - zeta ** 2)
+    s = np.clip(t - hold_s, 0.0, None)
+    x = amplitude * np.exp(-zeta * w * s) * (np.cos(wd * s) + zeta / math.sqrt(1.0 - zeta ** 2) * np.sin(wd * s))
+    return t, x
+
+
+def motion(x: np.ndarray, dof: int = 0) -> np.ndarray:
+    out = np.zeros((x.size, 6))
+    out[:, dof] = x
+    return out
+
+
+@pytest.fixture(scope="module")
+def platform() -> Platform:
+    return load_platform("windmoor12")
+
+
+def test_half_cycles_give_the_oscillators_period_and_damping():
+    """Half-period pi / w_d; ln(H_k / H_k+1) / pi = zeta / sqrt(1 - zeta^2) for every k."""
+    for zeta, period in ((0.05, 96.0), (0.02, 27.0), (0.10, 16.0)):
+        t, x = oscillator(zeta, period, 10.0, 12 * period)
+        tau, damping = half_cycles(t, x)
+        wd = 2.0 * math.pi / period * math.sqrt(1.0 - zeta ** 2)
+        assert tau == pytest.approx(np.full(tau.size, math.pi / wd), rel=2e-3)
+        assert damping == pytest.approx(np.full(damping.size, zeta / math.sqrt(1.0 - zeta ** 2)), rel=1e-2)
+        assert tau.size == damping.size >= 3  # down to a fifth of the first height
+
+
+def test_a_hold_before_the_release_and_sensor_noise_leave_the_analysis_unchanged():
+    t, x = oscillator(0.05, 96.0, 10.0, 1200.0)
+    held_t, held = oscillator(0.05, 96.0, 10.0, 1300.0, hold_s=100.0)
+    noisy = held + np.random.default_rng(3).normal(0.0, 0.01 * held.std(), held.size)
+    tau, damping = half_cycles(t, x)
+    tau_held, damping_held = half_cycles(held_t, noisy)
+    assert tau_held.size == tau.size
+    assert tau_held.mean() == pytest.approx(tau.mean(), rel=0.01)
+    assert damping_held.mean() == pytest.approx(damping.mean(), rel=0.03)
+
+
+def test_the_decay_cells_are_the_models_period_and_damping_against_the_measured():
+    """A model decaying 5 % faster in frequency and with 1.2 times the damping: period -5 %,
+    damping +20 %, both flagged; no other cell judged; the plain model nil."""
+    t, measured = oscillator(0.05, 96.0, 10.0, 1000.0)
+    _, model = oscillator(0.06, 96.0 / 1.05, 10.0, 1000.0)
+    g = decay_gap("surge decay", (t, motion(measured)), (t, motion(model)), "surge", SETTINGS)
+    cells = SETTINGS.cells()
+    period, damping = cells.index(("surge", "decay_period")), cells.index(("surge", "decay_damping"))
+    wd = lambda z, p: 2 * math.pi / p * math.sqrt(1 - z ** 2)  # noqa: E731
+    assert g.value[period] == pytest.approx(wd(0.05, 96.0) / wd(0.06, 96.0 / 1.05) - 1.0, abs=2e-3)
+    ratio = (0.06 / math.sqrt(1 - 0.06 ** 2)) / (0.05 / math.sqrt(1 - 0.05 ** 2))
+    assert g.value[damping] == pytest.approx(ratio - 1.0, abs=0.01)
+    assert g.flagged[period] and g.flagged[damping]
+    assert np.flatnonzero(g.judged).tolist() == [period, damping] and g.decay_dof == "surge"
+    same = decay_gap("surge decay", (t, motion(measured)), (t, motion(measured)), "surge", SETTINGS)
+    assert not same.flagged.any() and np.allclose(same.value, 0.0)
+
+
+def gap_of(cells: dict[tuple[str, str], float], covers: np.ndarray, decay_dof: str | None = None) -> Gap:
+    names = SETTINGS.cells()
+    value = np.array([cells.get(c, 0.0) for c in names])
+    tolerance = np.array([SETTINGS.tolerance(m) if cover else np.inf for (_, m), cover in zip(names, covers)])
+    return Gap("run", value, value - 0.01, value + 0.01, tolerance, covers, decay_dof)
+
+
+def test_a_decay_cell_is_consistent_in_its_one_decay_a_wave_cell_needs_two_runs():
+    surge_damping, surge_std = ("surge", "decay_damping"), ("surge", "std.low_frequency")
+    waves = SETTINGS.covered(None)
+    wave_run = gap_of({surge_std: 0.5}, waves)
+    decay = gap_of({surge_damping: -0.3}, SETTINGS.covered("surge"), "surge")
+    cells = SETTINGS.cells()
+    found = lambda gaps: [cells[i] for i in np.flatnonzero(consistent(gaps))]  # noqa: E731
+    assert found([wave_run, decay]) == [surge_damping]  # one wave run: nothing to be consistent with
+    assert found([wave_run, wave_run, decay]) == [surge_std, surge_damping]
+    opposite = gap_of({surge_std: -0.5}, waves)
+    assert found([wave_run, opposite, decay]) == [surge_damping]  # a sign that changes between runs
+
+
+def test_the_independent_simulators_decay_damping_rises_by_the_closed_form_of_an_added_linear_damping(platform):
+    """Without drag (which would damp less as the added damping shrinks the cycles): an added
+    linear surge damping b raises the surge decay's damping ratio by b / (2 (m + A_11(w)) w)
+    at the decay's frequency w (BEM added mass), the release at rest from +10 m; the period
+    unchanged."""
+    b = 2.0e5
+    database = basin._database()
+    no_drag = replace(basin.baseline(1, terms=basin.BaselineTerms(spread=False)), cd_scale=1e-9)
+    runs = {}
+    for extra in (0.0, b):
+        effects = cummins.Effects(linear_damping=(extra, 0.0, 0.0, 0.0, 0.0, 0.0))
+        trajectory = cummins.integrate(platform, database, None, 1500.0, 0.05, no_drag, effects,
+                                       initial=np.array([10.0, 0, 0, 0, 0, 0]))
+        runs[extra] = half_cycles(trajectory.time_s, trajectory.position[:, 0], 8)
+    (tau, zeta), (tau_b, zeta_b) = runs[0.0], runs[b]
+    w = math.pi / tau.mean()
+    mass = cummins.rigid_body_mass(platform)[0, 0] + np.interp(w, database.omega_rad_s, database.added_mass[:, 0, 0])
+    assert (zeta_b - zeta).mean() == pytest.approx(b / (2.0 * mass * w), rel=0.03)
+    assert tau_b.mean() == pytest.approx(tau.mean(), rel=0.01)
+
+
+def recorded_decay(variant: Variant, hold_s: float = 20.0) -> MeasuredRun:
+    """The variant's own surge decay from +10 m, held ``hold_s`` first, with 1 % sensor noise."""
+    time_s = np.arange(0.0, 1200.0, STEP_S)
+    start = MeasuredRun("release", time_s, np.zeros(time_s.size), (0.0, 0.0), time_s,
+                        np.tile([10.0, 0, 0, 0, 0, 0], (time_s.size, 1)), decay_dof="surge")
+    t, x = replay_decay(variant, start, 0.1)
+    held = np.arange(0.0, hold_s, t[1] - t[0])
+    time_s = np.concatenate([held, t + hold_s])
+    recorded = np.vstack([np.tile(x[0], (held.size, 1)), x])
+    recorded = recorded + np.random.default_rng(5).normal(0.0, 1.0, recorded.shape) * 0.01 * recorded.std(axis=0)
+    return MeasuredRun("surge decay", time_s, np.zeros(time_s.size), (0.0, 0.0), time_s, recorded, decay_dof="surge")
+
+
+def test_a_decay_replayed_by_the_plain_model_from_its_release_matches_it(platform):
+    run = recorded_decay(Variant(platform))
+    g = decay_gap(run.name, (run.motion_time_s, run.motion), replay_decay(Variant(platform), run, 0.1), "surge",
+                  SETTINGS)
+    assert not g.flagged.any() and np.all(np.abs(g.value) < 0.02)
+
+
+def test_a_decay_with_linear_damping_decays_at_its_ratio_of_critical(platform):
+    """Without drag: the catalogue's linear surge damping at a ratio r of critical (of the
+    model's linear modes) gives the decay a damping ratio r (and the little the hull's own
+    radiation adds); a model at r = 2 % against a measurement at 4 % has a damping cell of
+    (2 % + z0) / (4 % + z0) - 1, z0 the plain hull's."""
+    no_drag = Variant(scaled_drag(platform, 1e-9))
+    effect = CATALOGUE["linear_damping"]
+
+    def damped(ratio: float) -> Variant:
+        return effect.apply(no_drag, None, {p.name: p.off for p in effect.parameters} | {"surge_damping_ratio": ratio})
+
+    own = half_cycles(*(lambda r: (r.motion_time_s, r.motion[:, 0]))(recorded_decay(no_drag)), 8)[1].mean()
+    measured = recorded_decay(damped(0.04))
+    zeta = half_cycles(measured.motion_time_s, measured.motion[:, 0])[1].mean()
+    assert abs(own) < 0.005 and zeta == pytest.approx(0.04 + own, rel=0.05)
+    g = decay_gap(measured.name, (measured.motion_time_s, measured.motion), replay_decay(damped(0.02), measured, 0.1),
+                  "surge", SETTINGS)
+    damping = SETTINGS.cells().index(("surge", "decay_damping"))
+    assert g.value[damping] == pytest.approx((0.02 + own) / (0.04 + own) - 1.0, abs=0.03)
+    assert g.flagged[damping]
+
+
+def test_bad_decays_get_one_line():
+    t, x = oscillator(0.3, 96.0, 10.0, 300.0)  # heavily damped and short: two half-cycles
+    with pytest.raises(InputError, match="half-cycles of surge above 20% of the first height; the diagnosis needs 4"):
+        check_decay("surge decay", t, motion(x), "surge")
+    with pytest.raises(InputError, match="unknown DOF 'swell'"):
+        check_decay("decay", t, motion(x), "swell")
