@@ -1,9 +1,11 @@
 """Free decays as diagnosis runs: the half-cycle analysis against a damped oscillator's closed
 form; the decay cells of a model against a measured decay; a decay's cells consistent on
 their own; the independent simulator's and the model's decays against the closed form of an
-added linear damping; bad decay input in one line."""
+added linear damping; ``fowt-sim diagnose --decay`` on a decay bag; bad decay input in one
+line."""
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import replace
 
@@ -18,6 +20,7 @@ from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, consistent
 from fowt_hydro_sim.studies.diagnosis.independent import basin, cummins
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
+from fowt_hydro_sim.testing import fowt_sim
 
 SETTINGS = GapSettings(decays=True)
 STEP_S = 0.25
@@ -174,3 +177,47 @@ def test_bad_decays_get_one_line():
         check_decay("surge decay", t, motion(x), "surge")
     with pytest.raises(InputError, match="unknown DOF 'swell'"):
         check_decay("decay", t, motion(x), "swell")
+
+
+def test_bad_decay_options_get_one_line(tmp_path):
+    bag = tmp_path / "missing"
+    cases = [(["diagnose", "--measured", bag, "--decay", "surge"], "--decay: need DOF=BAG"),
+             (["diagnose", "--measured", bag, "--decay", "swell=x"], "'swell' is not a DOF of the gap"),
+             (["diagnose", "--measured", bag, "--decay", "yaw=x", "--dofs", "surge"], "'yaw' is not a DOF of the gap"),
+             (["diagnose-benchmark", "--no-decays", "--nulls", "0"], "only the independent source has free decays")]
+    for args, message in cases:
+        result = fowt_sim(*args, "-o", tmp_path / "out", timeout=120)
+        assert result.returncode == 2 and message in result.stderr, (args, result.stderr)
+        assert "Traceback" not in result.stderr and len(result.stderr.strip().splitlines()) == 1, result.stderr
+
+
+@pytest.mark.slow
+@pytest.mark.dask
+def test_diagnose_reads_a_decay_bag_and_reports_its_cells(platform, tmp_path):
+    """``fowt-sim diagnose --decay surge=BAG``: a wave run of the model with its drag 1.4
+    times stronger and that model's own surge decay (bags without a wave topic): the decay's
+    cells are measured, flagged, in the report, and the model's drag is read at its scale."""
+    from fowt_hydro_sim.rosbag.measured import write_measured_bag
+    from fowt_hydro_sim.studies.diagnosis.benchmark import Scenario, truth_run
+
+    scenario = Scenario("drag", "injected", "model_drag", {"cd_scale": 1.4}, 7)
+    bags = []
+    for case in ("lc5.2", "lc5.3"):
+        run = truth_run(scenario, case, platform, 1800.0)
+        bags.append(write_measured_bag(tmp_path / case, run.elevation_time_s, run.elevation_m, run.point_xy_m,
+                                       run.motion_time_s, run.motion))
+    decay = recorded_decay(Variant(scaled_drag(platform, 1.4)))
+    decay_bag = write_measured_bag(tmp_path / "surge_decay", np.zeros(0), np.zeros(0), (0.0, 0.0),
+                                   decay.motion_time_s, decay.motion)
+    out = tmp_path / "report"
+    result = fowt_sim("diagnose", "--measured", *bags, "--decay", f"surge={decay_bag}", "--effects", "model_drag",
+                      "model_slow_drift", "--max-evaluations", "3", "--workers", "2", "-o", out, timeout=1800)
+    assert result.returncode == 0, result.stderr
+    data = json.loads((out / "diagnosis.json").read_text())
+    assert data["tuning_runs"] == ["lc5.2", "lc5.3", "surge_decay"]
+    flagged = {(run, dof, metric) for run, dof, metric in data["flagged"]}
+    assert ("surge_decay", "surge", "decay_damping") in flagged, flagged
+    assert data["finding"]["effect"] == "model_drag", result.stdout
+    assert data["finding"]["values"]["cd_scale"] == pytest.approx(1.4, rel=0.15)
+    report = (out / "report.md").read_text()
+    assert "| surge_decay | surge | decay_damping |" in report and "free decays: half-period 3 %" in report

@@ -183,7 +183,9 @@ def markdown(diagnosis: Diagnosis, figures: list[str]) -> str:
     lines += ["## Where the gap lies", "",
               "Cells flagged: significant (the paired block test's "
               f"{100 * d.settings.confidence:g} % interval excludes zero) and beyond tolerance "
-              "(STD 5 %, mean frequency 3 %, offset 0.2 STD, lag 0.25 s). Values are model against measured.", "",
+              "(STD 5 %, mean frequency 3 %, offset 0.2 STD, lag 0.25 s"
+              + ("; free decays: half-period 3 %, damping ratio 10 %" if d.settings.decays else "")
+              + "). Values are model against measured.", "",
               "| run | DOF | metric | gap | interval | tolerance |", "|---|---|---|---|---|---|"]
     for g in d.baseline:
         for i in np.flatnonzero(g.flagged):
