@@ -15,10 +15,12 @@ import pytest
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import Platform, load_platform
 from fowt_hydro_sim.physics.platform_edits import scaled_drag
+from fowt_hydro_sim.studies.diagnosis import method
 from fowt_hydro_sim.studies.diagnosis.decay import check_decay, decay_gap, half_cycles, replay_decay
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, consistent
 from fowt_hydro_sim.studies.diagnosis.independent import basin, cummins
+from fowt_hydro_sim.studies.diagnosis.method import CandidateFit, Diagnosis, Mismatch
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
 from fowt_hydro_sim.testing import fowt_sim
 
@@ -221,3 +223,31 @@ def test_diagnose_reads_a_decay_bag_and_reports_its_cells(platform, tmp_path):
     assert data["finding"]["values"]["cd_scale"] == pytest.approx(1.4, rel=0.15)
     report = (out / "report.md").read_text()
     assert "| surge_decay | surge | decay_damping |" in report and "free decays: half-period 3 %" in report
+
+
+def test_a_term_read_off_a_decay_alone_is_checked_on_the_blind_runs_by_the_wave_cells_it_explains():
+    """The surge decay's damping 0.81x the measured and the surge low-frequency STD 1.14x in
+    every wave run: the model's drag at 1.41 closes both, its slow drift at 0.87 (within 0.2
+    of 1: no finding) the STD alone. The drag is read off the decay; blind runs have no
+    decay, so they check it on the STD it explains too: kept where it closes it there,
+    not named where it does not."""
+    std, damping = ("surge", "std.low_frequency"), ("surge", "decay_damping")
+    waves, decay = SETTINGS.covered(None), SETTINGS.covered("surge")
+    wave_gaps = lambda value: [gap_of({std: value}, waves) for _ in range(3)]  # noqa: E731
+    before = wave_gaps(0.14) + [gap_of({damping: -0.185}, decay, "surge")]
+    drag = CandidateFit("model_drag", {"cd_scale": 1.41}, wave_gaps(0.02) + [gap_of({damping: -0.01}, decay, "surge")],
+                        score=-50.0, closure=0.9, model_runs=4)
+    drift = CandidateFit("model_slow_drift", {"drift_scale": 0.87},
+                         wave_gaps(0.0) + [gap_of({damping: -0.185}, decay, "surge")], score=-50.0, closure=0.4,
+                         model_runs=4)
+    cells = SETTINGS.cells()
+    for blind_after, kept in ((0.03, True), (0.14, False)):
+        d = Diagnosis(SETTINGS, ["lc5.1", "lc5.2", "lc5.3", "surge decay"], ["lc6.1"],
+                      before + [gap_of({std: 0.14}, waves)], [drag, drift], "unexplained", None, "no candidate fits")
+        d.mismatches = [Mismatch(*cells[i], [float(g.value[i]) for g in before if g.covered[i]], [], [])
+                        for i in np.flatnonzero(consistent(before))]
+        assert [(m.dof, m.metric) for m in d.mismatches] == [std, damping]
+        d = method.with_mismatches(d, None, CATALOGUE)
+        assert d.reading is drag and d.reading_cells[cells.index(std)], d.reason
+        method.confirm_reading(d, [gap_of({std: blind_after}, waves)])
+        assert (d.finding is drag) is kept, d.reason

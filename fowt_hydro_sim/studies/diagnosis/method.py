@@ -995,6 +995,23 @@ def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: 
     return found[best]
 
 
+def blind_checked_cells(diagnosis: Diagnosis, left: list[Mismatch]) -> np.ndarray:
+    """For a term reading none of whose cells the blind runs measure (read off free decays
+    alone; blind runs are in waves): the left mismatches' cells the blind runs measure that
+    its fit explains on the tuning runs (``explains``), by which the blind runs check it;
+    none otherwise."""
+    cells = diagnosis.settings.cells()
+    measured = np.all([g.covered for g in diagnosis.blind_before], axis=0)
+    out = np.zeros(len(cells), dtype=bool)
+    if (diagnosis.reading_cells & measured).any():
+        return out
+    plain = plain_gaps(diagnosis.reading, diagnosis.tuning_before, diagnosis.window_before)
+    for m in left:
+        i = cells.index((m.dof, m.metric))
+        out[i] = bool(measured[i]) and explains(plain, diagnosis.reading.gaps, i)
+    return out
+
+
 def other_readings(diagnosis: Diagnosis, effects: dict[str, Effect]) -> list[tuple[CandidateFit, list[int]]]:
     """The other terms that read the named term reading's cells as well: each other
     candidate scaling one of the model's terms, whose first fit did not fail and lies at
@@ -1104,6 +1121,8 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
     if chosen is None and left and not diagnosis.undriven:
         diagnosis.reading, diagnosis.reading_cells = leading_reading(
             left, cells, before, diagnosis.first_fits, effects)
+        if diagnosis.reading is not None and diagnosis.blind_before:
+            diagnosis.reading_cells |= blind_checked_cells(diagnosis, left)
     if left:
         effect = (f"; additionally {chosen.effect} explains part of the gap ({diagnosis.reason})" if chosen
                   else f"; no effect explains the rest ({diagnosis.reason})")
