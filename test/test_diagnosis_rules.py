@@ -346,3 +346,29 @@ def test_the_report_says_how_far_the_term_read_closes_its_cells():
     assert "over the mismatch's cells it reads (surge std.low_frequency)" in text, text
     assert "| tuning (fitted) | 100 % |" in text and "| blind (not refitted) | 91 % |" in text, text
     assert any(line.startswith("blind runs (not refitted): 91 %") for line in summary_lines(d)), summary_lines(d)
+
+
+def test_a_fit_just_outside_its_plausible_range_moves_to_it_when_that_does_as_well():
+    """A catenary read with a hardening of -0.005 (plausible: 0 to 2) that closes 80 % of the
+    gap, and 78 % at 0: it is read at 0, with no concern. A drift ten times too strong (0.1,
+    plausible 0.5 to 2) that closes 90 % and 20 % at 0.5 keeps its value and its concern."""
+    mooring = CATALOGUE["mooring_stiffness"]
+    values = {"line_stiffness_scale": 1.1, "hardening": -0.005, "asymmetry": 0.1}
+    fit = candidate("mooring_stiffness", values, gaps({"std.low_frequency": 0.02}), 0.8)
+    asked = []
+
+    def evaluate_at(at: dict[str, float]) -> list[Gap]:
+        asked.append(at)
+        return gaps({"std.low_frequency": 0.03})
+
+    moved = method.plausible_refit(fit, mooring, evaluate_at, lambda g: 0.78, lambda g: -49.0)
+    assert asked == [{"line_stiffness_scale": 1.1, "hardening": 0.0, "asymmetry": 0.1}]
+    assert moved.values == asked[0] and moved.closure == 0.78 and moved.score == -49.0 and moved.model_runs == 6
+    assert method.range_concerns(mooring, moved.values) == []
+    assert method.plausible_refit(moved, mooring, evaluate_at, lambda g: 0.0, lambda g: 0.0) is moved  # inside
+
+    drift = candidate("model_slow_drift", {"drift_scale": 0.1}, gaps({"std.low_frequency": 0.3}), 0.9)
+    kept = method.plausible_refit(drift, CATALOGUE["model_slow_drift"], lambda at: gaps({}), lambda g: 0.2,
+                                  lambda g: 0.0)
+    assert kept is drift and "outside its plausible" in method.range_concerns(CATALOGUE["model_slow_drift"],
+                                                                             kept.values)[0]

@@ -18,9 +18,11 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    outside their plausible range or at the edge of the fit's bounds, a scale of one of the
    model's terms too close to 1 to be worth naming, a signature that moves
    the model the wrong way, a blind closure below ``BLIND_SHARE`` of the tuning closure);
-   candidates with a concern rank after the others. Otherwise the gap is the baseline's
-   ("baseline mismatch"), or "unexplained" where a set-aside cell's band holds a measured
-   response the waves do not drive (``undriven_cells``).
+   candidates with a concern rank after the others (a fit outside its plausible range
+   whose nearest plausible values close nearly as much takes those, ``plausible_refit``).
+   Otherwise the gap is the baseline's ("baseline mismatch"), or "unexplained" where a
+   set-aside cell's band holds a measured response the waves do not drive
+   (``undriven_cells``).
    Candidates within ``TIE`` of the best both fit: the wave-response coherence decides
    (a low-frequency response the measurement shows but the waves do not explain points
    to a load quadratic in the waves, e.g. slow drift).
@@ -83,6 +85,7 @@ BLIND_SHARE = 0.5  # a blind closure below this share of the tuning closure disq
 FIT_WINDOW_S = 1800.0  # longer tuning records are fitted on their first FIT_WINDOW_S, then replayed whole
 SCREEN_CLOSURE = 0.25  # closing less than this in the fit window: not replayed at full length
 FAILED_CLOSURE = -0.01  # a fit closing less than this is worse than the plain model beyond round-off: failed
+PLAUSIBLE_SHARE = 0.9  # a fit outside its plausible range is moved into it if it keeps this share of its closure
 
 Job = tuple  # (effect name or None, parameter values, run index, with spectra[, duration [s]: a part of the record])
 
@@ -292,6 +295,32 @@ def range_concerns(effect: Effect, values: dict[str, float]) -> list[str]:
                    + f": within {material[0].material:g} of the model's own {material[0].off:g}, no difference "
                      "worth naming")
     return out
+
+
+def nearest_plausible(effect: Effect, values: dict[str, float]) -> dict[str, float]:
+    """The values with each parameter outside its plausible range moved to the range's
+    nearer end."""
+    return {p.name: float(np.clip(values[p.name], *p.plausible_range)) for p in effect.parameters}
+
+
+def plausible_refit(candidate: CandidateFit, effect: Effect, evaluate_at: Callable[[dict[str, float]], list[Gap]],
+                    closure_of: Callable[[list[Gap]], float], score_of: Callable[[list[Gap]], float]) -> CandidateFit:
+    """A fit that lands outside its plausible range, but whose nearest plausible values
+    (``nearest_plausible``) close at least PLAUSIBLE_SHARE of what it closes, at those
+    values: the range asks whether a plausible value explains the gap, and a hardening of
+    -0.005 that closes the gap no better than 0 is a catenary's. A fit that needs its
+    implausible value (a drift ten times too strong) keeps it, and its concern. ``evaluate_at``
+    gives the gaps at given values over the candidate's span (its fit window's, if screened),
+    ``closure_of`` and ``score_of`` judge them as the candidate was judged."""
+    moved = nearest_plausible(effect, candidate.values)
+    if moved == candidate.values or candidate.failed or candidate.closure <= 0:
+        return candidate
+    gaps = evaluate_at(moved)
+    share = closure_of(gaps)
+    if share < PLAUSIBLE_SHARE * candidate.closure:
+        return candidate
+    return replace(candidate, values=moved, gaps=gaps, score=score_of(gaps), closure=share,
+                   model_runs=candidate.model_runs + len(gaps))
 
 
 def share_concern(effect: Effect, values: dict[str, float], runs: list[MeasuredRun],
@@ -828,18 +857,33 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             expected = budget + sum(restarts_expected)
             progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
             p = len(effect.parameters)
-            size = share_concern(effect, values, [tuning[i] for i in waves], platform)
+            wave_tuning = [tuning[i] for i in waves]
             if window:
                 in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
                 if in_window < SCREEN_CLOSURE:
                     progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
-                    return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, window_before), in_window,
-                                        count, window_s=window, size_concern=size)
+                    fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, window_before), in_window,
+                                          count, window_s=window)
+                    fitted = plausible_refit(
+                        fitted, effect, lambda v: replayed(effect, v, window),
+                        lambda g: window_closure(diagnosis.tuning_before, window_before, g, mask),
+                        lambda g: score(g, p, mask, window_before))
+                    return replace(fitted, size_concern=share_concern(effect, fitted.values, wave_tuning, platform))
                 results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
                                    f"{effect.name}: whole records")
                 gaps, count = [g for g, _ in results], count + n_tuning
-            return CandidateFit(effect.name, values, gaps, score(gaps, p, mask, diagnosis.tuning_before),
-                                closure(diagnosis.tuning_before, gaps, mask), count, size_concern=size)
+            fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, diagnosis.tuning_before),
+                                  closure(diagnosis.tuning_before, gaps, mask), count)
+            fitted = plausible_refit(fitted, effect, lambda v: replayed(effect, v, None),
+                                     lambda g: closure(diagnosis.tuning_before, g, mask),
+                                     lambda g: score(g, p, mask, diagnosis.tuning_before))
+            return replace(fitted, size_concern=share_concern(effect, fitted.values, wave_tuning, platform))
+
+        def replayed(effect: Effect, values: dict[str, float], duration_s: float | None) -> list[Gap]:
+            """The tuning runs at ``values`` (their first ``duration_s``; None: whole), counted."""
+            progress.expect(n_tuning, sum(model_s(r, duration_s) for r in tuning))
+            jobs = [(effect.name, values, i, False) + ((duration_s,) if duration_s else ()) for i in range(n_tuning)]
+            return [g for g, _ in evaluate(jobs, f"{effect.name}: nearest plausible values")]
 
         pool = ThreadPoolExecutor(max_workers=len(effects))
         try:
