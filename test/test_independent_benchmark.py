@@ -170,7 +170,8 @@ def test_diagnose_benchmark_independent_small(tmp_path):
     simulators' structural differences in the wave band (strip theory against the BEM: heave
     STD, heave and pitch lags), linear in the waves, which slow drift does not close: set
     aside as the baseline's (consistent mismatches or differences of changing sign), so the
-    verdict is a baseline mismatch with nothing named, a right answer for a null."""
+    verdict is a baseline mismatch with nothing named, a right answer for a null. Each
+    scenario has its surge and pitch decays too."""
     out = tmp_path / "bench"
     result = fowt_sim("diagnose-benchmark", "--source", "independent", "--inject", "frequency_dependent_drift",
                       "--strengths", "1", "--nulls", "1", "--out-of-catalogue", "0", "--effects", "slow_drift",
@@ -195,7 +196,8 @@ def test_diagnose_benchmark_independent_small(tmp_path):
     assert {("heave", "std.wave"), ("heave", "lag")} <= flagged and ("surge", "offset") not in flagged, flagged
     aside = {(m["dof"], m["metric"]) for m in report["baseline_mismatches"]} | {tuple(c) for c in report["differences"]}
     assert {("heave", "std.wave"), ("heave", "lag")} <= aside and report["undriven"] == [], report["reason"]
-    assert len(list((out / "runs").glob("*.npz"))) == 2 * 5 + 3  # both scenarios' runs, the drift's without it
+    # both scenarios' runs in waves and free decays (surge, pitch), the drift's waves without it
+    assert len(list((out / "runs").glob("*.npz"))) == 2 * (5 + 2) + 3
     result = fowt_sim("diagnose-benchmark", "--source", "independent", "--inject", "gremlins", "-o", str(out),
                       timeout=120)
     assert result.returncode == 2 and "unknown gremlins" in result.stderr
