@@ -857,27 +857,26 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             expected = budget + sum(restarts_expected)
             progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
             p = len(effect.parameters)
-            wave_tuning = [tuning[i] for i in waves]
-            if window:
-                in_window = window_closure(diagnosis.tuning_before, window_before, gaps, mask)
-                if in_window < SCREEN_CLOSURE:
-                    progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
-                    fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, window_before), in_window,
-                                          count, window_s=window)
-                    fitted = plausible_refit(
-                        fitted, effect, lambda v: replayed(effect, v, window),
-                        lambda g: window_closure(diagnosis.tuning_before, window_before, g, mask),
-                        lambda g: score(g, p, mask, window_before))
-                    return replace(fitted, size_concern=share_concern(effect, fitted.values, wave_tuning, platform))
+            screened = bool(window) and window_closure(diagnosis.tuning_before, window_before, gaps,
+                                                       mask) < SCREEN_CLOSURE
+            if screened:  # its figures stay the fit window's
+                progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
+            elif window:
                 results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
                                    f"{effect.name}: whole records")
                 gaps, count = [g for g, _ in results], count + n_tuning
-            fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, diagnosis.tuning_before),
-                                  closure(diagnosis.tuning_before, gaps, mask), count)
-            fitted = plausible_refit(fitted, effect, lambda v: replayed(effect, v, None),
-                                     lambda g: closure(diagnosis.tuning_before, g, mask),
-                                     lambda g: score(g, p, mask, diagnosis.tuning_before))
-            return replace(fitted, size_concern=share_concern(effect, fitted.values, wave_tuning, platform))
+            span, plain = (window, window_before) if screened else (None, diagnosis.tuning_before)
+
+            def closure_of(g: list[Gap]) -> float:
+                return (window_closure(diagnosis.tuning_before, window_before, g, mask) if screened
+                        else closure(diagnosis.tuning_before, g, mask))
+
+            fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, plain), closure_of(gaps), count,
+                                  window_s=span)
+            fitted = plausible_refit(fitted, effect, lambda v: replayed(effect, v, span), closure_of,
+                                     lambda g: score(g, p, mask, plain))
+            return replace(fitted, size_concern=share_concern(effect, fitted.values, [tuning[i] for i in waves],
+                                                              platform))
 
         def replayed(effect: Effect, values: dict[str, float], duration_s: float | None) -> list[Gap]:
             """The tuning runs at ``values`` (their first ``duration_s``; None: whole), counted."""
