@@ -25,7 +25,7 @@ import numpy as np
 
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.model import DOF_NAMES, PlatformModel
-from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, _interval
+from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, mean_interval
 from fowt_hydro_sim.studies.replay import OUTPUT_INTERVAL_S, MeasuredRun, Variant
 
 END_SHARE = 0.2  # half-cycles counted while the measured peak-to-trough height exceeds this share of the first
@@ -125,7 +125,7 @@ def decay_gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[n
     for metric, m, s in (("decay_period", tau_m[:n], tau_s[:n]), ("decay_damping", zeta_m[:n], zeta_s[:n])):
         scale = float(np.mean(m)) if m.size else 0.0
         if m.size >= 2 and scale > 0:
-            centre, half = _interval((s - m) / scale, settings.confidence)
+            centre, half = mean_interval((s - m) / scale, settings.confidence)
             rows[metric] = (centre, centre - half, centre + half)
         else:  # no cycles to compare (an overdamped model): as far off as a decay can be, not significant
             rows[metric] = (-1.0 if metric == "decay_period" else 1.0, -math.inf, math.inf)

@@ -205,7 +205,7 @@ def mean_frequency(x: np.ndarray) -> float:
     return float(np.diff(x).std() / x[:-1].std())
 
 
-def _interval(samples: np.ndarray, confidence: float) -> tuple[float, float]:
+def mean_interval(samples: np.ndarray, confidence: float) -> tuple[float, float]:
     """The mean of ``samples`` and its Student-t interval's half-width."""
     k = len(samples)
     half = scipy.stats.t.ppf(0.5 + confidence / 2, k - 1) * samples.std(ddof=1) / math.sqrt(k)
@@ -229,20 +229,20 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         judged += band_judged * 2 + [True, True] + [False] * decay_cells
         for mb, sb in passed.values():  # std.BAND
             per_block = np.array([0.5 * math.log(sb[b].var() / mb[b].var()) for b in blocks])
-            _, half = _interval(per_block, settings.confidence)
+            _, half = mean_interval(per_block, settings.confidence)
             overall = 0.5 * math.log(sb.var() / mb.var())
             rows.append((math.expm1(overall), math.expm1(overall - half), math.expm1(overall + half)))
         for mb, sb in passed.values():  # frequency.BAND
             per_block = np.array([math.log(mean_frequency(sb[b]) / mean_frequency(mb[b])) for b in blocks])
-            _, half = _interval(per_block, settings.confidence)
+            _, half = mean_interval(per_block, settings.confidence)
             overall = math.log(mean_frequency(sb) / mean_frequency(mb))
             rows.append((math.expm1(overall), math.expm1(overall - half), math.expm1(overall + half)))
         per_block = np.array([(s[b].mean() - m[b].mean()) / scale for b in blocks])  # offset
-        centre, half = _interval(per_block, settings.confidence)
+        centre, half = mean_interval(per_block, settings.confidence)
         rows.append((centre, centre - half, centre + half))
         mb, sb = passed["wave"] if "wave" in passed else passed[max(settings.bands_hz, key=settings.bands_hz.get)]
         per_block = np.array([block_lag_s(sb[b], mb[b]) for b in blocks])  # lag
-        centre, half = _interval(per_block, settings.confidence)
+        centre, half = mean_interval(per_block, settings.confidence)
         rows.append((centre, centre - half, centre + half))
         rows += [(0.0, 0.0, 0.0)] * decay_cells
     value, low, high = (np.array(column) for column in zip(*rows))

@@ -9,6 +9,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
 from functools import lru_cache
 from pathlib import Path
@@ -136,26 +137,23 @@ def basin_run(name: str, form: str | None, values: dict[str, float], seed: int, 
     case's Hs, Tp and gamma, repeating over the record, seeded from ``seed`` and the case),
     started PREROLL_S before the record, with 1 % noise on motion and elevation, and the
     scenario's baseline ``terms``."""
-    key = run_key(form, values, seed, case, duration_s, with_effect, drift, platform, terms)
-    path = cache / f"{key}.npz" if cache else None
-    if path is not None and path.exists():
-        stored = np.load(path)
-        return MeasuredRun(name, stored["elevation_time_s"], stored["elevation_m"], (0.0, 0.0),
-                           stored["motion_time_s"], stored["motion"])
-    sea = load_case(case).sea_state
     case_seed = seed + int(hashlib.blake2b(case.encode(), digest_size=2).hexdigest(), 16)
-    waves = cummins.jonswap_waves(sea.hs_m, sea.tp_s, sea.gamma, duration_s, case_seed, sea.heading_deg)
-    injected = effects(form, values, platform) if with_effect else cummins.Effects()
-    run = cummins.measured_run(platform, _database(), waves, duration_s, name, DT_S, baseline(seed, drift, terms),
-                               injected, preroll_s=PREROLL_S)
-    rng = np.random.default_rng(case_seed)
-    motion = run.motion + rng.normal(0.0, 1.0, run.motion.shape) * SENSOR_NOISE * run.motion.std(axis=0)
-    eta = run.elevation_m + rng.normal(0.0, SENSOR_NOISE * run.elevation_m.std(), run.elevation_m.size)
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        np.savez_compressed(path, elevation_time_s=run.elevation_time_s, elevation_m=eta,
-                            motion_time_s=run.motion_time_s, motion=motion)
-    return MeasuredRun(name, run.elevation_time_s, eta, (0.0, 0.0), run.motion_time_s, motion)
+
+    def make() -> dict[str, np.ndarray]:
+        sea = load_case(case).sea_state
+        waves = cummins.jonswap_waves(sea.hs_m, sea.tp_s, sea.gamma, duration_s, case_seed, sea.heading_deg)
+        injected = effects(form, values, platform) if with_effect else cummins.Effects()
+        run = cummins.measured_run(platform, _database(), waves, duration_s, name, DT_S,
+                                   baseline(seed, drift, terms), injected, preroll_s=PREROLL_S)
+        rng = np.random.default_rng(case_seed)
+        motion = run.motion + rng.normal(0.0, 1.0, run.motion.shape) * SENSOR_NOISE * run.motion.std(axis=0)
+        eta = run.elevation_m + rng.normal(0.0, SENSOR_NOISE * run.elevation_m.std(), run.elevation_m.size)
+        return {"elevation_time_s": run.elevation_time_s, "elevation_m": eta,
+                "motion_time_s": run.motion_time_s, "motion": motion}
+
+    stored = _cached(cache, run_key(form, values, seed, case, duration_s, with_effect, drift, platform, terms), make)
+    return MeasuredRun(name, stored["elevation_time_s"], stored["elevation_m"], (0.0, 0.0), stored["motion_time_s"],
+                       stored["motion"])
 
 
 def decay_run(name: str, dof: str, offset: float, form: str | None, values: dict[str, float], seed: int,
@@ -165,22 +163,33 @@ def decay_run(name: str, dof: str, offset: float, form: str | None, values: dict
     in ``dof`` in calm water, with the scenario's baseline ``terms`` and injected effect (but
     no harmonic load: the rotor is parked), 1 % sensor noise on the motion; the elevation is
     the calm water's, zero."""
+    def make() -> dict[str, np.ndarray]:
+        initial = np.zeros(6)
+        initial[DOF_NAMES.index(dof)] = offset
+        injected = replace(effects(form, values, platform), harmonic_load=())
+        trajectory = cummins.integrate(platform, _database(), None, duration_s, DT_S,
+                                       baseline(seed, BASELINE_DRIFT, terms), injected, initial=initial)
+        time_s = np.arange(0.0, duration_s + 1e-9, cummins.MOTION_STEP_S)
+        motion = np.stack([np.interp(time_s, trajectory.time_s, trajectory.position[:, i]) for i in range(6)], axis=1)
+        rng = np.random.default_rng(seed + DOF_NAMES.index(dof))
+        motion = motion + rng.normal(0.0, 1.0, motion.shape) * SENSOR_NOISE * motion.std(axis=0)
+        return {"motion_time_s": time_s, "motion": motion}
+
     key = run_key(form, values, seed, f"decay {dof} {offset!r}", duration_s, True, BASELINE_DRIFT, platform, terms)
+    stored = _cached(cache, key, make)
+    time_s = stored["motion_time_s"]
+    return MeasuredRun(name, time_s, np.zeros(time_s.size), (0.0, 0.0), time_s, stored["motion"], decay_dof=dof)
+
+
+def _cached(cache: Path | None, key: str, make: Callable[[], dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    """The arrays stored under ``key`` in ``cache``, or ``make()``'s, stored there (no cache:
+    made every time)."""
     path = cache / f"{key}.npz" if cache else None
     if path is not None and path.exists():
-        stored = np.load(path)
-        time_s = stored["motion_time_s"]
-        return MeasuredRun(name, time_s, np.zeros(time_s.size), (0.0, 0.0), time_s, stored["motion"], decay_dof=dof)
-    initial = np.zeros(6)
-    initial[DOF_NAMES.index(dof)] = offset
-    injected = replace(effects(form, values, platform), harmonic_load=())
-    trajectory = cummins.integrate(platform, _database(), None, duration_s, DT_S, baseline(seed, BASELINE_DRIFT, terms),
-                                   injected, initial=initial)
-    time_s = np.arange(0.0, duration_s + 1e-9, cummins.MOTION_STEP_S)
-    motion = np.stack([np.interp(time_s, trajectory.time_s, trajectory.position[:, i]) for i in range(6)], axis=1)
-    rng = np.random.default_rng(seed + DOF_NAMES.index(dof))
-    motion = motion + rng.normal(0.0, 1.0, motion.shape) * SENSOR_NOISE * motion.std(axis=0)
+        with np.load(path) as stored:
+            return dict(stored)
+    arrays = make()
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
-        np.savez_compressed(path, motion_time_s=time_s, motion=motion)
-    return MeasuredRun(name, time_s, np.zeros(time_s.size), (0.0, 0.0), time_s, motion, decay_dof=dof)
+        np.savez_compressed(path, **arrays)
+    return arrays
