@@ -17,10 +17,13 @@ import scipy.io
 import yaml
 
 from fowt_hydro_sim.cli import main
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.io.basin import load_column_map
 from fowt_hydro_sim.io.scaling import froude_factor, to_full_scale
 from fowt_hydro_sim.rosbag.reader import Bag
 from fowt_hydro_sim.studies.basin_import import import_files
+from fowt_hydro_sim.studies.diagnosis.decay import half_cycles
+from fowt_hydro_sim.studies.replay import measured_run
 
 LAMBDA = 50.0
 RHO_RATIO = 1025.0 / 1000.0
@@ -128,25 +131,47 @@ def test_froude_scaling_of_a_free_decay_period_and_a_force_by_hand(tmp_path: Pat
     # 10 N in fresh water at 1:50 is 10 x 50^3 x 1.025 = 1,281,250 N at sea; 2 N m is 2 x 50^4 x 1.025
     assert to_full_scale(10.0, "force", 50.0, 1.025) == pytest.approx(1_281_250.0, rel=1e-15)
     assert to_full_scale(2.0, "moment", 50.0, 1.025) == pytest.approx(12_812_500.0, rel=1e-15)
-    # the same through the importer: a model-scale free decay (3.5 s, 4 % of critical) and a constant 10 N
+    # the same through the importer: a model's free pitch decay in calm water (3.5 s, log
+    # decrement 0.04 pi per half-cycle), mapped without a probe, and a constant 10 N
     t = np.arange(0.0, 40.0, 0.02)
     wd = 2 * math.pi / 3.5
-    heave_mm = 20.0 * np.exp(-0.04 * wd * t) * np.cos(wd * t)
-    channels = {"Time": t, "WP1": 0.0 * t, "HeaveMM": heave_mm, "FairleadN": 10.0 + 0.0 * t}
-    data = {"scale": 50.0, "density_ratio": 1.025, "time": {"channel": "Time"},
-            "channels": {"WP1": {"quantity": "elevation", "unit": "mm", "position_m": [0, 0]},
-                         "HeaveMM": {"quantity": "heave", "unit": "mm"},
+    pitch_deg = 3.0 * np.exp(-0.04 * wd * t) * np.cos(wd * t)
+    channels = {"Time": t, "PitchDeg": pitch_deg, "SurgeMM": 0.0 * t, "FairleadN": 10.0 + 0.0 * t}
+    data = {"scale": 50.0, "density_ratio": 1.025, "time": {"channel": "Time"}, "free_decay": "pitch",
+            "channels": {"PitchDeg": {"quantity": "pitch", "unit": "deg"},
+                         "SurgeMM": {"quantity": "surge", "unit": "mm"},
                          "FairleadN": {"quantity": "tension", "unit": "N", "line": "fairlead"}}}
     source = write_csv(tmp_path / "decay.csv", channels)
     [(bag_path, _)] = import_files([source], load_column_map(write_map(tmp_path / "m.yaml", data)), tmp_path / "b")
     bag = Bag(bag_path)
+    assert "/waves/elevation" not in bag.topics and bag.config["measured"]["free_decay"] == "pitch"
     pose = bag.motion()
-    heave = pose.values[:, 2]
-    up = np.flatnonzero((heave[:-1] < 0) & (heave[1:] >= 0))
-    crossings = pose.time_s[up] - heave[up] * (pose.time_s[up + 1] - pose.time_s[up]) / (heave[up + 1] - heave[up])
+    pitch = pose.values[:, 4]
+    up = np.flatnonzero((pitch[:-1] < 0) & (pitch[1:] >= 0))
+    crossings = pose.time_s[up] - pitch[up] * (pose.time_s[up + 1] - pose.time_s[up]) / (pitch[up + 1] - pitch[up])
     assert np.mean(np.diff(crossings)) == pytest.approx(3.5 * math.sqrt(50.0), rel=1e-4)
-    assert np.max(np.abs(heave)) == pytest.approx(0.020 * 50.0, rel=1e-12)
+    assert np.max(np.abs(pitch)) == pytest.approx(math.radians(3.0), rel=1e-12)  # angles are not scaled
     np.testing.assert_allclose(bag.scalar("/mooring/tension/fairlead").values[:, 0], 1_281_250.0, rtol=1e-12)
+    # the diagnosis's decay analysis of the bag: half-periods and damping ratios of the closed form
+    run = measured_run(bag_path, decay_dof="pitch")
+    half_periods, ratios = half_cycles(run.motion_time_s, run.motion[:, 4])
+    assert half_periods.size >= 10
+    np.testing.assert_allclose(half_periods, 3.5 * math.sqrt(50.0) / 2, rtol=1e-3)
+    np.testing.assert_allclose(ratios, 0.04, atol=1e-3)
+
+
+def test_a_bag_imported_as_a_free_decay_is_read_only_as_one_in_its_dof(tmp_path: Path):
+    t = np.arange(0.0, 20.0, 0.05)
+    channels = {"Time": t, "SurgeMM": 30.0 * np.exp(-0.02 * t) * np.cos(t)}
+    data = {"scale": 40.0, "time": {"channel": "Time"}, "free_decay": "surge",
+            "channels": {"SurgeMM": {"quantity": "surge", "unit": "mm"}}}
+    source = write_csv(tmp_path / "surge_decay.csv", channels)
+    [(bag_path, _)] = import_files([source], load_column_map(write_map(tmp_path / "m.yaml", data)), tmp_path / "b")
+    assert measured_run(bag_path, decay_dof="surge").decay_dof == "surge"
+    with pytest.raises(InputError, match="a free decay in surge .*not a wave run: give it as a free decay"):
+        measured_run(bag_path)
+    with pytest.raises(InputError, match="a free decay in surge .*given as one in pitch"):
+        measured_run(bag_path, decay_dof="pitch")
 
 
 def test_one_file_with_many_runs_hdf5_and_a_run_column_and_a_matlab_v73_file(tmp_path: Path):
@@ -244,6 +269,9 @@ def test_a_long_gap_is_refused_in_one_line_and_nothing_is_written(tmp_path: Path
 @pytest.mark.parametrize("edit, message", [
     ({"channels": {"WP1": {"quantity": "elevation", "unit": "furlong", "position_m": [0, 0]}}}, "unit: must be one"),
     ({"channels": {"X": {"quantity": "surge", "unit": "m"}}}, "no wave probe"),
+    ({"free_decay": "bob"}, "free_decay: must be one of surge"),
+    ({"channels": {"X": {"quantity": "surge", "unit": "m"}}, "free_decay": "pitch"},
+     "free_decay: pitch is not a channel's quantity"),
     ({"density_ratio": None}, "density_ratio: needed"),
     ({"time": {}}, "give either channel"),
     ({"scael": 50}, "unknown field(s) scael"),

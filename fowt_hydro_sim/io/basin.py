@@ -93,6 +93,7 @@ class ColumnMap:
     sea_state: dict = field(default_factory=dict)
     water_depth_m: float | None = None
     source: dict = field(default_factory=dict)
+    free_decay: str | None = None  # the DOF of free decays in calm water (no probe needed)
 
     @property
     def probes(self) -> list[Channel]:
@@ -138,6 +139,8 @@ def column_map(data: object, where: str = "column map") -> ColumnMap:
     run_channel = f.data.get("run_channel")
     f.used.add("run_channel")
     skip_rows = int(f.number("skip_rows", 0.0, non_negative=True))
+    free_decay = f.text("free_decay", None, DOFS) if f.data.get("free_decay") is not None else None
+    f.used.add("free_decay")
     motion_point = f.vector("motion_point_m", 3, (0.0, 0.0, 0.0))
     sea = f.sub("sea_state", {})
     sea_state = {name: sea.number(name) for name in ("hs_m", "tp_s", "gamma", "heading_deg") if name in sea.data}
@@ -167,13 +170,16 @@ def column_map(data: object, where: str = "column map") -> ColumnMap:
     lines = [c.line for c in channels if c.line]
     if len(set(lines)) < len(lines):
         raise ConfigError(f"{where}: channels: a mooring line has two tension channels")
-    if "elevation" not in quantities:
-        raise ConfigError(f"{where}: channels: no wave probe (quantity elevation); the replays need one")
+    if "elevation" not in quantities and free_decay is None:
+        raise ConfigError(f"{where}: channels: no wave probe (quantity elevation); the replays need one (free "
+                          "decays in calm water need none: free_decay: DOF)")
+    if free_decay is not None and free_decay not in quantities:
+        raise ConfigError(f"{where}: free_decay: {free_decay} is not a channel's quantity")
     if scale != 1.0 and density_ratio is None and any(QUANTITIES[q] == "force" for q in quantities):
         raise ConfigError(f"{where}: density_ratio: needed to scale forces (sea water / basin water, e.g. 1.025)")
     return ColumnMap(tuple(channels), scale, density_ratio, time_channel, time_unit, rate,
                      str(run_channel) if run_channel is not None else None, skip_rows, motion_point, sea_state,
-                     depth, dict(data))
+                     depth, dict(data), free_decay)
 
 
 # ------------------------------------------------------------------------------------------- reading files
@@ -486,7 +492,7 @@ def condition(raw: RawRun, mapping: ColumnMap, source: str, max_gap_s: float = M
         rotations = rotation_matrix(motion[:, 3], motion[:, 4], motion[:, 5])  # (3, 3, n)
         motion[:, :3] -= np.einsum("ijn,j->ni", rotations, point)
     probes = {}
-    reference = mapping.probes[0]
+    reference = mapping.probes[0] if mapping.probes else None
     heading = math.radians(mapping.heading_deg)
     for probe in mapping.probes:
         xy = (probe.position_m[0] * lam, probe.position_m[1] * lam)

@@ -44,7 +44,8 @@ def run_configuration(run: BasinRun, mapping: ColumnMap) -> dict:
         "measured": {"source_file": run.source, "run": run.name, "scale": mapping.scale,
                      "density_ratio": mapping.density_ratio, "froude_scaled": mapping.scale != 1.0,
                      "probes": {name: list(xy) for name, (xy, _, _) in run.probes.items()},
-                     "replay_probe": mapping.probes[0].name,
+                     "replay_probe": mapping.probes[0].name if mapping.probes else None,
+                     "free_decay": mapping.free_decay,
                      "probe_clock_shifts_s": {name: shift for name, (_, _, shift) in run.probes.items() if shift},
                      "unmeasured_dofs": list(run.unmeasured_dofs), "checks": list(run.notes),
                      "column_map": mapping.source},
@@ -52,8 +53,9 @@ def run_configuration(run: BasinRun, mapping: ColumnMap) -> dict:
 
 
 def write_basin_bag(path: str | Path, run: BasinRun, mapping: ColumnMap, overwrite: bool = False) -> Path:
-    """The run as a bag: /waves/elevation (the map's first probe), /waves/elevation/NAME (the
-    others, their clocks corrected; samples moved before 0 s dropped), /platform/pose
+    """The run as a bag: /waves/elevation (the map's first probe; none in a free decay mapped
+    without one), /waves/elevation/NAME (the others, their clocks corrected; samples moved
+    before 0 s dropped), /platform/pose
     (unmeasured DOFs 0), and when measured /platform/accel (missing components NaN),
     /mooring/tension/LINE, /turbine/wind_speed, /turbine/thrust. Messages are built as
     arrays and written in batches of ``BATCH`` samples (the channels on the run's clock in

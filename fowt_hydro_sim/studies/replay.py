@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import scipy.fft
 
+from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import HydroOptions, Platform
 from fowt_hydro_sim.physics.loads.extension import Extension
 from fowt_hydro_sim.physics.model import PlatformModel
@@ -59,10 +60,16 @@ class MeasuredRun:
 def measured_run(path: str | Path, heading_deg: float = 0.0, decay_dof: str | None = None) -> MeasuredRun:
     """Read a measured run from a bag (contract: /waves/elevation and /platform/pose); the
     elevation is resampled onto a uniform grid at its median step. A free decay
-    (``decay_dof``) needs no elevation: without one it is calm water, zero on the motion's clock."""
+    (``decay_dof``) needs no elevation: without one it is calm water, zero on the motion's clock.
+    A bag imported as a free decay (its import's ``free_decay``) is read only as one, in its DOF."""
     from fowt_hydro_sim.rosbag.reader import Bag
     from msg_adapters import topics as contract
     bag = Bag(path)
+    imported_decay = ((bag.config or {}).get("measured") or {}).get("free_decay")
+    if imported_decay is not None and decay_dof != imported_decay:
+        raise InputError(f"{path}: a free decay in {imported_decay} (its import's free_decay), "
+                         + (f"given as one in {decay_dof}" if decay_dof else
+                            f"not a wave run: give it as a free decay (diagnose --decay {imported_decay}={path})"))
     motion = bag.motion()
     calm = contract.ELEVATION not in bag.topics or not bag.topics[contract.ELEVATION].message_count
     if decay_dof is not None and calm:
