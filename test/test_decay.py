@@ -15,7 +15,7 @@ import pytest
 from fowt_hydro_sim.errors import InputError
 from fowt_hydro_sim.physics.config import Platform, load_platform
 from fowt_hydro_sim.physics.platform_edits import scaled_drag
-from fowt_hydro_sim.studies.diagnosis import method
+from fowt_hydro_sim.studies.diagnosis import benchmark, method
 from fowt_hydro_sim.studies.diagnosis.decay import check_decay, decay_gap, half_cycles, replay_decay
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE
 from fowt_hydro_sim.studies.diagnosis.gap import Gap, GapSettings, consistent
@@ -180,6 +180,16 @@ def test_bad_decays_get_one_line():
     with pytest.raises(InputError, match="unknown DOF 'swell'"):
         check_decay("decay", t, motion(x), "swell")
 
+
+
+def test_the_benchmark_leaves_out_a_decay_too_damped_to_read_and_says_so(caplog):
+    t, damped = oscillator(0.3, 96.0, 10.0, 300.0)
+    t2, light = oscillator(0.05, 96.0, 10.0, 1000.0)
+    runs = [MeasuredRun(name, time_s, np.zeros(time_s.size), (0.0, 0.0), time_s, motion(x), decay_dof="surge")
+            for name, time_s, x in (("s#1/decay surge", t, damped), ("s#2/decay surge", t2, light))]
+    assert [r.name for r in benchmark.analysable(runs)] == ["s#2/decay surge"]
+    [line] = [r.getMessage() for r in caplog.records]
+    assert "decay s#1/decay surge: 2 half-cycles" in line and line.endswith("left out of the scenario")
 
 def test_bad_decay_options_get_one_line(tmp_path):
     bag = tmp_path / "missing"

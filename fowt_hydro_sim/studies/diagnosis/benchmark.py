@@ -37,6 +37,7 @@ from fowt_hydro_sim.physics.model import PlatformModel
 from fowt_hydro_sim.physics.platform_edits import scaled_added_mass, scaled_drag, scaled_mooring_stiffness
 from fowt_hydro_sim.physics.waves.components import synthesize
 from fowt_hydro_sim.studies.cluster import dask_client, map_with_progress
+from fowt_hydro_sim.studies.diagnosis.decay import check_decay
 from fowt_hydro_sim.studies.diagnosis.effects import CATALOGUE, EFFECT_MODULES, Effect, IndependentInjection, Parameter
 from fowt_hydro_sim.studies.diagnosis.gap import GapSettings, gap
 from fowt_hydro_sim.studies.diagnosis.independent import basin
@@ -426,12 +427,13 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     for scenario in chosen:
         start = time.perf_counter()
         waves = [made[scenario.name, c, True] for c in scenario.tuning_cases]
-        decays = [made[scenario.name, c, True] for c in decay_cases(settings.decays)]
+        decays = analysable([made[scenario.name, c, True] for c in decay_cases(settings.decays)])
         tuning = waves + decays
         blind = [made[scenario.name, c, True] for c in scenario.blind_cases]
-        evaluate = cluster_evaluate(client, tuning + blind, platform, settings, effects, dt_s,
+        gap_settings = replace(settings, decays=bool(decays))  # every decay left out: the wave cells alone
+        evaluate = cluster_evaluate(client, tuning + blind, platform, gap_settings, effects, dt_s,
                                     MODEL_OPTIONS[source])
-        diagnosis = diagnose(tuning, blind, evaluate, settings, effects, max_evaluations, progress=Progress(),
+        diagnosis = diagnose(tuning, blind, evaluate, gap_settings, effects, max_evaluations, progress=Progress(),
                              platform=platform)
         if reports is not None:
             write_report(diagnosis, reports / scenario.name.replace("#", "_"))
@@ -441,6 +443,21 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
         if report:
             report(scores[-1])
     return scores
+
+
+def analysable(decays: list[MeasuredRun]) -> list[MeasuredRun]:
+    """The free decays the diagnosis can analyse (``decay.check_decay``: enough half-cycles);
+    each other one is left out of its scenario with a line saying why, as a basin's test too
+    damped to read is (a user's ``diagnose --decay`` refuses it instead)."""
+    kept = []
+    for run in decays:
+        try:
+            check_decay(run.name, run.motion_time_s, run.motion, run.decay_dof)
+        except InputError as exc:
+            logging.getLogger(__name__).warning("%s: left out of the scenario", exc)
+            continue
+        kept.append(run)
+    return kept
 
 
 def score_line(score: Score) -> str:
