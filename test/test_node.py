@@ -445,7 +445,8 @@ def test_bad_elevation_samples_and_a_silent_topic():
     the node says so and goes on in still water; it keeps running and never publishes NaN."""
     listener = Listener({"/platform/pose": PoseStamped, "/waves/elevation_used": PointStamped})
     publisher = listener.publisher(PointStamped, "/waves/elevation")
-    node = start("node", wave_source="topic", real_time_factor=50.0, wave_timeout_s=3.0, drag_model="constant")
+    node = start("node", wave_source="topic", real_time_factor=50.0, wave_timeout_s=5.0, drag_model="constant",
+                 wait_for_subscribers=1)  # the silence counts from the first step: after the listener is matched
     try:
         listener.wait_for(lambda: publisher.get_subscription_count() > 0, 60.0)
         time.sleep(0.5)

@@ -9,7 +9,7 @@ batches of publish periods (one compiled call each, published by a second thread
 the next batch is computed), while the executor serves the subscriptions.
 
 Wave samples on the topic (wave_source topic): paced, wave_timeout_s wall seconds without a
-sample mean still water. As fast as possible the node waits for its first sample, and then
+sample (counted from the first step) mean still water. As fast as possible the node waits for its first sample, and then
 as long as a publisher of the topic is on the graph (its samples may be held back by flow
 control while the node is busy); with none left, still water after wave_timeout_s. Silence
 counts only while the executor runs: samples a publisher has sent and gone, queued in the
@@ -150,9 +150,9 @@ class NodeSettings:
                                            "onto it)", gt=0.0)
     preview_s: float = setting(60.0, "delay of the streamed wave kinematics behind the elevation samples [s]",
                                gt=0.0)
-    wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples before still water is assumed "
-                                         "(as fast as possible: only after a first sample and once the topic has "
-                                         "no publisher left)", gt=0.0)
+    wave_timeout_s: float = setting(2.0, "wall seconds without elevation samples (counted from the first step) "
+                                         "before still water is assumed (as fast as possible: only after a first "
+                                         "sample and once the topic has no publisher left)", gt=0.0)
     wave_block_s: float = setting(WAVE_BLOCK_S, "the internal waves' kinematics are synthesised in blocks of this "
                                                 "many simulated seconds, two held, the next made ahead in a worker "
                                                 "thread [s]", gt=0.0)
@@ -592,6 +592,9 @@ class SimulatorNode(Node):
         gc.freeze()  # the set-up's objects out of the collector's way: shorter pauses while stepping
         self._publish_now()
         self._anchor = (time.monotonic(), model.time_s, self._rtf)  # pacing: wall, sim, factor
+        if self._feed is not None:
+            with self._lock:  # the set-up and the waits above are no silence of the wave topic
+                self._last_sample_wall = max(self._last_sample_wall, self._anchor[0])
         try:
             while not self._stop.is_set():
                 if s.duration_s and model.time_s >= s.duration_s - 1e-9:
