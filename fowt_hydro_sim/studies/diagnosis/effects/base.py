@@ -94,10 +94,12 @@ class IndependentInjection(NamedTuple):
     strengths: tuple[dict[str, float], ...]
 
 
-# A scale of one of the model's own terms closer to 1 than this is no finding: the scored
-# attribution is right within 25 %, and each basin baseline's Cds differ from the model's by
-# a drawn share of 0.9-1.1 in every run (independent/basin.py), so a smaller departure is
-# below what the fit can attribute to the term.
+# A scale of one of the model's own terms closer to 1 than this is no finding (the drift's
+# scale has a tighter bound of its own, ``model_slow_drift.MATERIAL_DRIFT_SCALE``), nor is an
+# added term under this share of the model's own: the scored attribution is right within 25 %,
+# and each basin baseline's Cds differ from the model's by a drawn share of 0.9-1.1 in every
+# run (independent/basin.py), so a smaller departure is below what the fit can attribute to
+# the term.
 MATERIAL_SCALE = 0.2
 
 

@@ -7,8 +7,14 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from fowt_hydro_sim.studies.diagnosis.effects.base import MATERIAL_SCALE, Effect, Parameter, scaled_term
+from fowt_hydro_sim.studies.diagnosis.effects.base import Effect, Parameter, scaled_term
 from fowt_hydro_sim.studies.replay import MeasuredRun, Variant
+
+# A drift scale closer to 1 than this is no finding. Tighter than the drag's bound
+# (base.MATERIAL_SCALE): on the development sets' nulls, agreement nulls and out-of-catalogue
+# scenarios the drift fit departs from 1 by at most 0.14, and 0.2 left a basin's drift x0.75,
+# fitted at 0.82, unnamed.
+MATERIAL_DRIFT_SCALE = 0.15
 
 
 def apply(variant: Variant, run: MeasuredRun, values: dict[str, float]) -> Variant:
@@ -23,7 +29,7 @@ EFFECT = Effect(
     (Parameter("drift_scale", "-", start=0.7, low=0.0, high=4.0, off=1.0, plausible=(0.5, 2.0),
                why="Newman's approximation of a BEM mean-drift table: the full difference-frequency QTF, the "
                    "mesh and viscous drift move a semisubmersible's slow drift by up to about a factor of two",
-               material=MATERIAL_SCALE),),
+               material=MATERIAL_DRIFT_SCALE),),
     apply, wave_coherent=False, term=lambda values: scaled_term("slow drift", values["drift_scale"]))
 
 # the benchmark's twin injects it at these values (one scenario each)
