@@ -7,6 +7,8 @@ reading holds on the blind runs against its whole-record closure, and the other 
 its cells as well are said."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from fowt_hydro_sim.studies.diagnosis import method
@@ -139,6 +141,22 @@ def test_a_fit_worse_than_the_plain_model_is_restarted():
     plain = [gap(run, {"std.low_frequency": 0.05 * bumpy_residual(0.0)}) for run in RUNS]
     values, fitted, _ = method.fit_effect(bumpy_effect(), evaluate, [0, 1, 2], max_evaluations=4, before=plain)
     assert abs(values["x"] + 1.0) < 0.2, values
+    assert method.closure(plain, fitted) > 0.9
+
+
+def test_a_restart_where_the_model_diverges_is_passed_over():
+    """The model gives no finite gap below x = -0.5 (it diverges, as a mooring softened into a
+    negative stiffness does); from its start the fit stays on a plateau worse than the plain
+    model, the mirrored restart (x = -1) is where it diverges, and the next restart (x = 0.25)
+    finds the minimum at x = 0.2."""
+    def gap_of(x: float) -> tuple[str, float]:
+        if x < -0.5:
+            return "std.low_frequency", math.nan
+        return "std.low_frequency", 0.05 * (3.0 if x >= 0.5 else 10.0 * abs(x - 0.2))
+    evaluate = synthetic_evaluate(gap_of)
+    plain = [gap(run, {"std.low_frequency": 0.05 * 2.0}) for run in RUNS]
+    values, fitted, _ = method.fit_effect(bumpy_effect(), evaluate, [0, 1, 2], max_evaluations=4, before=plain)
+    assert abs(values["x"] - 0.2) < 0.05, values
     assert method.closure(plain, fitted) > 0.9
 
 

@@ -419,6 +419,10 @@ def grid_fitted(effect: Effect) -> bool:
     return all(p.grid_step for p in effect.parameters)
 
 
+# a residual the model gives no finite value for (it diverged) counts as this many tolerances off
+DIVERGED_RESIDUAL = 1e3
+
+
 def restarts(u0: np.ndarray, bounds: tuple[np.ndarray, np.ndarray]) -> list[np.ndarray]:
     """Other starting points of a fit (in units of each parameter's scale from its off value)
     for one that left the gap larger than the plain model: the first start mirrored about
@@ -444,7 +448,9 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
     Bounded least squares from the parameters' ``start``; a fit that ends with a larger
     sum of squares than the plain model's (``before``), or a negative closure against it,
     did not find its minimum, and is restarted from other points (``restarts``) until one
-    ends better than the plain model (``restarted`` is called before each restart). A lag-type effect
+    ends better than the plain model (``restarted`` is called before each restart); a start
+    at which the model diverges is passed over, and a point where it does is as far off as
+    DIVERGED_RESIDUAL in each cell it gives no finite value for. A lag-type effect
     (``grid_fitted``), whose gaps a forward difference sees as flat, is fitted instead by a
     grid over its plausible range (``grid``), refined around the best point."""
     params = effect.parameters
@@ -465,18 +471,27 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
             cache[u.tobytes()] = [g for g, _ in results[k * len(tuning):(k + 1) * len(tuning)]]
         return [cache[u.tobytes()] for u in us]
 
+    def finite_residuals(gaps: list[Gap]) -> np.ndarray:
+        """The residuals, a cell the model gives no finite value for (it diverges at these
+        values: a mooring that softens into a negative stiffness) as far off as DIVERGED_RESIDUAL."""
+        r = residuals(gaps, mask, before)
+        return np.nan_to_num(r, nan=DIVERGED_RESIDUAL, posinf=DIVERGED_RESIDUAL, neginf=-DIVERGED_RESIDUAL)
+
     def residual(u: np.ndarray) -> np.ndarray:
-        return residuals(gaps_at([u])[0], mask, before)
+        return finite_residuals(gaps_at([u])[0])
 
     def jacobian(u: np.ndarray) -> np.ndarray:
         steps = [np.clip(u + FD_STEP * e, *bounds) for e in np.eye(len(u))]
         steps = [s if np.any(s != u) else u - FD_STEP * e for s, e in zip(steps, np.eye(len(u)))]
         base, *shifted = gaps_at([u, *steps])
-        r0 = residuals(base, mask, before)
-        return np.column_stack([(residuals(gs, mask, before) - r0) / (s - u).sum() for gs, s in zip(shifted, steps)])
+        r0 = finite_residuals(base)
+        return np.column_stack([(finite_residuals(gs) - r0) / (s - u).sum() for gs, s in zip(shifted, steps)])
+
+    def diverged(u: np.ndarray) -> bool:
+        return not np.all(np.isfinite(residuals(gaps_at([u])[0], mask, before)))
 
     def cost(key: bytes) -> float:
-        return float(np.sum(residuals(cache[key], mask, before) ** 2))
+        return float(np.sum(finite_residuals(cache[key]) ** 2))
 
     if grid_fitted(effect):
         gaps_at([(point - off) / scale for point in grid(effect)])
@@ -495,6 +510,8 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
         for k, start in enumerate([u0, *restarts(u0, bounds)]):
             if k and restarted is not None:
                 restarted()
+            if diverged(start):  # the model diverges there: no start
+                continue
             scipy.optimize.least_squares(residual, start, jac=jacobian, bounds=bounds, method="trf",
                                          max_nfev=max_evaluations, xtol=1e-3, ftol=1e-3)
             if not failed(min(cache, key=cost)):
