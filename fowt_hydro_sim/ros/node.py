@@ -9,11 +9,12 @@ batches of publish periods (one compiled call each, published by a second thread
 the next batch is computed), while the executor serves the subscriptions.
 
 Wave samples on the topic (wave_source topic): paced, wave_timeout_s wall seconds without a
-sample (counted from the first step) mean still water. As fast as possible the node waits for its first sample, and then
-as long as a publisher of the topic is on the graph (its samples may be held back by flow
-control while the node is busy); with none left, still water after wave_timeout_s. Silence
-counts only while the executor runs: samples a publisher has sent and gone, queued in the
-node while a loaded machine keeps its executor from taking them, are not silence.
+sample (counted from the first step) mean still water. As fast as possible the node waits
+for its first sample, and then as long as a publisher of the topic is on the graph (its
+samples may be held back by flow control while the node is busy); with none left, still
+water after wave_timeout_s. Silence counts only while the executor runs: samples a
+publisher has sent and gone, queued in the node while a loaded machine keeps its executor
+from taking them, are not silence.
 
 Exit codes of ``fowt-sim node``: 0 the run is complete (duration_s stepped) or was stopped by
 the user (Ctrl-C, SIGTERM); 1 the run was cut short or is incomplete because of an error (the
