@@ -595,7 +595,7 @@ class SimulatorNode(Node):
         self._anchor = (time.monotonic(), model.time_s, self._rtf)  # pacing: wall, sim, factor
         if self._feed is not None:
             with self._lock:  # the set-up and the waits above are no silence of the wave topic
-                self._last_sample_wall = max(self._last_sample_wall, self._anchor[0])
+                self._last_sample_wall = self._anchor[0]  # later than any sample taken so far
         try:
             while not self._stop.is_set():
                 if s.duration_s and model.time_s >= s.duration_s - 1e-9:
