@@ -252,6 +252,33 @@ def test_other_terms_that_read_the_same_cells_are_said():
         assert [c.effect for c, _ in method.other_readings(d, CATALOGUE)] == (["model_drag"] if said else [])
 
 
+def test_a_term_that_explains_the_readings_cells_and_more_is_the_reading():
+    """The surge low-frequency STD 0.6x the measured and its wave-band STD above it in every
+    run. The model's drift scaled by 1.35 closes the low-frequency STD best (each cell's
+    reading) and leaves the wave-band STD; its drag at 0.65 explains both (the decays a drag
+    moves and a drift does not play this part in the benchmark): the drag is the reading,
+    and the verdict says the drift reads only part of it. A per-DOF damping explaining both
+    has more parameters than the drift and does not take it over."""
+    before = gaps({"std.low_frequency": -0.4, "std.wave": 0.3})
+    drift = candidate("model_slow_drift", {"drift_scale": 1.35}, gaps({"std.low_frequency": -0.02, "std.wave": 0.3}))
+    drag = candidate("model_drag", {"cd_scale": 0.65}, gaps({"std.low_frequency": -0.08, "std.wave": 0.05}))
+    d = method.state_reading(method.with_mismatches(diagnosis(before, [drift, drag], None), None, CATALOGUE),
+                             CATALOGUE)
+    assert [m.term_by for m in d.mismatches] == ["model_slow_drift", "model_drag"], d.reason
+    assert d.finding is drag and d.reading_cells.tolist() == [i in (cell("std.low_frequency"), cell("std.wave"))
+                                                              for i in range(6)], d.reason
+    assert "named: the model's drag is 1.54 times too strong" in d.reason, d.reason
+    assert ("read as well, at plausible values, as: the model's slow drift is 1.35 times too weak (model_slow_drift "
+            "explains surge std.low_frequency, not surge std.wave): the cells they do not explain tell them apart"
+            in d.reason), d.reason
+
+    damping = candidate("linear_damping", {"surge_damping_ratio": 0.02, "heave_damping_ratio": 0.0,
+                                           "pitch_damping_ratio": 0.0},
+                        gaps({"std.low_frequency": -0.08, "std.wave": 0.05}))
+    d = method.with_mismatches(diagnosis(before, [drift, damping], None), None, CATALOGUE)
+    assert d.reading is drift and d.reading_cells.tolist() == [i == cell("std.low_frequency") for i in range(6)]
+
+
 def test_a_term_reading_that_does_not_hold_on_the_blind_runs_is_not_named():
     """The reading closes its cell on the tuning runs; on blind runs it closes 90 % there
     (kept) or makes it worse (not named, and the verdict says why)."""

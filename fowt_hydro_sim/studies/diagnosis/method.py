@@ -29,7 +29,9 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    With a baseline mismatch left, an effect is named "additionally" only if it explains a
    flagged cell outside the mismatch's (``additional_cells``), and a mismatch that a scale
    of one of the model's own terms explains is read as that term's error
-   (``term_reading``: "the model's slow drift is 10 times too strong").
+   (``term_reading``: "the model's slow drift is 10 times too strong"); a term explaining
+   every mismatch cell that one explains and more, with no more parameters, reads the
+   mismatch instead (``wider_reading``).
    A fit worse than the plain model is restarted from other points, and reported as failed
    if it stays so; lag-type parameters are fitted on a grid (``fit_effect``).
 
@@ -1031,7 +1033,7 @@ def term_reading(i: int, candidates: list[CandidateFit], effects: dict[str, Effe
 
 
 def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: list[Gap],
-                    candidates: list[CandidateFit],
+                    window_before: list[Gap], candidates: list[CandidateFit],
                     effects: dict[str, Effect]) -> tuple[CandidateFit | None, np.ndarray | None]:
     """Of the terms read off the baseline mismatches no effect explains (``Mismatch.term_by``,
     ``term_reading``), those at plausible and material values (no ``value_concerns``), the one
@@ -1039,7 +1041,9 @@ def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: 
     ``before``): (its first fit, the cells it reads); (None, None)
     if there is none. A mismatch that a scale of one of the model's own terms closes is what
     the diagnosis names when no effect is named: "the model's slow drift is 1.7 times too
-    weak" is a finding, and the one an engineer acts on next."""
+    weak" is a finding, and the one an engineer acts on next. A term that explains every
+    left mismatch cell that one explains and more, with no more parameters, reads the
+    mismatch more fully and is the reading instead (``wider_reading``)."""
     found: dict[str, tuple[CandidateFit, np.ndarray]] = {}
     for m in left:
         c = next((c for c in candidates if c.effect == m.term_by), None)
@@ -1052,7 +1056,41 @@ def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: 
 
     best = max(found, key=lambda name: sum(float(g.residual[i] ** 2) for g in before
                                            for i in np.flatnonzero(found[name][1])))
-    return found[best]
+    return wider_reading(found[best], left, cells, before, window_before, candidates, effects)
+
+
+def explained_mismatches(candidate: CandidateFit, left: list[Mismatch], cells: list[tuple[str, str]],
+                         before: list[Gap], window_before: list[Gap]) -> np.ndarray:
+    """The cells of the mismatches ``left`` that a candidate's fit explains (``explains``)."""
+    plain = plain_gaps(candidate, before, window_before)
+    out = np.zeros(len(cells), dtype=bool)
+    for m in left:
+        i = cells.index((m.dof, m.metric))
+        out[i] = explains(plain, candidate.gaps, i)
+    return out
+
+
+def wider_reading(reading: tuple[CandidateFit, np.ndarray], left: list[Mismatch], cells: list[tuple[str, str]],
+                  before: list[Gap], window_before: list[Gap], candidates: list[CandidateFit],
+                  effects: dict[str, Effect]) -> tuple[CandidateFit, np.ndarray]:
+    """The term reading, or the term at plausible and material values (no ``value_concerns``)
+    that explains every left mismatch cell the reading's fit explains and more, with no more
+    parameters (the one explaining most cells): (its fit, the left mismatch cells it
+    explains). A drag too weak and a slow drift too strong move the low-frequency STDs
+    alike (they fix only drift_scale^2 / cd_scale), and the drift may close those cells
+    best; the free decays, which the drag moves and the drift does not, tell them apart
+    only through cells the drift does not explain."""
+    fit, _ = reading
+    own = explained_mismatches(fit, left, cells, before, window_before)
+    wider = []
+    for c in candidates:
+        if (not scales_a_term(c, effects) or c.effect == fit.effect or c.value_concerns(effects[c.effect])
+                or len(effects[c.effect].parameters) > len(effects[fit.effect].parameters)):
+            continue
+        explained = explained_mismatches(c, left, cells, before, window_before)
+        if not (own & ~explained).any() and (explained & ~own).any():
+            wider.append((c, explained))
+    return max(wider, key=lambda w: int(w[1].sum())) if wider else reading
 
 
 def blind_checked_cells(diagnosis: Diagnosis, left: list[Mismatch]) -> np.ndarray:
@@ -1096,18 +1134,24 @@ def other_readings(diagnosis: Diagnosis, effects: dict[str, Effect]) -> list[tup
 def state_reading(diagnosis: Diagnosis, effects: dict[str, Effect]) -> Diagnosis:
     """The verdict's last words on the term reading kept (if any): the term's error it
     names, the share of its cells' gap it closes on the tuning runs, and the other terms
-    that read its cells as well (``other_readings``)."""
+    that read its cells as well (``other_readings``), with the cells they do not explain."""
     if diagnosis.reading is not None:
         tuning_share, _ = diagnosis.reading_closure
         diagnosis.reason += (f"; named: {effects[diagnosis.reading.effect].term(diagnosis.reading.values)} "
                              f"({diagnosis.reading.effect} closes {tuning_share:.0%} of the gap of the mismatches it "
                              "reads)")
         cells = diagnosis.settings.cells()
-        others = [f"{effects[c.effect].term(c.values)} ({c.effect} explains "
-                  + ", ".join(" ".join(cells[i]) for i in read) + ")" for c, read in other_readings(diagnosis, effects)]
+        others, apart = [], True
+        for c, read in other_readings(diagnosis, effects):
+            unread = [i for i in np.flatnonzero(diagnosis.reading_cells) if i not in read]
+            apart &= bool(unread)
+            others.append(f"{effects[c.effect].term(c.values)} ({c.effect} explains "
+                          + ", ".join(" ".join(cells[i]) for i in read)
+                          + (", not " + ", ".join(" ".join(cells[i]) for i in unread) if unread else "") + ")")
         if others:
             diagnosis.reason += ("; read as well, at plausible values, as: " + "; ".join(others)
-                                 + ": these runs do not tell them apart")
+                                 + (": the cells they do not explain tell them apart" if apart
+                                    else ": these runs do not tell them apart"))
     return diagnosis
 
 
@@ -1180,7 +1224,7 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
                 spectra.pop("model + effect", None)
     if chosen is None and left and not diagnosis.undriven:
         diagnosis.reading, diagnosis.reading_cells = leading_reading(
-            left, cells, before, diagnosis.first_fits, effects)
+            left, cells, before, diagnosis.window_before, diagnosis.first_fits, effects)
         if diagnosis.reading is not None and diagnosis.blind_before:
             diagnosis.reading_cells |= blind_checked_cells(diagnosis, left)
     if left:
