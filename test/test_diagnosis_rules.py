@@ -3,8 +3,9 @@ mismatch that a scale of one of the model's own terms closes is read as that ter
 a fit that leaves the gap larger than the plain model is restarted, and a fit that still
 does is reported as failed; a lag-type parameter (a wave-probe delay) is found by a grid;
 an effect named "additionally" to a baseline mismatch must explain cells outside it; a term
-reading holds on the blind runs against its whole-record closure, and the other terms that read
-its cells as well are said."""
+reading holds on the blind runs against its whole-record closure, a term explaining its cells
+and more with no more parameters takes it over, and the other terms that read its cells as
+well are said."""
 from __future__ import annotations
 
 import math
