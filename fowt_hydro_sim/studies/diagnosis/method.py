@@ -1059,13 +1059,17 @@ def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: 
     return wider_reading(found[best], left, cells, before, window_before, candidates, effects)
 
 
-def explained_mismatches(candidate: CandidateFit, left: list[Mismatch], cells: list[tuple[str, str]],
-                         before: list[Gap], window_before: list[Gap]) -> np.ndarray:
-    """The cells of the mismatches ``left`` that a candidate's fit explains (``explains``)."""
+def mismatch_cells(mismatches: list[Mismatch], cells: list[tuple[str, str]]) -> np.ndarray:
+    """The mask of the mismatches' cells among ``cells``."""
+    return np.array([cell in {(m.dof, m.metric) for m in mismatches} for cell in cells], dtype=bool)
+
+
+def explained_cells(candidate: CandidateFit, among: np.ndarray, before: list[Gap],
+                    window_before: list[Gap]) -> np.ndarray:
+    """The cells of the mask ``among`` that a candidate's fit explains (``explains``)."""
     plain = plain_gaps(candidate, before, window_before)
-    out = np.zeros(len(cells), dtype=bool)
-    for m in left:
-        i = cells.index((m.dof, m.metric))
+    out = np.zeros(among.size, dtype=bool)
+    for i in np.flatnonzero(among):
         out[i] = explains(plain, candidate.gaps, i)
     return out
 
@@ -1081,13 +1085,14 @@ def wider_reading(reading: tuple[CandidateFit, np.ndarray], left: list[Mismatch]
     best; the free decays, which the drag moves and the drift does not, tell them apart
     only through cells the drift does not explain."""
     fit, _ = reading
-    own = explained_mismatches(fit, left, cells, before, window_before)
+    mismatch = mismatch_cells(left, cells)
+    own = explained_cells(fit, mismatch, before, window_before)
     wider = []
     for c in candidates:
         if (not scales_a_term(c, effects) or c.effect == fit.effect or c.value_concerns(effects[c.effect])
                 or len(effects[c.effect].parameters) > len(effects[fit.effect].parameters)):
             continue
-        explained = explained_mismatches(c, left, cells, before, window_before)
+        explained = explained_cells(c, mismatch, before, window_before)
         if not (own & ~explained).any() and (explained & ~own).any():
             wider.append((c, explained))
     return max(wider, key=lambda w: int(w[1].sum())) if wider else reading
@@ -1100,14 +1105,10 @@ def blind_checked_cells(diagnosis: Diagnosis, left: list[Mismatch]) -> np.ndarra
     none otherwise."""
     cells = diagnosis.settings.cells()
     measured = np.all([g.covered for g in diagnosis.blind_before], axis=0)
-    out = np.zeros(len(cells), dtype=bool)
     if (diagnosis.reading_cells & measured).any():
-        return out
-    plain = plain_gaps(diagnosis.reading, diagnosis.tuning_before, diagnosis.window_before)
-    for m in left:
-        i = cells.index((m.dof, m.metric))
-        out[i] = bool(measured[i]) and explains(plain, diagnosis.reading.gaps, i)
-    return out
+        return np.zeros(len(cells), dtype=bool)
+    return explained_cells(diagnosis.reading, mismatch_cells(left, cells) & measured, diagnosis.tuning_before,
+                           diagnosis.window_before)
 
 
 def other_readings(diagnosis: Diagnosis, effects: dict[str, Effect]) -> list[tuple[CandidateFit, list[int]]]:
@@ -1124,8 +1125,8 @@ def other_readings(diagnosis: Diagnosis, effects: dict[str, Effect]) -> list[tup
         if (not scales_a_term(c, effects) or c.effect == diagnosis.reading.effect
                 or c.value_concerns(effects[c.effect])):
             continue
-        plain = plain_gaps(c, diagnosis.tuning_before, diagnosis.window_before)
-        cells = [i for i in np.flatnonzero(diagnosis.reading_cells) if explains(plain, c.gaps, i)]
+        cells = np.flatnonzero(explained_cells(c, diagnosis.reading_cells, diagnosis.tuning_before,
+                                               diagnosis.window_before)).tolist()
         if cells:
             out.append((c, cells))
     return out
@@ -1215,7 +1216,7 @@ def with_mismatches(diagnosis: Diagnosis, chosen: CandidateFit | None, effects: 
         if reading:
             m.term, m.term_by, m.term_values = reading[1], reading[0].effect, reading[0].values
     if left and chosen is not None:
-        mismatch = np.array([cell in {(m.dof, m.metric) for m in left} for cell in cells])
+        mismatch = mismatch_cells(left, cells)
         if not additional_cells(before, chosen.gaps, mismatch).any():
             diagnosis.reason = (f"{chosen.effect} closes {chosen.closure:.0%} of the tuning gap but explains no "
                                 "flagged cell beyond the baseline mismatch's: not named")
