@@ -36,7 +36,6 @@ from fowt_hydro_sim.studies.psd import BANDS_HZ
 
 GRID_STEP_S = 0.25
 MAX_LAG_S = 10.0
-LAG_PEAK_SHARE = 0.8  # cross-correlation peaks this close to the highest are all candidates for the lag
 TOLERANCES = {"std": 0.05, "frequency": 0.03, "offset": 0.2, "lag": 0.25,  # materiality, per metric kind
               "decay_period": 0.03, "decay_damping": 0.10}
 DECAY_METRICS = ("decay_period", "decay_damping")
@@ -175,25 +174,16 @@ def band_passed(signal: np.ndarray, band_hz: tuple[float, float], step_s: float 
 
 
 def block_lag_s(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S) -> float:
-    """Lag of ``model`` behind ``measured`` [s]: of the cross-correlation's peaks within
-    +-MAX_LAG_S at least LAG_PEAK_SHARE of the highest, the one nearest zero lag, refined by
-    a parabola. A narrow-band response's cross-correlation has peaks one wave period apart
-    of nearly the same height, and noise or a small phase difference decides which is
-    highest: the highest alone would have the lag slip by a period between blocks and
-    between fits (a heave lag of -9 s for one of 0.3 s). A delay beyond half a wave period
-    is beyond a wave probe's plausible clock error anyway."""
+    """Lag of ``model`` behind ``measured`` [s]: the cross-correlation's peak, refined by a
+    parabola, within +-MAX_LAG_S."""
     n = len(model)
     correlation = np.fft.irfft(np.fft.rfft(model, 2 * n) * np.conj(np.fft.rfft(measured, 2 * n)), 2 * n)
     reach = int(MAX_LAG_S / step_s)
-    lags = np.arange(-reach, reach + 1)
-    values = np.concatenate([correlation[-reach:], correlation[:reach + 1]])
-    inner = values[1:-1]
-    peaks = np.flatnonzero((inner >= values[:-2]) & (inner >= values[2:])) + 1
-    if peaks.size == 0:  # monotonic over the reach: its higher end
-        peaks = np.array([int(np.clip(np.argmax(values), 1, len(values) - 2))])
-    top = values[peaks].max()
-    tall = peaks[(values[peaks] >= LAG_PEAK_SHARE * top) | (values[peaks] == top)]
-    i = int(tall[np.argmin(np.abs(lags[tall]))])
+    lags = np.concatenate([np.arange(0, reach + 1), np.arange(-reach, 0)])
+    values = np.concatenate([correlation[:reach + 1], correlation[-reach:]])
+    order = np.argsort(lags)
+    lags, values = lags[order], values[order]
+    i = int(np.clip(np.argmax(values), 1, len(values) - 2))
     y0, y1, y2 = values[i - 1:i + 2]
     curvature = y0 - 2 * y1 + y2
     shift = 0.5 * (y0 - y2) / curvature if curvature < 0 else 0.0
