@@ -88,8 +88,8 @@ def test_the_sets_are_apart_in_seeds_names_and_strengths_and_alike_in_make_up():
 
 @pytest.mark.parametrize("args, message", [
     (["--set", "held-out"], "--set: the split file's sets (development, held-out, held-out-2, "
-                           "held-out-3, held-out-4, held-out-5, held-out-6, held-out-7, held-out-8) are the independent "
-                           "source's"),
+                           "held-out-3, held-out-4, held-out-5, held-out-6, held-out-7, held-out-8) are the "
+                           "independent source's"),
     (["--source", "independent", "--set", "held-out", "--scenarios", "null#99"], "--scenarios: not in the held-out"),
     (["--source", "independent", "--set", "development", "--seed", "5"], "--seed: the seeds of a --set are fixed"),
     (["--source", "independent", "--set", "development", "--nulls", "3"], "--nulls: the scenarios of a --set"),
