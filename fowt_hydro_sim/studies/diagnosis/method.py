@@ -1061,7 +1061,8 @@ def leading_reading(left: list[Mismatch], cells: list[tuple[str, str]], before: 
 
 def mismatch_cells(mismatches: list[Mismatch], cells: list[tuple[str, str]]) -> np.ndarray:
     """The mask of the mismatches' cells among ``cells``."""
-    return np.array([cell in {(m.dof, m.metric) for m in mismatches} for cell in cells], dtype=bool)
+    mismatched = {(m.dof, m.metric) for m in mismatches}
+    return np.array([cell in mismatched for cell in cells], dtype=bool)
 
 
 def explained_cells(candidate: CandidateFit, among: np.ndarray, before: list[Gap],
