@@ -19,7 +19,9 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    model's terms too close to 1 to be worth naming, a signature that moves
    the model the wrong way, a blind closure below ``BLIND_SHARE`` of the tuning closure);
    candidates with a concern rank after the others (a fit outside its plausible range
-   whose nearest plausible values close nearly as much takes those, ``plausible_refit``).
+   that a plausible point explains nearly as well, its nearest plausible values or its fit
+   again with the parameters outside held at their ranges' ends, takes that point,
+   ``plausible_refit``).
    Otherwise the gap is the baseline's ("baseline mismatch"), or "unexplained" where a
    set-aside cell's band holds a measured response the waves do not drive
    (``undriven_cells``).
@@ -306,23 +308,38 @@ def nearest_plausible(effect: Effect, values: dict[str, float]) -> dict[str, flo
 
 
 def plausible_refit(candidate: CandidateFit, effect: Effect, evaluate_at: Callable[[dict[str, float]], list[Gap]],
-                    closure_of: Callable[[list[Gap]], float], score_of: Callable[[list[Gap]], float]) -> CandidateFit:
-    """A fit that lands outside its plausible range, but whose nearest plausible values
-    (``nearest_plausible``) close at least PLAUSIBLE_SHARE of what it closes, at those
-    values: the range asks whether a plausible value explains the gap, and a hardening of
-    -0.005 that closes the gap no better than 0 is a catenary's. A fit that needs its
-    implausible value (a drift ten times too strong) keeps it, and its concern. ``evaluate_at``
-    gives the gaps at given values over the candidate's span (its fit window's, if screened),
-    ``closure_of`` and ``score_of`` judge them as the candidate was judged."""
+                    closure_of: Callable[[list[Gap]], float], score_of: Callable[[list[Gap]], float],
+                    refit_within: Callable[[dict[str, float], dict[str, float]],
+                                           tuple[dict[str, float], list[Gap], int]] | None = None) -> CandidateFit:
+    """A fit that lands outside its plausible range, but which a plausible point explains
+    nearly as well (closing at least PLAUSIBLE_SHARE of what it closes), at that point: the
+    range asks whether a plausible value explains the gap, and a hardening of -0.005 that
+    closes the gap no better than 0 is a catenary's. The point is first its nearest plausible
+    values (``nearest_plausible``), then, for an effect with parameters left inside their
+    ranges, its fit again with the others held at their ranges' nearer ends (``refit_within``
+    (held, start) -> (values, gaps, model runs); it starts from the nearest plausible values):
+    a catenary fitted at a hardening of -0.1 with an asymmetry of +0.14 moves both together,
+    and at a hardening of 0 another asymmetry closes as much. A fit that needs its
+    implausible value (a drift ten times too strong) keeps it, and its concern.
+    ``evaluate_at`` gives the gaps at given values over the candidate's span (its fit
+    window's, if screened), ``closure_of`` and ``score_of`` judge them as the candidate was judged."""
     moved = nearest_plausible(effect, candidate.values)
     if moved == candidate.values or candidate.failed or candidate.closure <= 0:
         return candidate
     gaps = evaluate_at(moved)
-    share = closure_of(gaps)
-    if share < PLAUSIBLE_SHARE * candidate.closure:
-        return candidate
-    return replace(candidate, values=moved, gaps=gaps, score=score_of(gaps), closure=share,
-                   model_runs=candidate.model_runs + len(gaps))
+    runs = candidate.model_runs + len(gaps)
+    if closure_of(gaps) >= PLAUSIBLE_SHARE * candidate.closure:
+        return replace(candidate, values=moved, gaps=gaps, score=score_of(gaps), closure=closure_of(gaps),
+                       model_runs=runs)
+    held = {name: value for name, value in moved.items() if value != candidate.values[name]}
+    if refit_within is None or len(held) == len(moved):
+        return replace(candidate, model_runs=runs)
+    values, gaps, count = refit_within(held, moved)
+    runs += count
+    if range_concerns(effect, values) or closure_of(gaps) < PLAUSIBLE_SHARE * candidate.closure:
+        return replace(candidate, model_runs=runs)
+    return replace(candidate, values=values, gaps=gaps, score=score_of(gaps), closure=closure_of(gaps),
+                   model_runs=runs)
 
 
 def share_concern(effect: Effect, values: dict[str, float], runs: list[MeasuredRun],
@@ -441,7 +458,8 @@ def restarts(u0: np.ndarray, bounds: tuple[np.ndarray, np.ndarray]) -> list[np.n
 def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evaluations: int = 4,
                description: str = "", mask: np.ndarray | None = None,
                window_s: float | None = None, before: list[Gap] | None = None,
-               restarted: Callable[[], None] | None = None) -> tuple[dict[str, float], list[Gap], int]:
+               restarted: Callable[[], None] | None = None, fixed: dict[str, float] | None = None,
+               start: dict[str, float] | None = None) -> tuple[dict[str, float], list[Gap], int]:
     """Fit the effect's parameters to the tuning runs' cells of ``mask`` (default all; the
     cells outside it charge the effect for moving them from the plain model's gaps
     ``before``, see ``residuals``), on the runs' first ``window_s`` (default: whole
@@ -454,16 +472,20 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
     at which the model diverges is passed over, and a point where it does is as far off as
     DIVERGED_RESIDUAL in each cell it gives no finite value for. A lag-type effect
     (``grid_fitted``), whose gaps a forward difference sees as flat, is fitted instead by a
-    grid over its plausible range (``grid``), refined around the best point."""
-    params = effect.parameters
+    grid over its plausible range (``grid``), refined around the best point.
+    The parameters in ``fixed`` are held at its values; ``start`` replaces the parameters'
+    own starting values."""
+    fixed = fixed or {}
+    params = [p for p in effect.parameters if p.name not in fixed]
     off = np.array([p.off for p in params])
     scale = np.array([p.scale for p in params])
-    u0 = (np.array([p.start for p in params]) - off) / scale
+    u0 = (np.array([(start or {}).get(p.name, p.start) for p in params]) - off) / scale
     bounds = ((np.array([p.low for p in params]) - off) / scale, (np.array([p.high for p in params]) - off) / scale)
     cache: dict[bytes, list[Gap]] = {}
 
     def values(u: np.ndarray) -> dict[str, float]:
-        return {p.name: float(v) for p, v in zip(params, off + u * scale)}
+        free = {p.name: float(v) for p, v in zip(params, off + u * scale)}
+        return {p.name: free.get(p.name, fixed.get(p.name)) for p in effect.parameters}
 
     def gaps_at(us: list[np.ndarray]) -> list[list[Gap]]:
         todo = list({u.tobytes(): u for u in us if u.tobytes() not in cache}.values())
@@ -495,7 +517,7 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
     def cost(key: bytes) -> float:
         return float(np.sum(finite_residuals(cache[key]) ** 2))
 
-    if grid_fitted(effect):
+    if grid_fitted(effect) and not fixed:
         gaps_at([(point - off) / scale for point in grid(effect)])
         best = min(cache, key=cost)
         gaps_at([(point - off) / scale for point in refinement(effect, off + np.frombuffer(best) * scale)])
@@ -793,13 +815,13 @@ def check_window(fit_window_s: float | None, settings: GapSettings) -> None:
                          "least 300 s (or 0: fit on whole records)")
 
 
-def fit_budget(effect: Effect, max_evaluations: int) -> int:
+def fit_budget(effect: Effect, max_evaluations: int, held: int = 0) -> int:
     """The points a fit evaluates at most from its first start: each least-squares evaluation
-    and its Jacobian's steps; a grid fit's grid and refinement. (A restarted fit evaluates
-    more; its count corrects the expected work.)"""
-    if grid_fitted(effect):
+    and its Jacobian's steps (over the parameters not ``held`` fixed); a grid fit's grid and
+    refinement. (A restarted fit evaluates more; its count corrects the expected work.)"""
+    if grid_fitted(effect) and not held:
         return len(grid(effect)) + 4 * len(effect.parameters)
-    return max_evaluations * (1 + len(effect.parameters))
+    return max_evaluations * (1 + len(effect.parameters) - held)
 
 
 def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Callable, settings: GapSettings,
@@ -863,18 +885,25 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
 
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         def fit(effect: Effect) -> CandidateFit:
-            budget = fit_budget(effect, max_evaluations)
-            restarts_expected = []
+            def fitted_in_window(held: dict[str, float] | None = None, start: dict[str, float] | None = None,
+                                 description: str = effect.name) -> tuple[dict[str, float], list[Gap], int]:
+                """``fit_effect`` on the fit window, its model runs expected and counted."""
+                budget = fit_budget(effect, max_evaluations, len(held or {}))
+                restarts_expected = []
 
-            def restarted() -> None:  # a restart may take a fit's budget again
-                restarts_expected.append(budget)
-                progress.expect(budget * n_tuning, budget * sum(fit_run_s))
+                def restarted() -> None:  # a restart may take a fit's budget again
+                    restarts_expected.append(budget)
+                    progress.expect(budget * n_tuning, budget * sum(fit_run_s))
 
-            values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations, effect.name,
-                                             mask, window, window_before if window else diagnosis.tuning_before,
-                                             restarted)
-            expected = budget + sum(restarts_expected)
-            progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
+                values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations,
+                                                 description, mask, window,
+                                                 window_before if window else diagnosis.tuning_before, restarted,
+                                                 held, start)
+                expected = budget + sum(restarts_expected)
+                progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
+                return values, gaps, count
+
+            values, gaps, count = fitted_in_window()
             p = len(effect.parameters)
             screened = bool(window) and window_closure(diagnosis.tuning_before, window_before, gaps,
                                                        mask) < SCREEN_CLOSURE
@@ -892,8 +921,18 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
 
             fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, plain), closure_of(gaps), count,
                                   window_s=span)
+            def refit_within(held: dict[str, float], start: dict[str, float]) -> tuple[dict[str, float], list[Gap],
+                                                                                        int]:
+                """The fit again with ``held`` fixed, over the candidate's span."""
+                progress.expect(fit_budget(effect, max_evaluations, len(held)) * n_tuning,
+                                fit_budget(effect, max_evaluations, len(held)) * sum(fit_run_s))
+                refitted, gaps, count = fitted_in_window(held, start, f"{effect.name}: within its plausible range")
+                if window and span is None:
+                    gaps, count = replayed(effect, refitted, None), count + n_tuning
+                return refitted, gaps, count
+
             fitted = plausible_refit(fitted, effect, lambda v: replayed(effect, v, span), closure_of,
-                                     lambda g: score(g, p, mask, plain))
+                                     lambda g: score(g, p, mask, plain), refit_within)
             return replace(fitted, size_concern=share_concern(effect, fitted.values, [tuning[i] for i in waves],
                                                               platform))
 
