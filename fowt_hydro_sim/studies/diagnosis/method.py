@@ -167,6 +167,9 @@ def job_s(job: Job, runs: list[MeasuredRun]) -> float:
 
 
 # ---------------------------------------------------------------------- fitting one candidate
+# a candidate's fit again with some parameters held: (held values, start) -> (values, gaps, model runs)
+Refit = Callable[[dict[str, float], dict[str, float]], tuple[dict[str, float], list[Gap], int]]
+
 @dataclass
 class CandidateFit:
     """One candidate effect fitted to the tuning runs."""
@@ -325,9 +328,8 @@ def kept_share(plain: list[Gap], fitted: list[Gap], flagged: np.ndarray,
 
 def plausible_refit(candidate: CandidateFit, effect: Effect, evaluate_at: Callable[[dict[str, float]], list[Gap]],
                     closure_of: Callable[[list[Gap]], float], score_of: Callable[[list[Gap]], float],
-                    kept: Callable[[list[Gap]], float] | None = None,
-                    refit_within: Callable[[dict[str, float], dict[str, float]],
-                                           tuple[dict[str, float], list[Gap], int]] | None = None) -> CandidateFit:
+                    kept: Callable[[list[Gap]], float] | None = None, refit_within: Refit | None = None
+                    ) -> CandidateFit:
     """A fit that lands outside its plausible range, but which a plausible point explains
     nearly as well, at that point: the range asks whether a plausible value explains the
     gap, and a hardening of -0.005 that closes the gap no better than 0 is a catenary's.
@@ -494,8 +496,8 @@ def fit_effect(effect: Effect, evaluate: Callable, tuning: list[int], max_evalua
     DIVERGED_RESIDUAL in each cell it gives no finite value for. A lag-type effect
     (``grid_fitted``), whose gaps a forward difference sees as flat, is fitted instead by a
     grid over its plausible range (``grid``), refined around the best point.
-    The parameters in ``fixed`` are held at its values; ``start`` replaces the parameters'
-    own starting values."""
+    The parameters named in ``fixed`` are held at the values it gives; ``start`` replaces
+    the others' own starting values."""
     fixed = fixed or {}
     params = [p for p in effect.parameters if p.name not in fixed]
     off = np.array([p.off for p in params])
@@ -942,9 +944,10 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
 
             fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, plain), closure_of(gaps), count,
                                   window_s=span)
+
             def refit_within(held: dict[str, float], start: dict[str, float]) -> tuple[dict[str, float], list[Gap],
                                                                                         int]:
-                """The fit again with ``held`` fixed, over the candidate's span."""
+                """The fit again with ``held`` fixed (``Refit``), over the candidate's span."""
                 progress.expect(fit_budget(effect, max_evaluations, len(held)) * n_tuning,
                                 fit_budget(effect, max_evaluations, len(held)) * sum(fit_run_s))
                 refitted, gaps, count = fitted_in_window(held, start, f"{effect.name}: within its plausible range")
