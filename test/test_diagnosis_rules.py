@@ -470,9 +470,14 @@ def test_what_a_fit_explains_is_judged_on_the_cells_it_explains():
     plain = table(-0.04, 7.5)
     fit, near, off = table(-0.0268, 7.48), table(-0.01265, 7.486), table(-0.04, 7.47)
     flagged = np.any([g.flagged for g in plain], axis=0)
+
+    def explained(gaps_: list[Gap]) -> np.ndarray:
+        return method.explained_cells(candidate("mooring_stiffness", {}, gaps_), flagged, plain, [])
+
     assert 0.0 < method.closure(plain, fit) < 0.01 and method.closure(plain, near) < 0.9 * method.closure(plain, fit)
-    kept = method.kept_share(plain, fit, flagged, lambda g: method.closure(plain, g))
+    kept = method.kept_share(plain, fit, explained(fit), lambda g: method.closure(plain, g))
     assert kept(fit) == 1.0 and kept(near) > 1.0 and kept(off) == 0.0
-    without = method.kept_share(plain, table(-0.04, 7.0), flagged, lambda g: method.closure(plain, g))
+    without = method.kept_share(plain, table(-0.04, 7.0), explained(table(-0.04, 7.0)),
+                                lambda g: method.closure(plain, g))
     assert without(table(-0.04, 7.25)) == method.closure(plain, table(-0.04, 7.25)) / method.closure(
         plain, table(-0.04, 7.0))  # explaining no cell: the whole closure

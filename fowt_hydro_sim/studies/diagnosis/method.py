@@ -310,15 +310,14 @@ def nearest_plausible(effect: Effect, values: dict[str, float]) -> dict[str, flo
     return {p.name: float(np.clip(values[p.name], *p.plausible_range)) for p in effect.parameters}
 
 
-def kept_share(plain: list[Gap], fitted: list[Gap], flagged: np.ndarray,
+def kept_share(plain: list[Gap], fitted: list[Gap], explained: np.ndarray,
                closure_of: Callable[[list[Gap]], float]) -> Callable[[list[Gap]], float]:
-    """How much of what a fit explains other values keep: over the flagged cells ``flagged``
-    that the fit's gaps ``fitted`` explain (``explains``, against the plain model's ``plain``),
-    their closure as a share of the fit's; over every cell (``closure_of``) if it explains
-    none. A catenary's fit that closes 55 % of the surge low-frequency frequency gap and
-    0.5 % of a gap carried by cells the two simulators differ in structurally is judged by
-    that cell, not by the noise of the others."""
-    explained = np.array([bool(flagged[i]) and explains(plain, fitted, i) for i in range(flagged.size)])
+    """How much of what a fit explains other values keep: over the cells ``explained`` (the
+    flagged cells the fit's gaps ``fitted`` explain against the plain model's ``plain``,
+    ``explained_cells``), their closure as a share of the fit's; over every cell
+    (``closure_of``) if it explains none. A catenary's fit that closes 55 % of the surge
+    low-frequency frequency gap and 0.5 % of a gap carried by cells the two simulators
+    differ in structurally is judged by that cell, not by the noise of the others."""
     if explained.any():
         own = cells_closure(plain, fitted, explained)
         return lambda gaps: cells_closure(plain, gaps, explained) / own
@@ -907,6 +906,8 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
     diagnosis.window_before = window_before
 
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
+        flagged = np.any([g.flagged for g in diagnosis.tuning_before], axis=0) & (mask if mask is not None else True)
+
         def fit(effect: Effect) -> CandidateFit:
             def fitted_in_window(held: dict[str, float] | None = None, start: dict[str, float] | None = None,
                                  description: str = effect.name) -> tuple[dict[str, float], list[Gap], int]:
@@ -948,18 +949,17 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
             def refit_within(held: dict[str, float], start: dict[str, float]) -> tuple[dict[str, float], list[Gap],
                                                                                         int]:
                 """The fit again with ``held`` fixed (``Refit``), over the candidate's span."""
-                progress.expect(fit_budget(effect, max_evaluations, len(held)) * n_tuning,
-                                fit_budget(effect, max_evaluations, len(held)) * sum(fit_run_s))
+                budget = fit_budget(effect, max_evaluations, len(held))
+                progress.expect(budget * n_tuning, budget * sum(fit_run_s))
                 refitted, gaps, count = fitted_in_window(held, start, f"{effect.name}: within its plausible range")
                 if window and span is None:
                     gaps, count = replayed(effect, refitted, None), count + n_tuning
                 return refitted, gaps, count
 
-            flagged = np.any([g.flagged for g in diagnosis.tuning_before], axis=0) & (mask if mask is not None
-                                                                                     else True)
+            explained = explained_cells(fitted, flagged, diagnosis.tuning_before, window_before)
             fitted = plausible_refit(fitted, effect, lambda v: replayed(effect, v, span), closure_of,
                                      lambda g: score(g, p, mask, plain),
-                                     kept_share(plain, fitted.gaps, flagged, closure_of), refit_within)
+                                     kept_share(plain, fitted.gaps, explained, closure_of), refit_within)
             return replace(fitted, size_concern=share_concern(effect, fitted.values, [tuning[i] for i in waves],
                                                               platform))
 
