@@ -331,6 +331,34 @@ def test_block_lag_is_the_cross_correlation_peak():
     assert block_lag_s(late, x) == pytest.approx(0.8, abs=0.03)
 
 
+def test_a_lag_is_judged_only_where_it_reads_a_delay():
+    """Closed-form wave-band records: a broad-band response 1 s late reads a delay of 1 s; a
+    narrow-band one (0.095-0.105 Hz, cross-correlation peaks a period apart at nearly one
+    height) and a broad-band one in anti-phase do not, and their lag cells are not judged."""
+    from fowt_hydro_sim.studies.diagnosis.gap import GRID_STEP_S, lag_reads_delay
+    rng = np.random.default_rng(3)
+    t = np.arange(0.0, 1800.0, GRID_STEP_S)
+
+    def sea(f_low: float, f_high: float, delay_s: float = 0.0) -> np.ndarray:
+        f = np.linspace(f_low, f_high, 60)
+        phase = rng.uniform(0, 2 * np.pi, f.size)
+        return sum(np.sin(2 * np.pi * fk * t + p) for fk, p in zip(f, phase)), sum(
+            np.sin(2 * np.pi * fk * (t - delay_s) + p) for fk, p in zip(f, phase))
+
+    measured, late = sea(0.05, 0.25, delay_s=1.0)
+    assert lag_reads_delay(late, measured) and block_lag_s(late, measured) == pytest.approx(1.0, abs=0.05)
+    narrow, narrow_late = sea(0.095, 0.105, delay_s=1.0)
+    assert not lag_reads_delay(narrow_late, narrow)
+    assert not lag_reads_delay(-measured, measured)
+    settings = GapSettings(transient_s=0.0, dofs=("surge",))
+    motion = np.zeros((t.size, 6))
+    motion[:, 0] = narrow
+    shifted = motion.copy()
+    shifted[:, 0] = narrow_late
+    g = gap("narrow", (t, motion), (t, shifted), settings)
+    assert not np.isfinite(g.tolerance[settings.cells().index(("surge", "lag"))])
+
+
 def test_a_gross_gap_in_a_band_the_measurement_hardly_has_is_judged():
     """The model's low-frequency heave 12 times the measured one, in a band holding under 15 %
     of the measured heave: judged, flagged and reported as gross, with its sign."""

@@ -7,7 +7,8 @@ Metrics per DOF (values are model against measured):
 - ``frequency.BAND``: mean frequency error in the band, sqrt(m2/m0) model / measured - 1
   (a shifted resonance: stiffness or inertia);
 - ``offset``: mean offset, (model - measured) / the measured STD;
-- ``lag``: time lag [s] of the model's wave-band response behind the measured one;
+- ``lag``: time lag [s] of the model's wave-band response behind the measured one, judged
+  only where it reads a delay (``lag_reads_delay``);
 - with ``GapSettings.decays``, the cells of free-decay runs (decay.py): ``decay_period``,
   the decay's mean half-period error, and ``decay_damping``, its damping ratio error (model
   / measured - 1), judged only in a decay of that DOF (and the wave cells only in wave runs).
@@ -43,6 +44,7 @@ COHERENCE_SEGMENT_S = 300.0
 MIN_BLOCK_S = 180.0  # a block spans nearly two surge periods: shorter blocks are not independent
 NEGLIGIBLE_BAND = 0.15  # share of the DOF's STD below which a band's cells are not judged (on both sides)
 GROSS_RATIO = (0.5, 2.0)  # a band STD ratio outside this is always judged and reported
+SECOND_PEAK = 0.8  # a cross-correlation peak this share of the highest makes the lag ambiguous
 
 
 @dataclass(frozen=True)
@@ -190,6 +192,33 @@ def block_lag_s(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_ST
     return float((lags[i] + shift) * step_s)
 
 
+def correlation_peaks(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The local maxima of the cross-correlation of ``model`` with ``measured`` within
+    +-MAX_LAG_S: (lags [s], heights), the highest first."""
+    n = len(model)
+    correlation = np.fft.irfft(np.fft.rfft(model, 2 * n) * np.conj(np.fft.rfft(measured, 2 * n)), 2 * n)
+    reach = int(MAX_LAG_S / step_s)
+    values = np.concatenate([correlation[-reach:], correlation[:reach + 1]])
+    peaks, _ = scipy.signal.find_peaks(values)
+    order = peaks[np.argsort(values[peaks])[::-1]]
+    return (order - reach) * step_s, values[order]
+
+
+def lag_reads_delay(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S) -> bool:
+    """Whether the wave-band lag of ``model`` behind ``measured`` reads a delay: one clear
+    cross-correlation peak (no other one SECOND_PEAK of its height) within half the
+    measured record's mean period of zero. A narrow-band response's peaks lie a period
+    apart at nearly one height, and a response in anti-phase peaks half a period off: there
+    the lag jumps between peaks with the smallest change in either record, a cycle slip
+    rather than a delay, and the cell is not judged (as a band without energy is not)."""
+    lags, heights = correlation_peaks(model, measured, step_s)
+    if heights.size == 0 or heights[0] <= 0:
+        return False
+    period_s = 2.0 * math.pi * step_s / mean_frequency(measured)
+    return bool(abs(lags[0]) < 0.5 * period_s and (heights.size == 1 or heights[1] < SECOND_PEAK * heights[0]))
+
+
 def judged_band(measured_band: np.ndarray, model_band: np.ndarray, measured: np.ndarray, model: np.ndarray) -> bool:
     """A band's cells are judged where either side has energy there (its share of that side's
     STD at least NEGLIGIBLE_BAND), or where the two differ grossly (a ratio beyond 2 or below
@@ -226,7 +255,8 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         passed = {name: (band_passed(m, band), band_passed(s, band)) for name, band in settings.bands_hz.items()}
         band_judged = [judged_band(mb, sb, m, s) for mb, sb in passed.values()]
         decay_cells = len(DECAY_METRICS) if settings.decays else 0  # measured by decay runs, not here
-        judged += band_judged * 2 + [True, True] + [False] * decay_cells
+        wave_band = passed["wave"] if "wave" in passed else passed[max(settings.bands_hz, key=settings.bands_hz.get)]
+        judged += band_judged * 2 + [True, lag_reads_delay(wave_band[1], wave_band[0])] + [False] * decay_cells
         for mb, sb in passed.values():  # std.BAND
             per_block = np.array([0.5 * math.log(sb[b].var() / mb[b].var()) for b in blocks])
             _, half = mean_interval(per_block, settings.confidence)
@@ -240,7 +270,7 @@ def gap(name: str, measured: tuple[np.ndarray, np.ndarray], model: tuple[np.ndar
         per_block = np.array([(s[b].mean() - m[b].mean()) / scale for b in blocks])  # offset
         centre, half = mean_interval(per_block, settings.confidence)
         rows.append((centre, centre - half, centre + half))
-        mb, sb = passed["wave"] if "wave" in passed else passed[max(settings.bands_hz, key=settings.bands_hz.get)]
+        mb, sb = wave_band
         per_block = np.array([block_lag_s(sb[b], mb[b]) for b in blocks])  # lag
         centre, half = mean_interval(per_block, settings.confidence)
         rows.append((centre, centre - half, centre + half))
