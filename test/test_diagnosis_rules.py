@@ -175,6 +175,35 @@ def test_a_fit_that_still_fails_is_reported_failed_and_never_named():
     assert not at_plain.failed  # a fit back at the plain model, within round-off, has not failed
 
 
+def test_a_fit_cannot_close_a_cell_by_stepping_over_its_judging_threshold():
+    """A drag-like scale x (the model's x = 1): the surge wave STD closes at x = 0.7; the
+    low-frequency STD sits at half the measured (-0.501 against a 0.05 tolerance), judged as
+    a gross gap only while below half, and hardly moves with x (it crosses half at x = 1.05).
+    Judged on its own, a point past 1.05 takes that cell out and the fit goes there, the
+    wrong way; judged as the plain model is (``judged_as_plain``), the fit finds 0.72."""
+    effect = Effect("scale", "a scale of one of the model's terms",
+                    (Parameter("x", "-", start=1.2, low=0.2, high=4.0, off=1.0),), lambda variant, run, values: variant)
+
+    def evaluate(jobs: list, description: str = "") -> list:
+        out = []
+        for _, values, index, *_ in jobs:
+            x = values["x"]
+            g = gap(RUNS[index], {"std.wave": (x - 0.7) / 3.0, "std.low_frequency": -0.501 + 0.005 * (x - 1.0)})
+            gross = g.value[cell("std.low_frequency")] < -0.5
+            out.append((g if gross else Gap(g.run, g.value, g.low, g.high,
+                                            np.where(np.arange(len(CELLS)) == cell("std.low_frequency"),
+                                                     np.inf, g.tolerance)), None))
+        return out
+
+    plain = [g for g, _ in evaluate([(None, {"x": 1.0}, i) for i in range(3)])]
+    on_its_own, _, _ = method.fit_effect(effect, evaluate, [0, 1, 2], 4, before=plain)
+    assert on_its_own["x"] > 1.05, on_its_own
+    as_plain = method.judged_as_plain(evaluate, {(i, None): g for i, g in enumerate(plain)})
+    values, fitted, _ = method.fit_effect(effect, as_plain, [0, 1, 2], 4, before=plain)
+    assert abs(values["x"] - 0.72) < 0.02, values
+    assert all(np.isfinite(g.tolerance[cell("std.low_frequency")]) for g in fitted)
+
+
 # ---------------------------------------------------------------------- lag-type parameters
 def test_a_wave_probe_delay_is_found_by_its_grid():
     """A 1.0 s probe delay: the lag cell, read from a cross-correlation peak on a 0.25 s grid,

@@ -25,7 +25,7 @@ times too lively in a band the measurement hardly has is a gap.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.signal
@@ -126,6 +126,16 @@ class Gap:
              "tolerance": float(tol) if np.isfinite(tol) else None, "significant": bool(s), "flagged": bool(f)}
             for (dof, metric), v, lo, hi, tol, s, f in zip(settings.cells(), self.value, self.low, self.high,
                                                         self.tolerance, self.significant, self.flagged)]}
+
+
+def judged_as(gap: Gap, plain: Gap) -> Gap:
+    """A variant's gap judged in the cells the plain model's gap of the same run (``plain``)
+    is judged in. Whether a cell is judged depends on the model's record (a band's share of
+    its DOF's STD, a gross ratio, a lag's clear peak), so a variant judged on its own could
+    close a gap by stepping over a threshold: a heave low-frequency STD at 0.499x the
+    measured is judged as a gross gap, at 0.501x not at all. Judged as the plain model is,
+    the cells a fit sees are the same at every point of it, and only their values move."""
+    return replace(gap, tolerance=plain.tolerance)
 
 
 def consistent(gaps: list[Gap]) -> np.ndarray:

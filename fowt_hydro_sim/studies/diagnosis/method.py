@@ -12,7 +12,8 @@ effect is added, on the tuning runs and, without refitting, on blind runs.
    are baseline mismatches (``gap.consistent``); every flagged cell that no candidate at
    plausible values explains is set aside as the baseline's (``unexplained_cells``) and the
    candidates are fitted again on what remains, each charged for how far it moves the
-   cells set aside (``residuals``).
+   cells set aside (``residuals``). Every variant is judged in the cells the plain model is
+   judged in (``judged_as_plain``): a fit moves the cells' values, never the set of cells.
 3. The best-scoring candidate is named if it beats the plain model by ``MIN_EVIDENCE``,
    closes at least ``MIN_CLOSURE`` of the gap and raises no concern (``concerns``: values
    outside their plausible range or at the edge of the fit's bounds, a scale of one of the
@@ -73,6 +74,7 @@ from fowt_hydro_sim.studies.diagnosis.gap import (
     band_share,
     coherent_share,
     consistent,
+    judged_as,
     spectra,
 )
 from fowt_hydro_sim.studies.replay import PREROLL_S, MeasuredRun
@@ -153,6 +155,15 @@ def tracked(evaluate: Callable, runs: list[MeasuredRun], work: Work) -> Callable
         results = evaluate(jobs, description)
         work.done(len(jobs), sum(job_s(j, runs) for j in jobs))
         return results
+    return run
+
+
+def judged_as_plain(evaluate: Callable, plain: dict[tuple[int, float | None], Gap]) -> Callable:
+    """``evaluate`` whose gaps are judged in the cells the plain model's gap of the same run
+    and span is (``plain``, keyed by run index and ``job_duration_s``; ``gap.judged_as``)."""
+    def run(jobs: list[Job], description: str = "") -> list:
+        results = evaluate(jobs, description)
+        return [(judged_as(g, plain[job[2], job_duration_s(job)]), *rest) for job, (g, *rest) in zip(jobs, results)]
     return run
 
 
@@ -904,6 +915,8 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                                              "plain model, fit window")] if window else [])
     diagnosis.model_runs += len(window_before)
     diagnosis.window_before = window_before
+    evaluate = judged_as_plain(evaluate, {(i, None): g for i, g in enumerate(baseline)}
+                               | {(i, window): g for i, g in enumerate(window_before)})
 
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         flagged = np.any([g.flagged for g in diagnosis.tuning_before], axis=0) & (mask if mask is not None else True)
