@@ -33,6 +33,8 @@ HELD_OUT_6_DIGEST = "52834e7b75ffe50a0784d532c8d050a051fcc148505a4223f23517f12a4
 HELD_OUT_7_DIGEST = "3426a20c42057c5af5a8cfff2120d3b05aa94e333f4415626dbcb802eb3427a6"
 # The eighth: fixed before the seventh was run, before any rule change after its results.
 HELD_OUT_8_DIGEST = "55b4d3b3dfa123d02b149eafad9b1a84d3745b327d2cd4bfb3d7c61fe87ea5d3"
+# The ninth: fixed while the seventh was run, before any rule change after its results.
+HELD_OUT_9_DIGEST = "e014b09eaf23cdaf289850a166820bb1e8c23278524d3853e3629dfc795b761d"
 
 
 def _digest(entries: list[dict]) -> str:
@@ -58,7 +60,7 @@ def test_the_development_set_is_every_scenario_the_rules_were_looked_at_on():
                                          ("held_out_3", HELD_OUT_3_DIGEST), ("held_out_4", HELD_OUT_4_DIGEST),
                                          ("held_out_5", HELD_OUT_5_DIGEST), ("held_out_6", HELD_OUT_6_DIGEST),
                                          ("held_out_7", HELD_OUT_7_DIGEST),
-                                         ("held_out_8", HELD_OUT_8_DIGEST)])
+                                         ("held_out_8", HELD_OUT_8_DIGEST), ("held_out_9", HELD_OUT_9_DIGEST)])
 def test_each_held_out_set_is_fixed(key: str, digest: str):
     assert _digest(yaml.safe_load(benchmark.SPLIT_FILE.read_text())[key]) == digest
 
@@ -88,8 +90,8 @@ def test_the_sets_are_apart_in_seeds_names_and_strengths_and_alike_in_make_up():
 
 @pytest.mark.parametrize("args, message", [
     (["--set", "held-out"], "--set: the split file's sets (development, held-out, held-out-2, "
-                           "held-out-3, held-out-4, held-out-5, held-out-6, held-out-7, held-out-8) are the "
-                           "independent source's"),
+                           "held-out-3, held-out-4, held-out-5, held-out-6, held-out-7, held-out-8, held-out-9) are "
+                           "the independent source's"),
     (["--source", "independent", "--set", "held-out", "--scenarios", "null#99"], "--scenarios: not in the held-out"),
     (["--source", "independent", "--set", "development", "--seed", "5"], "--seed: the seeds of a --set are fixed"),
     (["--source", "independent", "--set", "development", "--nulls", "3"], "--nulls: the scenarios of a --set"),
