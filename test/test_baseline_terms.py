@@ -34,7 +34,7 @@ def drift_runs(platform, tmp_path_factory) -> tuple[benchmark.Scenario, Path, di
     drift at 1, each run through the benchmark's own task into a cache folder."""
     scenario = next(s for s in benchmark.split_scenarios("development") if s.name == "baseline_drift#2")
     cache = tmp_path_factory.mktemp("runs")
-    runs = {s.terms.drift_scale: benchmark._truth_task((s, CASE, True), platform, DURATION_S, "independent", cache)
+    runs = {s.terms.drift_scale: benchmark.scenario_run((s, CASE, True), platform, DURATION_S, "independent", cache)
             for s in (scenario, replace(scenario, baseline={}))}
     return scenario, cache, runs
 

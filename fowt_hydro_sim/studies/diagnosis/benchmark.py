@@ -398,8 +398,11 @@ def summary(scores: list[Score]) -> dict:
             "model_runs": sum(s.model_runs for s in scores), "wall_s": sum(s.wall_s for s in scores)}
 
 
-def _truth_task(job: tuple[Scenario, str, bool], platform: Platform, duration_s: float, source: str = "twin",
-                cache: Path | None = None) -> MeasuredRun:
+def scenario_run(job: tuple[Scenario, str, bool], platform: Platform, duration_s: float, source: str = "twin",
+                 cache: Path | None = None) -> MeasuredRun:
+    """One of a benchmark's measured runs (a ``truth_jobs`` job: scenario, load case or free
+    decay, with the effect or not): the twin's, or the independent basin's (cached in
+    ``cache``)."""
     scenario, case, with_effect = job
     if case.startswith(DECAY_CASE):
         dof = case.removeprefix(DECAY_CASE)
@@ -422,7 +425,7 @@ def run_benchmark(client, chosen: list[Scenario], platform: Platform, settings: 
     scenario ends; each diagnosis's report is written to ``reports/SCENARIO`` if given."""
     jobs = truth_jobs(chosen, settings.decays)
     made = dict(zip([(s.name, c, w) for s, c, w in jobs],
-                    map_with_progress(client, _truth_task, jobs, "measured runs", platform=platform,
+                    map_with_progress(client, scenario_run, jobs, "measured runs", platform=platform,
                                       duration_s=duration_s, source=source, cache=cache)))
     scores = []
     for scenario in chosen:
