@@ -65,8 +65,7 @@ def main() -> None:
     span = (window_s,) if window_s else ()
     plain = [g for g, _ in evaluate([(None, {}, i, False) for i in runs])]
     window_plain = [g for g, _ in evaluate([(None, {}, i, False, *span) for i in runs])]
-    evaluate = method.judged_as_plain(evaluate, {(i, None): g for i, g in enumerate(plain)}
-                                      | {(i, window_s): g for i, g in enumerate(window_plain)})
+    evaluate = method.judged_as_plain(evaluate, plain, window_s, window_plain)
     cells, names = np.flatnonzero(np.any([g.flagged for g in plain], axis=0)), settings.cells()
     print(f"{args.set} {scenario.name}, runs: {', '.join(r.name for r in tuning)}; the first {window_s:g} s")
     table("plain model", window_plain, plain, window_plain, cells, names)

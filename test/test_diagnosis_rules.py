@@ -198,7 +198,7 @@ def test_a_fit_cannot_close_a_cell_by_stepping_over_its_judging_threshold():
     plain = [g for g, _ in evaluate([(None, {"x": 1.0}, i) for i in range(3)])]
     on_its_own, _, _ = method.fit_effect(effect, evaluate, [0, 1, 2], 4, before=plain)
     assert on_its_own["x"] > 1.05, on_its_own
-    as_plain = method.judged_as_plain(evaluate, {(i, None): g for i, g in enumerate(plain)})
+    as_plain = method.judged_as_plain(evaluate, plain)
     values, fitted, _ = method.fit_effect(effect, as_plain, [0, 1, 2], 4, before=plain)
     assert abs(values["x"] - 0.72) < 0.02, values
     assert all(np.isfinite(g.tolerance[cell("std.low_frequency")]) for g in fitted)

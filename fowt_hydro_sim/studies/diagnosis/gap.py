@@ -185,16 +185,20 @@ def band_passed(signal: np.ndarray, band_hz: tuple[float, float], step_s: float 
     return np.fft.irfft(spectrum, len(signal))
 
 
-def block_lag_s(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S) -> float:
-    """Lag of ``model`` behind ``measured`` [s]: the cross-correlation's peak, refined by a
-    parabola, within +-MAX_LAG_S."""
+def cross_correlation(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """The cross-correlation of ``model`` with ``measured`` at lags within +-MAX_LAG_S, in
+    increasing order: (lags [samples], values)."""
     n = len(model)
     correlation = np.fft.irfft(np.fft.rfft(model, 2 * n) * np.conj(np.fft.rfft(measured, 2 * n)), 2 * n)
     reach = int(MAX_LAG_S / step_s)
-    lags = np.concatenate([np.arange(0, reach + 1), np.arange(-reach, 0)])
-    values = np.concatenate([correlation[:reach + 1], correlation[-reach:]])
-    order = np.argsort(lags)
-    lags, values = lags[order], values[order]
+    return np.arange(-reach, reach + 1), np.concatenate([correlation[-reach:], correlation[:reach + 1]])
+
+
+def block_lag_s(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S) -> float:
+    """Lag of ``model`` behind ``measured`` [s]: the cross-correlation's peak, refined by a
+    parabola, within +-MAX_LAG_S."""
+    lags, values = cross_correlation(model, measured, step_s)
     i = int(np.clip(np.argmax(values), 1, len(values) - 2))
     y0, y1, y2 = values[i - 1:i + 2]
     curvature = y0 - 2 * y1 + y2
@@ -206,13 +210,10 @@ def correlation_peaks(model: np.ndarray, measured: np.ndarray, step_s: float = G
                       ) -> tuple[np.ndarray, np.ndarray]:
     """The local maxima of the cross-correlation of ``model`` with ``measured`` within
     +-MAX_LAG_S: (lags [s], heights), the highest first."""
-    n = len(model)
-    correlation = np.fft.irfft(np.fft.rfft(model, 2 * n) * np.conj(np.fft.rfft(measured, 2 * n)), 2 * n)
-    reach = int(MAX_LAG_S / step_s)
-    values = np.concatenate([correlation[-reach:], correlation[:reach + 1]])
+    lags, values = cross_correlation(model, measured, step_s)
     peaks, _ = scipy.signal.find_peaks(values)
     order = peaks[np.argsort(values[peaks])[::-1]]
-    return (order - reach) * step_s, values[order]
+    return lags[order] * step_s, values[order]
 
 
 def lag_reads_delay(model: np.ndarray, measured: np.ndarray, step_s: float = GRID_STEP_S) -> bool:

@@ -158,12 +158,16 @@ def tracked(evaluate: Callable, runs: list[MeasuredRun], work: Work) -> Callable
     return run
 
 
-def judged_as_plain(evaluate: Callable, plain: dict[tuple[int, float | None], Gap]) -> Callable:
+def judged_as_plain(evaluate: Callable, plain: list[Gap], window_s: float | None = None,
+                    plain_window: list[Gap] | None = None) -> Callable:
     """``evaluate`` whose gaps are judged in the cells the plain model's gap of the same run
-    and span is (``plain``, keyed by run index and ``job_duration_s``; ``gap.judged_as``)."""
+    and span is (``gap.judged_as``): ``plain`` over whole records, ``plain_window`` over
+    their first ``window_s``."""
+    by_span = {(i, None): g for i, g in enumerate(plain)} | {(i, window_s): g for i, g in enumerate(plain_window or [])}
+
     def run(jobs: list[Job], description: str = "") -> list:
         results = evaluate(jobs, description)
-        return [(judged_as(g, plain[job[2], job_duration_s(job)]), *rest) for job, (g, *rest) in zip(jobs, results)]
+        return [(judged_as(g, by_span[job[2], job_duration_s(job)]), *rest) for job, (g, *rest) in zip(jobs, results)]
     return run
 
 
@@ -915,8 +919,7 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
                                              "plain model, fit window")] if window else [])
     diagnosis.model_runs += len(window_before)
     diagnosis.window_before = window_before
-    evaluate = judged_as_plain(evaluate, {(i, None): g for i, g in enumerate(baseline)}
-                               | {(i, window): g for i, g in enumerate(window_before)})
+    evaluate = judged_as_plain(evaluate, baseline, window, window_before)
 
     def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
         flagged = np.any([g.flagged for g in diagnosis.tuning_before], axis=0) & (mask if mask is not None else True)
