@@ -197,6 +197,10 @@ def test_diagnose_benchmark_independent_small(tmp_path):
     assert ("heave", "std.wave") in flagged and ("surge", "offset") not in flagged, flagged
     aside = {(m["dof"], m["metric"]) for m in report["baseline_mismatches"]} | {tuple(c) for c in report["differences"]}
     assert ("heave", "std.wave") in aside and report["undriven"] == [], report["reason"]
+    summary = data["summary"]  # the scores' figures: one injected scenario named, one null without an alarm
+    assert (summary["injected_detected"], summary["top1_accuracy"], summary["footprint_flagged"]) == (1, 1.0, 1.0)
+    assert (summary["null"], summary["false_alarm_rate"]) == (1, 0.0), summary
+    assert summary["median_blind_closure"] == drift["blind_closure"], summary
     # both scenarios' runs in waves and free decays (surge, pitch), the drift's waves without it
     assert len(list((out / "runs").glob("*.npz"))) == 2 * (5 + 2) + 3
     result = fowt_sim("diagnose-benchmark", "--source", "independent", "--inject", "gremlins", "-o", str(out),
