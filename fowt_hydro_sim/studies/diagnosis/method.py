@@ -878,192 +878,246 @@ def diagnose(tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Call
         raise InputError(f"decay {blind_decays[0]}: free decays are tuning runs, not blind ones")
     check_runs(tuning + blind, settings)
     check_window(fit_window_s, settings)
-    effects = effects or CATALOGUE
-    n_tuning = len(tuning)
-    runs = tuning + blind
-    window = fit_window(tuning, fit_window_s)
-    progress = progress if progress is not None else Work()
-    evaluate = tracked(evaluate, runs, progress)
-    whole_s = [model_s(r) for r in runs]
-    fit_run_s = [model_s(r, window) for r in tuning]
-    waves = wave_runs(tuning)
-
-    def expect_fits(sign: int = 1) -> None:
-        """Every candidate's most runs: its fit's points, then its whole records."""
-        budget = sum(fit_budget(e, max_evaluations) for e in effects.values())
-        progress.expect(sign * (budget * n_tuning + (len(effects) * n_tuning if window else 0)),
-                        sign * (budget * sum(fit_run_s) + (len(effects) * sum(whole_s[:n_tuning]) if window else 0.0)))
-
-    # the plain model, the fit window's plain model, the fits, and the chosen effect on every run
-    progress.expect(2 * len(runs) + (n_tuning if window else 0), 2 * sum(whole_s) + (sum(fit_run_s) if window else 0.0))
-    expect_fits()
-    first = evaluate([(None, {}, i, i in waves) for i in range(len(runs))], "plain model")
-    baseline = [g for g, _ in first]
-    measured = [measured_spectra(tuning[i], settings) for i in waves]
-    model_spectra = [first[i][1] for i in waves]
-    lf = settings.bands_hz.get("low_frequency", min(settings.bands_hz.values()))
-    deficit = coherence_deficit(measured, model_spectra, settings.dofs[0], lf)
-    diagnosis = Diagnosis(settings, [r.name for r in tuning], [r.name for r in blind], baseline, [],
-                          "no significant gap", None, "", baseline_score=score(baseline[:n_tuning], 0),
-                          coherence_deficit=deficit, model_runs=len(runs))
-    diagnosis.spectra = {tuning[i].name: {"measured": m, "model": s} for i, m, s in zip(waves, measured, model_spectra)}
-    diagnosis.mismatches = baseline_mismatches(tuning, diagnosis.tuning_before, settings)
+    steps = _Diagnosing(tuning, blind, evaluate, settings, effects or CATALOGUE, max_evaluations,
+                       fit_window(tuning, fit_window_s), progress if progress is not None else Work(), platform)
+    diagnosis = steps.plain()
     if not any(g.flagged.any() for g in diagnosis.tuning_before):
-        diagnosis.reason = "no cell of the tuning runs is both significant and beyond its tolerance"
-        progress.expect(-len(runs) - (n_tuning if window else 0), -sum(whole_s) - (sum(fit_run_s) if window else 0.0))
-        expect_fits(-1)
-        progress.done(0, 0.0, final=True)
+        return steps.nothing_flagged()
+    steps.plain_in_window()
+    candidates = steps.fit_all(None)
+    # flagged cells no plausible candidate explains are the baseline's: set them aside and
+    # test the effects on what remains
+    unexplained = unexplained_cells(diagnosis.tuning_before, candidates, steps.effects, diagnosis.window_before)
+    if unexplained.any():
+        candidates = steps.fit_remaining(~unexplained, candidates)
+    diagnosis.candidates = candidates
+    return steps.chosen(candidates)
+
+
+class _Diagnosing:
+    """A diagnosis under way, step by step (``diagnose`` composes them): its runs, its model
+    runs (``evaluate``, counted in ``progress``, each phase's most expected before it
+    starts), the fit window (None: whole records) and the plain model's gaps."""
+
+    def __init__(self, tuning: list[MeasuredRun], blind: list[MeasuredRun], evaluate: Callable,
+                 settings: GapSettings, effects: dict[str, Effect], max_evaluations: int, window: float | None,
+                 progress: Work, platform: Platform | None) -> None:
+        self.tuning, self.blind, self.runs = tuning, blind, tuning + blind
+        self.settings, self.effects, self.max_evaluations = settings, effects, max_evaluations
+        self.window, self.progress, self.platform = window, progress, platform
+        self.evaluate = tracked(evaluate, self.runs, progress)
+        self.n_tuning = len(tuning)
+        self.waves = wave_runs(tuning)
+        self.whole_s = [model_s(r) for r in self.runs]
+        self.fit_run_s = [model_s(r, window) for r in tuning]
+        self.diagnosis: Diagnosis  # (``plain``)
+        self.measured: list[dict] = []  # the wave runs' spectra, measured and the plain model's (``plain``)
+        self.model_spectra: list[dict] = []
+
+    def expect_fits(self, sign: int = 1) -> None:
+        """Every candidate's most runs: its fit's points, then its whole records (``sign`` -1:
+        given back)."""
+        n, window = self.n_tuning, self.window
+        budget = sum(fit_budget(e, self.max_evaluations) for e in self.effects.values())
+        self.progress.expect(sign * (budget * n + (len(self.effects) * n if window else 0)),
+                             sign * (budget * sum(self.fit_run_s)
+                                     + (len(self.effects) * sum(self.whole_s[:n]) if window else 0.0)))
+
+    def plain(self) -> Diagnosis:
+        """The plain model on every run: the diagnosis's gaps before any effect, its spectra,
+        the coherence deficit and the baseline mismatches. The runs expected: the plain
+        model (and its fit window), the fits, and the chosen effect on every run."""
+        runs, n, window = self.runs, self.n_tuning, self.window
+        self.progress.expect(2 * len(runs) + (n if window else 0),
+                             2 * sum(self.whole_s) + (sum(self.fit_run_s) if window else 0.0))
+        self.expect_fits()
+        first = self.evaluate([(None, {}, i, i in self.waves) for i in range(len(runs))], "plain model")
+        baseline = [g for g, _ in first]
+        self.measured = [measured_spectra(self.tuning[i], self.settings) for i in self.waves]
+        self.model_spectra = [first[i][1] for i in self.waves]
+        lf = self.settings.bands_hz.get("low_frequency", min(self.settings.bands_hz.values()))
+        deficit = coherence_deficit(self.measured, self.model_spectra, self.settings.dofs[0], lf)
+        diagnosis = Diagnosis(self.settings, [r.name for r in self.tuning], [r.name for r in self.blind], baseline,
+                              [], "no significant gap", None, "", baseline_score=score(baseline[:n], 0),
+                              coherence_deficit=deficit, model_runs=len(runs))
+        diagnosis.spectra = {self.tuning[i].name: {"measured": m, "model": s}
+                             for i, m, s in zip(self.waves, self.measured, self.model_spectra)}
+        diagnosis.mismatches = baseline_mismatches(self.tuning, diagnosis.tuning_before, self.settings)
+        self.diagnosis = diagnosis
         return diagnosis
 
-    window_before = ([g for g, _ in evaluate([(None, {}, i, False, window) for i in range(n_tuning)],
-                                             "plain model, fit window")] if window else [])
-    diagnosis.model_runs += len(window_before)
-    diagnosis.window_before = window_before
-    evaluate = judged_as_plain(evaluate, baseline, window, window_before)
+    def nothing_flagged(self) -> Diagnosis:
+        """The diagnosis of runs none of whose cells is flagged: no fit; the runs expected for
+        them given back."""
+        n, window = self.n_tuning, self.window
+        self.diagnosis.reason = "no cell of the tuning runs is both significant and beyond its tolerance"
+        self.progress.expect(-len(self.runs) - (n if window else 0),
+                             -sum(self.whole_s) - (sum(self.fit_run_s) if window else 0.0))
+        self.expect_fits(-1)
+        self.progress.done(0, 0.0, final=True)
+        return self.diagnosis
 
-    def fit_all(mask: np.ndarray | None) -> list[CandidateFit]:
-        flagged = np.any([g.flagged for g in diagnosis.tuning_before], axis=0) & (mask if mask is not None else True)
+    def plain_in_window(self) -> None:
+        """The plain model over the fit window (if any); from here on every model run is
+        judged in the cells the plain model of the same run and span is (``judged_as_plain``)."""
+        window, diagnosis = self.window, self.diagnosis
+        if window:
+            jobs = [(None, {}, i, False, window) for i in range(self.n_tuning)]
+            diagnosis.window_before = [g for g, _ in self.evaluate(jobs, "plain model, fit window")]
+        diagnosis.model_runs += len(diagnosis.window_before)
+        self.evaluate = judged_as_plain(self.evaluate, diagnosis.baseline, window, diagnosis.window_before)
 
-        def fit(effect: Effect) -> CandidateFit:
-            def fitted_in_window(held: dict[str, float] | None = None, start: dict[str, float] | None = None,
-                                 description: str = effect.name) -> tuple[dict[str, float], list[Gap], int]:
-                """``fit_effect`` on the fit window, its model runs expected and counted."""
-                budget = fit_budget(effect, max_evaluations, len(held or {}))
-                restarts_expected = []
+    def fit_remaining(self, remaining: np.ndarray, first_round: list[CandidateFit]) -> list[CandidateFit]:
+        """The candidates fitted again to the ``remaining`` flagged cells, the others set
+        aside as the baseline's; with no flagged cell left, the first round's candidates,
+        none of them fitting."""
+        diagnosis = self.diagnosis
+        diagnosis.fit_cells, diagnosis.first_round = remaining, first_round
+        diagnosis.undriven = undriven_cells(~remaining, [diagnosis.tuning_before[i] for i in self.waves],
+                                            self.measured, self.model_spectra, self.settings)
+        diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining, diagnosis.tuning_before)
+        if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
+            self.expect_fits()
+            return self.fit_all(remaining)
+        for c in first_round:
+            c.fits = False
+        return first_round
 
-                def restarted() -> None:  # a restart may take a fit's budget again
-                    restarts_expected.append(budget)
-                    progress.expect(budget * n_tuning, budget * sum(fit_run_s))
-
-                values, gaps, count = fit_effect(effect, evaluate, list(range(n_tuning)), max_evaluations,
-                                                 description, mask, window,
-                                                 window_before if window else diagnosis.tuning_before, restarted,
-                                                 held, start)
-                expected = budget + sum(restarts_expected)
-                progress.expect(count - expected * n_tuning, (count / n_tuning - expected) * sum(fit_run_s))
-                return values, gaps, count
-
-            values, gaps, count = fitted_in_window()
-            p = len(effect.parameters)
-            screened = bool(window) and window_closure(diagnosis.tuning_before, window_before, gaps,
-                                                       mask) < SCREEN_CLOSURE
-            if screened:  # its figures stay the fit window's
-                progress.expect(-n_tuning, -sum(whole_s[:n_tuning]))
-            elif window:
-                results = evaluate([(effect.name, values, i, False) for i in range(n_tuning)],
-                                   f"{effect.name}: whole records")
-                gaps, count = [g for g, _ in results], count + n_tuning
-            span, plain = (window, window_before) if screened else (None, diagnosis.tuning_before)
-
-            def closure_of(g: list[Gap]) -> float:
-                return (window_closure(diagnosis.tuning_before, window_before, g, mask) if screened
-                        else closure(diagnosis.tuning_before, g, mask))
-
-            fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, plain), closure_of(gaps), count,
-                                  window_s=span)
-
-            def refit_within(held: dict[str, float], start: dict[str, float]) -> tuple[dict[str, float], list[Gap],
-                                                                                        int]:
-                """The fit again with ``held`` fixed (``Refit``), over the candidate's span."""
-                budget = fit_budget(effect, max_evaluations, len(held))
-                progress.expect(budget * n_tuning, budget * sum(fit_run_s))
-                refitted, gaps, count = fitted_in_window(held, start, f"{effect.name}: within its plausible range")
-                if window and span is None:
-                    gaps, count = replayed(effect, refitted, None), count + n_tuning
-                return refitted, gaps, count
-
-            explained = explained_cells(fitted, flagged, diagnosis.tuning_before, window_before)
-            fitted = plausible_refit(fitted, effect, lambda v: replayed(effect, v, span), closure_of,
-                                     lambda g: score(g, p, mask, plain),
-                                     kept_share(plain, fitted.gaps, explained, closure_of), refit_within)
-            return replace(fitted, size_concern=share_concern(effect, fitted.values, [tuning[i] for i in waves],
-                                                              platform))
-
-        def replayed(effect: Effect, values: dict[str, float], duration_s: float | None) -> list[Gap]:
-            """The tuning runs at ``values`` (their first ``duration_s``; None: whole), counted."""
-            progress.expect(n_tuning, sum(model_s(r, duration_s) for r in tuning))
-            jobs = [(effect.name, values, i, False) + ((duration_s,) if duration_s else ()) for i in range(n_tuning)]
-            return [g for g, _ in evaluate(jobs, f"{effect.name}: nearest plausible values")]
-
-        pool = ThreadPoolExecutor(max_workers=len(effects))
+    def fit_all(self, mask: np.ndarray | None) -> list[CandidateFit]:
+        """Every candidate fitted to the flagged cells of ``mask`` (None: all), each in a
+        thread of its own, judged; plausible fits ranked first, screened ones last."""
+        before = self.diagnosis.tuning_before
+        flagged = np.any([g.flagged for g in before], axis=0) & (mask if mask is not None else True)
+        pool = ThreadPoolExecutor(max_workers=len(self.effects))
         try:
-            fitted = list(pool.map(fit, effects.values()))
+            fitted = list(pool.map(lambda effect: self.fit(effect, mask, flagged), self.effects.values()))
         finally:  # interrupted (Ctrl-C), the fits under way are not waited for: their runs end with the cluster
             pool.shutdown(wait=False, cancel_futures=True)
-        base = score(diagnosis.tuning_before, 0, mask, diagnosis.tuning_before)
+        base = score(before, 0, mask, before)
         for c in fitted:
-            judge(c, effects[c.effect], base, diagnosis.tuning_before, settings, mask)
-        diagnosis.model_runs += sum(c.model_runs for c in fitted)
-        return sorted(fitted, key=rank)  # plausible fits rank first, screened ones last
+            judge(c, self.effects[c.effect], base, before, self.settings, mask)
+        self.diagnosis.model_runs += sum(c.model_runs for c in fitted)
+        return sorted(fitted, key=rank)
 
-    def confirmed(diagnosis: Diagnosis) -> Diagnosis:
+    def fit(self, effect: Effect, mask: np.ndarray | None, flagged: np.ndarray) -> CandidateFit:
+        """One candidate fitted in the fit window; replayed over the whole records unless it
+        is screened out there (it then keeps the window's figures); moved into its plausible
+        range if a plausible point explains nearly as well (``plausible_refit``)."""
+        n, window, diagnosis = self.n_tuning, self.window, self.diagnosis
+        before, window_before = diagnosis.tuning_before, diagnosis.window_before
+        values, gaps, count = self.fitted_in_window(effect, mask)
+        screened = bool(window) and window_closure(before, window_before, gaps, mask) < SCREEN_CLOSURE
+        if screened:  # its figures stay the fit window's
+            self.progress.expect(-n, -sum(self.whole_s[:n]))
+        elif window:
+            results = self.evaluate([(effect.name, values, i, False) for i in range(n)],
+                                    f"{effect.name}: whole records")
+            gaps, count = [g for g, _ in results], count + n
+        span, plain = (window, window_before) if screened else (None, before)
+
+        def closure_of(g: list[Gap]) -> float:
+            return window_closure(before, window_before, g, mask) if screened else closure(before, g, mask)
+
+        def refit_within(held: dict[str, float], start: dict[str, float]) -> tuple[dict[str, float], list[Gap], int]:
+            """The fit again with ``held`` fixed (``Refit``), over the candidate's span."""
+            budget = fit_budget(effect, self.max_evaluations, len(held))
+            self.progress.expect(budget * n, budget * sum(self.fit_run_s))
+            refitted, gaps, count = self.fitted_in_window(effect, mask, held, start,
+                                                          f"{effect.name}: within its plausible range")
+            if window and span is None:
+                gaps, count = self.replayed(effect, refitted, None), count + n
+            return refitted, gaps, count
+
+        p = len(effect.parameters)
+        fitted = CandidateFit(effect.name, values, gaps, score(gaps, p, mask, plain), closure_of(gaps), count,
+                              window_s=span)
+        explained = explained_cells(fitted, flagged, before, window_before)
+        fitted = plausible_refit(fitted, effect, lambda v: self.replayed(effect, v, span), closure_of,
+                                 lambda g: score(g, p, mask, plain),
+                                 kept_share(plain, fitted.gaps, explained, closure_of), refit_within)
+        return replace(fitted, size_concern=share_concern(effect, fitted.values, [self.tuning[i] for i in self.waves],
+                                                          self.platform))
+
+    def fitted_in_window(self, effect: Effect, mask: np.ndarray | None, held: dict[str, float] | None = None,
+                         start: dict[str, float] | None = None, description: str | None = None
+                         ) -> tuple[dict[str, float], list[Gap], int]:
+        """``fit_effect`` on the fit window, its model runs expected and counted."""
+        n, budget = self.n_tuning, fit_budget(effect, self.max_evaluations, len(held or {}))
+        restarts_expected = []
+
+        def restarted() -> None:  # a restart may take a fit's budget again
+            restarts_expected.append(budget)
+            self.progress.expect(budget * n, budget * sum(self.fit_run_s))
+
+        plain = self.diagnosis.window_before if self.window else self.diagnosis.tuning_before
+        values, gaps, count = fit_effect(effect, self.evaluate, list(range(n)), self.max_evaluations,
+                                         description or effect.name, mask, self.window, plain, restarted, held, start)
+        expected = budget + sum(restarts_expected)
+        self.progress.expect(count - expected * n, (count / n - expected) * sum(self.fit_run_s))
+        return values, gaps, count
+
+    def replayed(self, effect: Effect, values: dict[str, float], duration_s: float | None) -> list[Gap]:
+        """The tuning runs at ``values`` (their first ``duration_s``; None: whole), counted."""
+        self.progress.expect(self.n_tuning, sum(model_s(r, duration_s) for r in self.tuning))
+        jobs = [(effect.name, values, i, False) + ((duration_s,) if duration_s else ()) for i in range(self.n_tuning)]
+        return [g for g, _ in self.evaluate(jobs, f"{effect.name}: nearest plausible values")]
+
+    def chosen(self, candidates: list[CandidateFit]) -> Diagnosis:
+        """The verdict: the best fitting candidate (``_choose``) replayed on every run, kept if
+        its blind closure is at least BLIND_SHARE of its tuning closure, else the next one;
+        none left: unexplained."""
+        diagnosis, runs, n = self.diagnosis, self.runs, self.n_tuning
+        first_choice = True
+        while True:
+            fitting = [c for c in candidates if c.fits]
+            if not fitting:
+                best = candidates[0]
+                diagnosis.verdict, diagnosis.chosen = "unexplained", None
+                diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence and "
+                                    f"plausible values; the nearest, {best.effect}, closes {best.closure:.0%}"
+                                    + (f" in the first {best.window_s:g} s" if best.window_s else "")
+                                    + (f" ({'; '.join(best.concerns)})" if best.concerns else ""))
+                if first_choice:
+                    self.progress.expect(-len(runs), -sum(self.whole_s))
+                return self.confirmed(with_mismatches(diagnosis, None, self.effects))
+            chosen, reason = _choose(fitting, self.effects, diagnosis.coherence_deficit, self.settings)
+            diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
+            jobs = [(chosen.effect, chosen.values, i, i in self.waves) for i in range(len(runs))]
+            if not first_choice:
+                self.progress.expect(len(runs), sum(self.whole_s))
+            first_choice = False
+            after = self.evaluate(jobs, f"{chosen.effect}: all runs")
+            diagnosis.model_runs += len(jobs)
+            diagnosis.blind_after = [g for g, _ in after[n:]]
+            for i in self.waves:
+                diagnosis.spectra[self.tuning[i].name]["model + effect"] = after[i][1]
+            if not self.blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
+                return self.confirmed(with_mismatches(diagnosis, chosen, self.effects))
+            chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} "
+                                   f"of its tuning closure, {chosen.closure:.0%}")
+            chosen.fits = False
+            diagnosis.blind_after = []
+            candidates.sort(key=rank)
+
+    def confirmed(self, diagnosis: Diagnosis) -> Diagnosis:
         """The diagnosis, its term reading (if any) replayed on the blind runs and kept only
         if it closes there at least BLIND_SHARE of what it closes on the tuning runs, both
         over whole records: a reading screened out in the fit window is replayed on the
         tuning runs' whole records too (``whole_records``)."""
-        reading = diagnosis.reading
-        if reading is not None and blind:
-            replayed = range(len(runs)) if reading.window_s is not None else range(n_tuning, len(runs))
-            progress.expect(len(replayed), sum(whole_s[i] for i in replayed))
-            after = [g for g, _ in evaluate([(reading.effect, reading.values, i, False) for i in replayed],
-                                            f"{reading.effect}: whole records")]
+        reading, n = diagnosis.reading, self.n_tuning
+        if reading is not None and self.blind:
+            replayed = range(len(self.runs)) if reading.window_s is not None else range(n, len(self.runs))
+            self.progress.expect(len(replayed), sum(self.whole_s[i] for i in replayed))
+            after = [g for g, _ in self.evaluate([(reading.effect, reading.values, i, False) for i in replayed],
+                                                 f"{reading.effect}: whole records")]
             diagnosis.model_runs += len(after)
             if reading.window_s is not None:
-                diagnosis.reading = whole_records(reading, after[:n_tuning], diagnosis.tuning_before,
-                                                  len(effects[reading.effect].parameters))
-                after = after[n_tuning:]
+                diagnosis.reading = whole_records(reading, after[:n], diagnosis.tuning_before,
+                                                  len(self.effects[reading.effect].parameters))
+                after = after[n:]
             confirm_reading(diagnosis, after)
-        progress.done(0, 0.0, final=True)
-        return state_reading(diagnosis, effects)
-
-    candidates = fit_all(None)
-    # flagged cells no plausible candidate explains are the baseline's: set them aside and
-    # test the effects on what remains
-    unexplained = unexplained_cells(diagnosis.tuning_before, candidates, effects, window_before)
-    if unexplained.any():
-        remaining = ~unexplained
-        diagnosis.fit_cells, diagnosis.first_round = remaining, candidates
-        diagnosis.undriven = undriven_cells(unexplained, [diagnosis.tuning_before[i] for i in waves], measured,
-                                            model_spectra, settings)
-        diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining, diagnosis.tuning_before)
-        if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
-            expect_fits()
-            candidates = fit_all(remaining)
-        else:
-            for c in candidates:
-                c.fits = False
-    diagnosis.candidates = candidates
-    first_choice = True
-    while True:
-        fitting = [c for c in candidates if c.fits]
-        if not fitting:
-            best = candidates[0]
-            diagnosis.verdict, diagnosis.chosen = "unexplained", None
-            diagnosis.reason = (f"no candidate closes {MIN_CLOSURE:.0%} of the gap with strong evidence and plausible "
-                                f"values; the nearest, {best.effect}, closes {best.closure:.0%}"
-                                + (f" in the first {best.window_s:g} s" if best.window_s else "")
-                                + (f" ({'; '.join(best.concerns)})" if best.concerns else ""))
-            if first_choice:
-                progress.expect(-len(runs), -sum(whole_s))
-            return confirmed(with_mismatches(diagnosis, None, effects))
-        chosen, reason = _choose(fitting, effects, deficit, settings)
-        diagnosis.verdict, diagnosis.chosen, diagnosis.reason = "explained", chosen.effect, reason
-        jobs = [(chosen.effect, chosen.values, i, i in waves) for i in range(len(runs))]
-        if not first_choice:
-            progress.expect(len(runs), sum(whole_s))
-        first_choice = False
-        after = evaluate(jobs, f"{chosen.effect}: all runs")
-        diagnosis.model_runs += len(jobs)
-        diagnosis.blind_after = [g for g, _ in after[n_tuning:]]
-        for i in waves:
-            diagnosis.spectra[tuning[i].name]["model + effect"] = after[i][1]
-        if not blind or diagnosis.blind_closure >= BLIND_SHARE * chosen.closure:
-            return confirmed(with_mismatches(diagnosis, chosen, effects))
-        chosen.concerns.append(f"its blind closure, {diagnosis.blind_closure:.0%}, is below {BLIND_SHARE:.0%} of its "
-                               f"tuning closure, {chosen.closure:.0%}")
-        chosen.fits = False
-        diagnosis.blind_after = []
-        candidates.sort(key=rank)
+        self.progress.done(0, 0.0, final=True)
+        return state_reading(diagnosis, self.effects)
 
 
 def judge(candidate: CandidateFit, effect: Effect, base_score: float, before: list[Gap], settings: GapSettings,
