@@ -911,8 +911,6 @@ class _Diagnosing:
         self.whole_s = [model_s(r) for r in self.runs]
         self.fit_run_s = [model_s(r, window) for r in tuning]
         self.diagnosis: Diagnosis  # (``plain``)
-        self.measured: list[dict] = []  # the wave runs' spectra, measured and the plain model's (``plain``)
-        self.model_spectra: list[dict] = []
 
     def expect_fits(self, sign: int = 1) -> None:
         """Every candidate's most runs: its fit's points, then its whole records (``sign`` -1:
@@ -933,15 +931,15 @@ class _Diagnosing:
         self.expect_fits()
         first = self.evaluate([(None, {}, i, i in self.waves) for i in range(len(runs))], "plain model")
         baseline = [g for g, _ in first]
-        self.measured = [measured_spectra(self.tuning[i], self.settings) for i in self.waves]
-        self.model_spectra = [first[i][1] for i in self.waves]
+        measured = [measured_spectra(self.tuning[i], self.settings) for i in self.waves]
+        model_spectra = [first[i][1] for i in self.waves]
         lf = self.settings.bands_hz.get("low_frequency", min(self.settings.bands_hz.values()))
-        deficit = coherence_deficit(self.measured, self.model_spectra, self.settings.dofs[0], lf)
+        deficit = coherence_deficit(measured, model_spectra, self.settings.dofs[0], lf)
         diagnosis = Diagnosis(self.settings, [r.name for r in self.tuning], [r.name for r in self.blind], baseline,
                               [], "no significant gap", None, "", baseline_score=score(baseline[:n], 0),
                               coherence_deficit=deficit, model_runs=len(runs))
         diagnosis.spectra = {self.tuning[i].name: {"measured": m, "model": s}
-                             for i, m, s in zip(self.waves, self.measured, self.model_spectra)}
+                             for i, m, s in zip(self.waves, measured, model_spectra)}
         diagnosis.mismatches = baseline_mismatches(self.tuning, diagnosis.tuning_before, self.settings)
         self.diagnosis = diagnosis
         return diagnosis
@@ -973,8 +971,10 @@ class _Diagnosing:
         none of them fitting."""
         diagnosis = self.diagnosis
         diagnosis.fit_cells, diagnosis.first_round = remaining, first_round
+        spectra = [diagnosis.spectra[self.tuning[i].name] for i in self.waves]
         diagnosis.undriven = undriven_cells(~remaining, [diagnosis.tuning_before[i] for i in self.waves],
-                                            self.measured, self.model_spectra, self.settings)
+                                            [s["measured"] for s in spectra], [s["model"] for s in spectra],
+                                            self.settings)
         diagnosis.baseline_score = score(diagnosis.tuning_before, 0, remaining, diagnosis.tuning_before)
         if any((g.flagged & remaining).any() for g in diagnosis.tuning_before):
             self.expect_fits()
