@@ -348,6 +348,26 @@ def test_a_screened_reading_is_judged_on_the_blind_runs_against_its_whole_record
         assert ("named: the model's slow drift is 1.6 times too weak" in d.reason) is kept, d.reason
 
 
+def test_a_screened_reading_that_closes_nothing_over_the_whole_records_is_not_named():
+    """A reading screened out in the fit window closes its cell there, but over the tuning
+    runs' whole records it leaves the cell's gap larger (closure -3 %): it explains nothing
+    and is not named, though the blind runs (closure +5 %, above half of -3 %) would pass it."""
+    before = gaps({"std.low_frequency": -0.4})
+    screened = CandidateFit("linear_damping", {"surge_damping_ratio": 0.0, "heave_damping_ratio": 0.02,
+                                               "pitch_damping_ratio": 0.0},
+                            gaps({"std.low_frequency": -0.02}), score=-50.0, closure=0.1, model_runs=12,
+                            window_s=1800.0)
+    d = diagnosis(before, [screened], None)
+    d.window_before, d.baseline, d.blind = before, before + [gap("lc6.1", {"std.low_frequency": -0.4})], ["lc6.1"]
+    d = method.with_mismatches(d, None, CATALOGUE)
+    assert d.reading is screened, d.reason
+    d.reading = method.whole_records(screened, gaps({"std.low_frequency": -0.406}), before, 3)
+    assert abs(d.reading_closure[0] + 0.03) < 1e-3
+    method.state_reading(method.confirm_reading(d, [gap("lc6.1", {"std.low_frequency": -0.39})]), CATALOGUE)
+    assert d.finding is None and d.finding_dict() is None, d.reason
+    assert "linear_damping closes -3% of its cells' gap on the tuning runs' whole records: not named" in d.reason
+
+
 def test_a_catalogue_drift_small_beside_the_models_own_is_no_finding():
     """``slow_drift`` adds a drift of its own form to the model's: at a size under 20 % of
     the model's own mean drift on the tuning seas (the held-out nulls fitted about 2,000

@@ -1303,13 +1303,20 @@ def whole_records(candidate: CandidateFit, gaps: list[Gap], before: list[Gap], n
 
 def confirm_reading(diagnosis: Diagnosis, blind_after: list[Gap]) -> Diagnosis:
     """Keep the term reading (``Diagnosis.reading``) with its blind runs' gaps at its values
-    (not refitted) if it closes there at least BLIND_SHARE of what it closes of its cells on
-    the tuning runs, as a named effect must; otherwise it is not named, and the verdict says why."""
+    (not refitted) if it closes some of its cells' gap on the tuning runs (over their whole
+    records: a reading screened out in the fit window was read off the window) and closes on
+    the blind runs at least BLIND_SHARE of that, as a named effect must; otherwise it is not
+    named, and the verdict says why."""
     diagnosis.reading_blind_after = blind_after
     tuning_share, blind_share = diagnosis.reading_closure
-    if blind_share < BLIND_SHARE * tuning_share:
-        diagnosis.reason += (f"; {diagnosis.reading.effect} closes {blind_share:.0%} of its cells' gap on the blind "
-                             f"runs, below {BLIND_SHARE:.0%} of its {tuning_share:.0%} on the tuning runs: not named")
+    effect, why = diagnosis.reading.effect, None
+    if not tuning_share > 0.0:
+        why = f"{effect} closes {tuning_share:.0%} of its cells' gap on the tuning runs' whole records"
+    elif blind_share < BLIND_SHARE * tuning_share:
+        why = (f"{effect} closes {blind_share:.0%} of its cells' gap on the blind runs, below {BLIND_SHARE:.0%} of "
+               f"its {tuning_share:.0%} on the tuning runs")
+    if why:
+        diagnosis.reason += f"; {why}: not named"
         diagnosis.reading, diagnosis.reading_cells, diagnosis.reading_blind_after = None, None, []
     return diagnosis
 
