@@ -4,7 +4,8 @@ From the independent basin's runs of one scenario of a split set (made once, kep
 ``OUTPUT/runs``), the diagnosis's first round on its tuning runs (wave runs and free decays)
 in the fit window: the plain model's residuals (gap / tolerance) in every cell flagged on
 the whole records, per run; then each effect at the values given (``--at``) and each effect's
-first fit (``--fit``, ``method.fit_effect`` as the diagnosis runs it), with the least-squares
+first fit (``--fit``, ``method.fit_effect`` as the diagnosis runs it; ``--cells``: fitted to
+those cells only, as a second round is to the cells not set aside), with the least-squares
 cost and the window closure. Every variant is judged in the plain model's cells, as in the
 diagnosis. One process, no cluster; not timed.
 
@@ -47,6 +48,8 @@ def main() -> None:
     parser.add_argument("scenario")
     parser.add_argument("--at", nargs="*", type=point, default=[], metavar="EFFECT:NAME=VALUE,...")
     parser.add_argument("--fit", nargs="*", default=[], choices=sorted(CATALOGUE), metavar="EFFECT")
+    parser.add_argument("--cells", nargs="*", default=None, metavar="DOF:METRIC",
+                        help="fit to these cells only (default every cell; the others charge a fit for moving them)")
     parser.add_argument("--duration", type=float, default=3600.0, help="seconds per basin run")
     parser.add_argument("-o", "--output", type=Path, default=Path("out/diagnosis_fits"))
     args = parser.parse_args()
@@ -72,8 +75,9 @@ def main() -> None:
     for effect, values in args.at:
         gaps = [g for g, _ in evaluate([(effect, values, i, False, *span) for i in runs])]
         table(f"{effect} at {values}", gaps, plain, window_plain, cells, names)
+    mask = None if args.cells is None else np.array([f"{dof}:{metric}" in args.cells for dof, metric in names])
     for effect in args.fit:
-        values, gaps, count = method.fit_effect(CATALOGUE[effect], evaluate, list(runs), 4, effect, None, window_s,
+        values, gaps, count = method.fit_effect(CATALOGUE[effect], evaluate, list(runs), 4, effect, mask, window_s,
                                                 window_plain)
         fitted = ", ".join(f"{k} {v:.4g}" for k, v in values.items())
         table(f"{effect} fitted ({fitted}; {count} model runs)", gaps, plain, window_plain, cells, names)
