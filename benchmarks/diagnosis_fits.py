@@ -5,9 +5,9 @@ From the independent basin's runs of one scenario of a split set (made once, kep
 in the fit window: the plain model's residuals (gap / tolerance) in every cell flagged on
 the whole records, per run; then each effect at the values given (``--at``) and each effect's
 first fit (``--fit``, ``method.fit_effect`` as the diagnosis runs it; ``--cells``: fitted to
-those cells only, as a second round is to the cells not set aside), with the least-squares
-cost and the window closure. Every variant is judged in the plain model's cells, as in the
-diagnosis. One process, no cluster; not timed.
+those cells only, as a second round is to the cells not set aside; ``--decays-only``: on the
+free decays alone), with the least-squares cost and the window closure. Every variant is
+judged in the plain model's cells, as in the diagnosis. One process, no cluster; not timed.
 
     python benchmarks/diagnosis_fits.py held-out-6 'baseline_drag#s1' \\
         --at model_drag:cd_scale=0.68 --fit model_drag linear_damping model_slow_drift -o out/fits
@@ -50,6 +50,8 @@ def main() -> None:
     parser.add_argument("--fit", nargs="*", default=[], choices=sorted(CATALOGUE), metavar="EFFECT")
     parser.add_argument("--cells", nargs="*", default=None, metavar="DOF:METRIC",
                         help="fit to these cells only (default every cell; the others charge a fit for moving them)")
+    parser.add_argument("--decays-only", action="store_true",
+                        help="fit on the free decays alone (the table still shows every run at the fitted values)")
     parser.add_argument("--duration", type=float, default=3600.0, help="seconds per basin run")
     parser.add_argument("-o", "--output", type=Path, default=Path("out/diagnosis_fits"))
     args = parser.parse_args()
@@ -76,9 +78,12 @@ def main() -> None:
         gaps = [g for g, _ in evaluate([(effect, values, i, False, *span) for i in runs])]
         table(f"{effect} at {values}", gaps, plain, window_plain, cells, names)
     mask = None if args.cells is None else np.array([f"{dof}:{metric}" in args.cells for dof, metric in names])
+    fitted_runs = [i for i in runs if tuning[i].decay_dof is not None] if args.decays_only else list(runs)
     for effect in args.fit:
-        values, gaps, count = method.fit_effect(CATALOGUE[effect], evaluate, list(runs), 4, effect, mask, window_s,
-                                                window_plain)
+        values, gaps, count = method.fit_effect(CATALOGUE[effect], evaluate, fitted_runs, 4, effect, mask, window_s,
+                                                [window_plain[i] for i in fitted_runs])
+        if args.decays_only:
+            gaps = [g for g, _ in evaluate([(effect, values, i, False, *span) for i in runs])]
         fitted = ", ".join(f"{k} {v:.4g}" for k, v in values.items())
         table(f"{effect} fitted ({fitted}; {count} model runs)", gaps, plain, window_plain, cells, names)
 
